@@ -1,0 +1,95 @@
+//! # retarget: hand models and kinematics for the POMDAR station
+//!
+//! Pure and synchronous: no I/O, no clocks, no threads. Everything here is a function of its
+//! arguments, so the station, the calibration and the tests all run the same code.
+//!
+//! ## Hand models
+//!
+//! A [`HandModel`] is a kinematic tree of revolute and fixed joints (origin xyz/rpy, axis,
+//! limits, optional linear coupling `q_j = k·q_i + c`) with named frames: the palm, the wrist,
+//! the five digit bases and the five fingertips. Build one from
+//!
+//! - the built-in ORCA v1 right hand, [`HandModel::orca_v1_right`] (the project's own
+//!   description in `models/orca_v1_right.toml`),
+//! - the project's TOML model format ([`model_spec`]), [`HandModel::from_toml_str`],
+//! - any URDF, [`HandModel::from_urdf_str`] with a [`UrdfImport`] naming the frames.
+//!
+//! ### Conventions
+//!
+//! - Units: metres and radians everywhere, inside and at the API.
+//! - The joint vector `q` holds one value per degree of freedom (an uncoupled revolute
+//!   joint), in declaration order; for ORCA that is orca_core's order
+//!   `thumb_mcp, thumb_abd, thumb_pip, thumb_dip, index_abd, index_mcp, index_pip,
+//!   middle_abd, middle_mcp, middle_pip, ring_abd, ring_mcp, ring_pip, pinky_abd, pinky_mcp,
+//!   pinky_pip, wrist`.
+//! - **Zero convention: the URDF's.** `q = 0` is the pose the ORCA URDF draws with every joint
+//!   at zero, so a `sensor_msgs/JointState` of these values is right for
+//!   robot_state_publisher, RViz and Foxglove. orca_core's degree convention differs for
+//!   some abduction joints; the conversion belongs to the station's `/hand/policy_output`
+//!   stage, in one tested place. The FK cross-check test pins this convention against the
+//!   reference URDF.
+//! - Frames: every link frame is expressed in the model's base frame (the root link; ORCA's
+//!   `world`, under the tower). The child link frame of a joint is the joint frame.
+//!
+//! ## Kinematics
+//!
+//! [`HandModel::forward`] poses every link into a reusable [`FkState`];
+//! [`HandModel::position_jacobian`] writes `∂p/∂q` of a link origin,
+//!
+//! ```text
+//! J[:, dof(j)] += k_j · a_j × (p − o_j)      for each revolute joint j above the link,
+//! ```
+//!
+//! with `a_j` the joint axis and `o_j` the joint origin in the base frame, `k_j` the coupling
+//! gain (1 for independent joints). Neither allocates.
+//!
+//! ```
+//! use nalgebra::Matrix3xX;
+//! use retarget::{Finger, HandModel};
+//!
+//! let model = HandModel::orca_v1_right();
+//! let mut state = model.fk_state();
+//! let mut q = model.zero_pose();
+//! q[model.dof_index("index_mcp").unwrap()] = 0.8;
+//! model.forward(&q, &mut state)?;
+//! let tip = model.frames().tip(Finger::Index);
+//! let mut jacobian = Matrix3xX::zeros(model.dof());
+//! model.position_jacobian(&state, tip, &mut jacobian)?;
+//! println!("index tip at {} m", state.position(tip));
+//! # Ok::<(), retarget::Error>(())
+//! ```
+//!
+//! ## Human keypoints and the palm frame
+//!
+//! [`KeypointLayout`] names the points of the lab's 22- and 21-point layouts and MediaPipe's
+//! 21; [`PalmFrame`] is built the same way from human keypoints and from the robot's named
+//! frames, so key vectors compare in one frame.
+//!
+//! ## Embodiments
+//!
+//! [`EmbodimentCatalog`] lists which joints each benchmarked embodiment (Orca_2, Orca_3,
+//! Orca_5, Orca_full) may move; the others are locked at zero.
+
+mod embodiment;
+mod error;
+mod finger;
+mod forward_kinematics;
+mod hand_model;
+mod jacobian;
+pub mod keypoint_layout;
+mod model_build;
+mod model_file;
+pub mod model_spec;
+mod palm_frame;
+mod urdf_import;
+
+pub use embodiment::{EMBODIMENTS_TOML, Embodiment, EmbodimentCatalog};
+pub use error::Error;
+pub use finger::Finger;
+pub use forward_kinematics::FkState;
+pub use hand_model::{Dof, HandModel, Joint, JointMotion, Limits, LinkId, NamedFrames};
+pub use keypoint_layout::KeypointLayout;
+pub use model_file::ORCA_V1_RIGHT_TOML;
+pub use model_spec::{FrameSpec, ModelSpec};
+pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
+pub use urdf_import::{UrdfImport, spec_from_urdf};

@@ -1,0 +1,78 @@
+//! Where the station's hand model comes from: the built-in ORCA v1 right hand, a model file in
+//! the project's TOML format, or a URDF with an import file naming its frames.
+//!
+//! All file reading happens here; errors name the file.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use retarget::{Error, FrameSpec, HandModel, UrdfImport};
+use serde::Deserialize;
+
+/// The hand to load.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum HandSource {
+    /// The built-in ORCA v1 right hand.
+    BuiltinOrcaV1Right,
+    /// A model file in the project's TOML format.
+    ModelFile(PathBuf),
+    /// A URDF and the import file that names its frames.
+    Urdf {
+        /// The URDF.
+        urdf: PathBuf,
+        /// The import description (`launch_configs/hands/*.toml`).
+        import: PathBuf,
+    },
+}
+
+/// The import file: how to read a URDF as a hand.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ImportFile {
+    #[serde(default)]
+    strip_prefix: String,
+    frames: FrameSpec,
+}
+
+impl HandSource {
+    /// Load and validate the model.
+    pub fn load(&self) -> anyhow::Result<HandModel> {
+        match self {
+            HandSource::BuiltinOrcaV1Right => Ok(HandModel::orca_v1_right()),
+            HandSource::ModelFile(path) => {
+                let text = read(path)?;
+                Ok(HandModel::from_toml_str(&text).map_err(|e| e.in_file(path))?)
+            }
+            HandSource::Urdf { urdf, import } => {
+                let import_text = read(import)?;
+                let import_file: ImportFile = toml::from_str(&import_text).map_err(|e| {
+                    Error::Syntax {
+                        reason: e.to_string().trim_end().to_string(),
+                    }
+                    .in_file(import)
+                })?;
+                let text = read(urdf)?;
+                let import = UrdfImport {
+                    strip_prefix: import_file.strip_prefix,
+                    frames: import_file.frames,
+                };
+                Ok(HandModel::from_urdf_str(&text, &import).map_err(|e| e.in_file(urdf))?)
+            }
+        }
+    }
+
+    /// One line saying where the model comes from.
+    pub fn describe(&self) -> String {
+        match self {
+            HandSource::BuiltinOrcaV1Right => "built-in ORCA v1 right hand".into(),
+            HandSource::ModelFile(p) => format!("model file {}", p.display()),
+            HandSource::Urdf { urdf, import } => {
+                format!("URDF {} (import {})", urdf.display(), import.display())
+            }
+        }
+    }
+}
+
+fn read(path: &Path) -> anyhow::Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
