@@ -35,6 +35,16 @@ pub enum Error {
         /// The URDF parser's message.
         reason: String,
     },
+    /// One `<joint>` or `<link>` element of a URDF is incomplete or malformed.
+    #[error("invalid URDF: {element} (line {line}): {reason}")]
+    UrdfElement {
+        /// The element, as `joint 'index_mcp'`.
+        element: String,
+        /// Line of the element's start tag (1-based).
+        line: u32,
+        /// What the URDF parser found wrong.
+        reason: String,
+    },
     /// The model has no joints at all.
     #[error("the model has no joints")]
     NoJoints,

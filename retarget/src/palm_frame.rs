@@ -52,7 +52,7 @@ impl PalmFrame {
         let collapsed = |reason: String| Err(Error::CollapsedPalm { reason });
         let y_raw = base(Finger::Middle) - landmarks.wrist;
         let y_len = y_raw.norm();
-        if !(y_len >= MIN_PALM_AXIS_M) {
+        if !y_len.is_finite() || y_len < MIN_PALM_AXIS_M {
             return collapsed(format!(
                 "wrist to middle base is {:.2} mm (needs ≥ {} mm)",
                 y_len * 1e3,
@@ -63,7 +63,7 @@ impl PalmFrame {
         let d = base(Finger::Index) - base(Finger::Ring);
         let x_raw = d - y * d.dot(&y);
         let x_len = x_raw.norm();
-        if !(x_len >= MIN_PALM_AXIS_M) {
+        if !x_len.is_finite() || x_len < MIN_PALM_AXIS_M {
             return collapsed(format!(
                 "index base to ring base, across the palm, is {:.2} mm (needs ≥ {} mm)",
                 x_len * 1e3,

@@ -28,9 +28,7 @@ impl HandModel {
 
 /// Convert a URDF document to the project's model description and its declared links.
 pub fn spec_from_urdf(urdf: &str, import: &UrdfImport) -> Result<(ModelSpec, Vec<String>), Error> {
-    let robot = urdf_rs::read_from_string(urdf).map_err(|e| Error::Urdf {
-        reason: e.to_string(),
-    })?;
+    let robot = urdf_rs::read_from_string(urdf).map_err(|e| locate_urdf_error(urdf, &e))?;
     let strip = |name: &str| {
         name.strip_prefix(import.strip_prefix.as_str())
             .unwrap_or(name)
@@ -78,4 +76,43 @@ pub fn spec_from_urdf(urdf: &str, import: &UrdfImport) -> Result<(ModelSpec, Vec
         },
         links,
     ))
+}
+
+/// Turn the URDF parser's message (which names a field but not the element) into one that
+/// names the element: XML syntax errors carry their position; otherwise each `<joint>` and
+/// `<link>` is parsed alone until the faulty one is found.
+fn locate_urdf_error(urdf: &str, error: &urdf_rs::UrdfError) -> Error {
+    let clean = |e: &urdf_rs::UrdfError| {
+        let text = e.to_string();
+        text.strip_prefix("custom: ").unwrap_or(&text).to_string()
+    };
+    let doc = match roxmltree::Document::parse(urdf) {
+        Ok(doc) => doc,
+        Err(xml) => {
+            return Error::Urdf {
+                reason: format!("not well-formed XML: {xml}"),
+            };
+        }
+    };
+    let elements = doc
+        .root_element()
+        .children()
+        .filter(|n| matches!(n.tag_name().name(), "joint" | "link"));
+    for node in elements {
+        let alone = format!("<robot name=\"probe\">{}</robot>", &urdf[node.range()]);
+        if let Err(e) = urdf_rs::read_from_string(&alone) {
+            return Error::UrdfElement {
+                element: format!(
+                    "{} '{}'",
+                    node.tag_name().name(),
+                    node.attribute("name").unwrap_or("?")
+                ),
+                line: doc.text_pos_at(node.range().start).row,
+                reason: clean(&e),
+            };
+        }
+    }
+    Error::Urdf {
+        reason: clean(error),
+    }
 }

@@ -25,13 +25,24 @@ pub enum HandSource {
     },
 }
 
-/// The import file: how to read a URDF as a hand.
-#[derive(Debug, Clone, Deserialize)]
+/// A URDF import file (`launch_configs/hands/*.toml`): how to read a URDF as a hand.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ImportFile {
+pub struct ImportFile {
+    /// Prefix removed from every joint and link name (`right_`).
     #[serde(default)]
-    strip_prefix: String,
-    frames: FrameSpec,
+    pub strip_prefix: String,
+    /// Link names (after stripping) of the frames the station needs.
+    pub frames: FrameSpec,
+}
+
+impl ImportFile {
+    /// Parse an import file's text; errors name the key.
+    pub fn from_toml_str(text: &str) -> Result<ImportFile, Error> {
+        toml::from_str(text).map_err(|e| Error::Syntax {
+            reason: e.to_string().trim_end().to_string(),
+        })
+    }
 }
 
 impl HandSource {

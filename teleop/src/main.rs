@@ -1,14 +1,12 @@
 //! `pomdar`: the POMDAR teleoperation and scoring station.
 
-mod hand_source;
-mod model_report;
-
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use crate::hand_source::HandSource;
+use teleop::hand_source::HandSource;
+use teleop::model_report;
 
 /// The POMDAR station: teleoperate a robot hand through the POMDAR dexterity benchmark and
 /// score the trials.

@@ -1,0 +1,44 @@
+//! The files in `launch_configs/`, by kind, so every one of them can be checked by a test and
+//! by the operator before a session.
+
+use std::path::Path;
+
+use anyhow::{Context, bail};
+
+use crate::hand_source::ImportFile;
+
+/// The kinds of file under `launch_configs/`, by the folder they live in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LaunchConfigKind {
+    /// `hands/*.toml`: URDF import files.
+    HandImport,
+}
+
+impl LaunchConfigKind {
+    /// The kind of a file, from its folder under `launch_configs/`.
+    pub fn of(path: &Path) -> Option<LaunchConfigKind> {
+        let folder = path.parent()?.file_name()?.to_str()?;
+        match folder {
+            "hands" => Some(LaunchConfigKind::HandImport),
+            _ => None,
+        }
+    }
+}
+
+/// Read and validate one launch config file; the error names the file and key.
+pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
+    let Some(kind) = LaunchConfigKind::of(path) else {
+        bail!(
+            "{}: not a known kind of launch config (expected under launch_configs/hands/)",
+            path.display()
+        );
+    };
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    match kind {
+        LaunchConfigKind::HandImport => {
+            ImportFile::from_toml_str(&text).map_err(|e| e.in_file(path))?;
+        }
+    }
+    Ok(kind)
+}

@@ -1,0 +1,9 @@
+//! # teleop: the POMDAR station application
+//!
+//! The one crate that does I/O: files today; ROS 2 (ros2-client + tokio), MCAP recording and
+//! the operator console as later issues land. The pure crates (`retarget`, `calibration`,
+//! `scoring`, `msgs`) compute; this crate reads, writes and talks.
+
+pub mod hand_source;
+pub mod launch_config;
+pub mod model_report;

@@ -1,0 +1,57 @@
+//! The dependency rule holds for the real workspace: checked on `cargo metadata` and on the
+//! core crates' sources.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::process::Command;
+
+use pomdar_tests::dependency_rule::{CORE_CRATES, banned_dependencies, banned_source_lines};
+use pomdar_tests::{files_with_extension, workspace_root};
+
+#[test]
+fn core_crates_never_reach_ros2_client_rustdds_or_tokio() {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let output = Command::new(cargo)
+        .args(["metadata", "--format-version", "1", "--locked"])
+        .current_dir(workspace_root())
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "cargo metadata failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let members = metadata["workspace_members"].as_array().unwrap().len();
+    assert!(
+        members >= 6,
+        "expected the whole workspace, got {members} members"
+    );
+    let violations = banned_dependencies(&metadata);
+    assert!(
+        violations.is_empty(),
+        "dependency rule broken:\n{}",
+        violations.join("\n")
+    );
+}
+
+#[test]
+fn core_crate_sources_do_no_io_and_read_no_clock() {
+    let mut report = Vec::new();
+    let mut files = Vec::new();
+    for core in CORE_CRATES {
+        files.extend(files_with_extension(&workspace_root().join(core).join("src"), "rs").unwrap());
+    }
+    assert!(files.len() >= 4, "found only {} source files", files.len());
+    for file in files {
+        let source = std::fs::read_to_string(&file).unwrap();
+        for line in banned_source_lines(&source) {
+            report.push(format!("{}: {line}", file.display()));
+        }
+    }
+    assert!(
+        report.is_empty(),
+        "I/O or clock use in a core crate:\n{}",
+        report.join("\n")
+    );
+}

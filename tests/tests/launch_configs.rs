@@ -1,0 +1,32 @@
+//! Every file in `launch_configs/` parses and validates.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use pomdar_tests::{files_with_extension, workspace_root};
+use teleop::launch_config::check_file;
+
+#[test]
+fn every_launch_config_is_valid() {
+    let all = files_with_extension(&workspace_root().join("launch_configs"), "toml").unwrap();
+    assert!(!all.is_empty(), "no launch configs found");
+    for path in &all {
+        if let Err(e) = check_file(path) {
+            panic!("{e:#}");
+        }
+    }
+    println!("checked {} launch configs", all.len());
+}
+
+#[test]
+fn a_broken_launch_config_is_reported_with_file_and_key() {
+    let dir = std::env::temp_dir().join(format!("pomdar-launch-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("hands")).unwrap();
+    let path = dir.join("hands/broken.toml");
+    std::fs::write(&path, "strip_prefix = \"right_\"\nframe = {}\n").unwrap();
+    let err = format!("{:#}", check_file(&path).unwrap_err());
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        err.contains("broken.toml") && err.contains("frame"),
+        "{err}"
+    );
+}
