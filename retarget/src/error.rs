@@ -200,6 +200,40 @@ pub enum Error {
         /// Which axis collapsed, with the measured length.
         reason: String,
     },
+    /// A frame of keypoints with the wrong number of points for its layout.
+    #[error("keypoints: layout {layout} has {expected} points, got {got}")]
+    KeypointCount {
+        /// The configured layout.
+        layout: &'static str,
+        /// Points the layout has.
+        expected: usize,
+        /// Points received.
+        got: usize,
+    },
+    /// A keypoint coordinate is NaN or infinite.
+    #[error("keypoints: point {index} ({name}) is not finite")]
+    NonFiniteKeypoint {
+        /// Index in the layout.
+        index: usize,
+        /// The point's name in the layout.
+        name: String,
+    },
+    /// A time step that is not a positive finite number of seconds.
+    #[error("time step must be positive and finite, got {dt_s} s")]
+    InvalidTimeStep {
+        /// The time step given, seconds.
+        dt_s: f64,
+    },
+    /// A configuration value out of its allowed range, or inconsistent with another.
+    #[error("config key '{key}' = {value}: {allowed}")]
+    ConfigRange {
+        /// Dotted key (`pinch.engage_m`).
+        key: String,
+        /// The value as read.
+        value: String,
+        /// The allowed range or the rule it breaks.
+        allowed: String,
+    },
     /// An embodiment definition that cannot be used.
     #[error("embodiment '{embodiment}': {problem}")]
     BadEmbodiment {

@@ -99,6 +99,9 @@ pub struct NamedFrames {
     pub bases: [LinkId; 5],
     /// Fingertip frames, indexed by [`Finger::index`].
     pub tips: [LinkId; 5],
+    /// Frames matching each human digit's second keypoint (finger PIP, thumb MCP), if the
+    /// model names them.
+    pub mids: Option<[LinkId; 5]>,
 }
 
 impl NamedFrames {

@@ -70,26 +70,39 @@
 //! [`EmbodimentCatalog`] lists which joints each benchmarked embodiment (Orca_2, Orca_3,
 //! Orca_5, Orca_full) may move; the others are locked at zero.
 
+mod calibration_transform;
 mod embodiment;
+pub mod energy;
 mod error;
 mod finger;
 mod forward_kinematics;
 mod hand_model;
+mod human_key_vectors;
 mod jacobian;
 pub mod keypoint_layout;
 mod model_build;
 mod model_file;
 pub mod model_spec;
 mod palm_frame;
+pub mod qp_step;
+mod retarget_config;
+mod retargeter;
+mod synthetic_keypoints;
 mod urdf_import;
 
+pub use calibration_transform::CalibrationTransform;
 pub use embodiment::{EMBODIMENTS_TOML, Embodiment, EmbodimentCatalog};
 pub use error::Error;
 pub use finger::Finger;
 pub use forward_kinematics::FkState;
 pub use hand_model::{Dof, HandModel, Joint, JointMotion, Limits, LinkId, NamedFrames};
+pub use human_key_vectors::{HumanKeyVectors, human_key_vectors, validate_keypoints};
 pub use keypoint_layout::KeypointLayout;
 pub use model_file::ORCA_V1_RIGHT_TOML;
 pub use model_spec::{FrameSpec, ModelSpec};
 pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
+pub use retarget_config::{
+    KeyVectorWeights, PinchConfig, Regularisation, RetargetConfig, SolverConfig,
+};
+pub use retargeter::{Retargeter, Solution, SolveStatus};
 pub use urdf_import::{UrdfImport, spec_from_urdf};

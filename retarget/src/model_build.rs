@@ -353,10 +353,39 @@ fn named_frames(frames: &FrameSpec, link_id: &HashMap<&str, usize>) -> Result<Na
             })?;
     }
     let [palm, wrist, b0, b1, b2, b3, b4, t0, t1, t2, t3, t4] = ids;
+    let given = frames
+        .mid_entries()
+        .iter()
+        .filter(|(_, l)| l.is_some())
+        .count();
+    let mids =
+        match given {
+            0 => None,
+            5 => {
+                let mut mids = [LinkId(0); 5];
+                for (slot, (frame, link)) in mids.iter_mut().zip(frames.mid_entries()) {
+                    let link = link.unwrap_or_default();
+                    *slot = link_id.get(link).map(|&i| LinkId(i)).ok_or_else(|| {
+                        Error::MissingFrame {
+                            frame: frame.to_string(),
+                            link: link.to_string(),
+                        }
+                    })?;
+                }
+                Some(mids)
+            }
+            _ => {
+                return Err(Error::MissingFrame {
+                    frame: "thumb_mid .. little_mid".into(),
+                    link: format!("only {given} of the 5 given (name all five or none)"),
+                });
+            }
+        };
     Ok(NamedFrames {
         palm,
         wrist,
         bases: [b0, b1, b2, b3, b4],
         tips: [t0, t1, t2, t3, t4],
+        mids,
     })
 }

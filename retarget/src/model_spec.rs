@@ -18,6 +18,9 @@
 //! middle_tip = "..."
 //! ring_tip = "..."
 //! little_tip = "..."
+//! thumb_mid = "thumb_ip"        # optional, all five or none: frames matching the human
+//! index_mid = "index_ip"        # digit's second keypoint (finger PIP, thumb MCP)
+//! # middle_mid, ring_mid, little_mid likewise
 //!
 //! [[joint]]
 //! name = "index_mcp"
@@ -68,6 +71,19 @@ pub struct FrameSpec {
     pub middle_tip: String,
     pub ring_tip: String,
     pub little_tip: String,
+    /// Optional, all five or none: the robot frames matching the human digit's second
+    /// keypoint (finger PIP, thumb MCP), for the palm → mid key vectors that keep finger
+    /// flexion on the right branch.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thumb_mid: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub index_mid: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub middle_mid: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring_mid: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub little_mid: Option<String>,
 }
 
 impl FrameSpec {
@@ -86,6 +102,17 @@ impl FrameSpec {
             ("middle_tip", &self.middle_tip),
             ("ring_tip", &self.ring_tip),
             ("little_tip", &self.little_tip),
+        ]
+    }
+
+    /// The optional mid frames as `(role, link name)`, thumb first.
+    pub fn mid_entries(&self) -> [(&'static str, Option<&str>); 5] {
+        [
+            ("thumb_mid", self.thumb_mid.as_deref()),
+            ("index_mid", self.index_mid.as_deref()),
+            ("middle_mid", self.middle_mid.as_deref()),
+            ("ring_mid", self.ring_mid.as_deref()),
+            ("little_mid", self.little_mid.as_deref()),
         ]
     }
 }

@@ -154,6 +154,11 @@ fn orca_urdf_import() -> UrdfImport {
             middle_tip: "middle_fingertip".into(),
             ring_tip: "ring_fingertip".into(),
             little_tip: "pinky_fingertip".into(),
+            thumb_mid: Some("thumb_ip".into()),
+            index_mid: Some("index_ip".into()),
+            middle_mid: Some("middle_ip".into()),
+            ring_mid: Some("ring_ip".into()),
+            little_mid: Some("pinky_ip".into()),
         },
     }
 }

@@ -20,6 +20,11 @@ fn frames_all(link: &str) -> FrameSpec {
         middle_tip: link.into(),
         ring_tip: link.into(),
         little_tip: link.into(),
+        thumb_mid: None,
+        index_mid: None,
+        middle_mid: None,
+        ring_mid: None,
+        little_mid: None,
     }
 }
 
@@ -61,6 +66,11 @@ fn import() -> UrdfImport {
             middle_tip: "c".into(),
             ring_tip: "d".into(),
             little_tip: "e".into(),
+            thumb_mid: None,
+            index_mid: None,
+            middle_mid: None,
+            ring_mid: None,
+            little_mid: None,
         },
     }
 }
@@ -178,6 +188,16 @@ fn a_frame_naming_a_missing_link_is_named() {
         .unwrap_err()
         .to_string();
     assert_mentions(&err, &["index_tip", "fingertip", "not in the model"]);
+}
+
+#[test]
+fn mid_frames_are_all_or_none() {
+    let mut import = import();
+    import.frames.index_mid = Some("f".into());
+    let err = HandModel::from_urdf_str(&urdf(GOOD_JOINT, ""), &import)
+        .unwrap_err()
+        .to_string();
+    assert_mentions(&err, &["only 1 of the 5", "all five or none"]);
 }
 
 #[test]

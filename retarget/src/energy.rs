@@ -1,0 +1,265 @@
+//! The retargeting energy over 20 key vectors, with the pinch blend and the robust residual.
+//!
+//! All vectors live in the palm frame (human palm frame for targets, robot palm frame for the
+//! robot), metres. The points are the five fingertips (indices 0–4, thumb first) and the five
+//! digit mid points (5–9: finger PIP, thumb MCP). Key vector `k` runs from `from` (the palm
+//! centre, or a point) to a point; its residual is `e_k(q) = r_k(q) − t_k` and its energy `w_k · ρ(‖e_k‖)` with the
+//! Huber function `ρ(x) = ½x²` for `x ≤ δ`, `δ(x − ½δ)` beyond.
+
+#![allow(non_snake_case)] // H, g: the Gauss–Newton normal equations
+
+use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
+
+use crate::finger::Finger;
+use crate::human_key_vectors::HumanKeyVectors;
+use crate::retarget_config::RetargetConfig;
+
+/// Number of key vectors: 5 palm → tip, 10 tip → tip, 5 palm → mid.
+pub const KEY_VECTORS: usize = 20;
+
+/// Number of points the key vectors connect: 5 fingertips, then 5 digit mid points.
+pub const POINTS: usize = 10;
+
+/// Index of a digit's mid point among the [`POINTS`].
+pub const fn mid(finger: Finger) -> usize {
+    5 + finger.index()
+}
+
+/// One weighted key vector target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KeyVector {
+    /// Start: `None` for the palm centre, else a point (fingertip `0..5`, mid point `5..10`).
+    pub from: Option<usize>,
+    /// End point.
+    pub to: usize,
+    /// Target vector in the palm frame, metres.
+    pub target: Vector3<f64>,
+    /// Weight (dimensionless).
+    pub weight: f64,
+}
+
+impl KeyVector {
+    /// The robot's version of this vector, from points in the robot palm frame.
+    pub fn robot(&self, points: &[Vector3<f64>; POINTS]) -> Vector3<f64> {
+        match self.from {
+            None => points[self.to],
+            Some(from) => points[self.to] - points[from],
+        }
+    }
+}
+
+/// Smooth pinch activation: 1 at or below `engage`, 0 at or above `release`, C¹ in between.
+pub fn pinch_activation(distance_m: f64, engage_m: f64, release_m: f64) -> f64 {
+    let x = ((release_m - distance_m) / (release_m - engage_m)).clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+fn unit_or_zero(v: &Vector3<f64>) -> Vector3<f64> {
+    let n = v.norm();
+    if n > 1e-9 { v / n } else { Vector3::zeros() }
+}
+
+/// The 20 key vector targets for one frame of human input.
+///
+/// - palm → tip `i`: target `t = h_i`, weight `w_pt`;
+/// - palm → mid point `i`: target `t = m_i`, weight `w_pm` (keeps flexion on the human's
+///   branch: a straight-ish finger reaches the same tip with its PIP bent either way);
+/// - thumb → finger `k`: the human vector `h` with weight `w_tt`, plus a pinch term
+///   `β_k w_pinch ‖r − gap · ĥ‖²`, `β_k` the pinch activation of the human thumb–finger
+///   distance: together target `t = (1 − s) h + s · gap · ĥ`, weight `w_tt + β_k w_pinch`,
+///   `s = β_k w_pinch / (w_tt + β_k w_pinch)`;
+/// - finger `a` → finger `b`: likewise with `β = max(β_a, β_b)`, weight `w_sep` and goal
+///   `ĥ · max(‖h‖, separation)`: a finger next to a pinching one keeps its distance.
+pub fn key_vector_targets(
+    human: &HumanKeyVectors,
+    config: &RetargetConfig,
+) -> [KeyVector; KEY_VECTORS] {
+    let p = &config.pinch;
+    let w = &config.weights;
+    let beta: [f64; 5] = std::array::from_fn(|i| {
+        if i == 0 {
+            0.0
+        } else {
+            pinch_activation(human.pinch_distances_m[i - 1], p.engage_m, p.release_m)
+        }
+    });
+    let mut out = [KeyVector {
+        from: None,
+        to: 0,
+        target: Vector3::zeros(),
+        weight: 0.0,
+    }; KEY_VECTORS];
+    let mut k = 0;
+    for f in Finger::ALL {
+        out[k] = KeyVector {
+            from: None,
+            to: f.index(),
+            target: human.tips[f.index()],
+            weight: w.palm_to_tip,
+        };
+        k += 1;
+    }
+    for a in 0..5 {
+        for b in a + 1..5 {
+            let h = human.tips[b] - human.tips[a];
+            // The pinch (thumb pairs) and separation (finger pairs) terms add
+            // `β w_extra ‖r − goal‖²` to `w_tt ‖r − h‖²`; the sum is one quadratic with the
+            // blended target below and weight `w_tt + β w_extra`.
+            let (activation, extra, goal) = if a == 0 {
+                (beta[b], p.weight, unit_or_zero(&h) * p.closed_gap_m)
+            } else {
+                let activation = beta[a].max(beta[b]);
+                (
+                    activation,
+                    p.separation_weight,
+                    unit_or_zero(&h) * h.norm().max(p.separation_m),
+                )
+            };
+            let weight = w.tip_to_tip + activation * extra;
+            let blend = if weight > 0.0 {
+                activation * extra / weight
+            } else {
+                0.0
+            };
+            let target = h * (1.0 - blend) + goal * blend;
+            out[k] = KeyVector {
+                from: Some(a),
+                to: b,
+                target,
+                weight,
+            };
+            k += 1;
+        }
+    }
+    for f in Finger::ALL {
+        out[k] = KeyVector {
+            from: None,
+            to: mid(f),
+            target: human.mids[f.index()],
+            weight: w.palm_to_mid,
+        };
+        k += 1;
+    }
+    out
+}
+
+/// Huber function of a residual norm.
+pub fn huber(norm: f64, delta: f64) -> f64 {
+    if norm <= delta {
+        0.5 * norm * norm
+    } else {
+        delta * (norm - 0.5 * delta)
+    }
+}
+
+/// Key-vector part of the energy for robot points (robot palm frame).
+pub fn key_vector_energy(
+    vectors: &[KeyVector; KEY_VECTORS],
+    points: &[Vector3<f64>; POINTS],
+    delta: f64,
+) -> f64 {
+    vectors
+        .iter()
+        .map(|v| v.weight * huber((v.robot(points) - v.target).norm(), delta))
+        .sum()
+}
+
+/// Add the key vectors' Gauss–Newton terms to `H` and `g` (iteratively reweighted: each
+/// residual counts with weight `w · min(1, δ/‖e‖)`), for point Jacobians `jacobians`
+/// (robot palm frame, one column per free joint). `scratch` is a 3 × n buffer.
+pub fn accumulate_key_vectors(
+    vectors: &[KeyVector; KEY_VECTORS],
+    points: &[Vector3<f64>; POINTS],
+    jacobians: &[Matrix3xX<f64>; POINTS],
+    delta: f64,
+    H: &mut DMatrix<f64>,
+    g: &mut DVector<f64>,
+    scratch: &mut Matrix3xX<f64>,
+) {
+    for v in vectors {
+        let e = v.robot(points) - v.target;
+        let norm = e.norm();
+        let robust = if norm > delta { delta / norm } else { 1.0 };
+        let weight = v.weight * robust;
+        if weight == 0.0 {
+            continue;
+        }
+        scratch.copy_from(&jacobians[v.to]);
+        if let Some(from) = v.from {
+            *scratch -= &jacobians[from];
+        }
+        H.gemm_tr(weight, scratch, scratch, 1.0);
+        g.gemv_tr(weight, scratch, &e, 1.0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pinch_activation_is_continuous_and_saturates() {
+        assert_eq!(pinch_activation(0.0, 0.015, 0.04), 1.0);
+        assert_eq!(pinch_activation(0.015, 0.015, 0.04), 1.0);
+        assert_eq!(pinch_activation(0.04, 0.015, 0.04), 0.0);
+        assert_eq!(pinch_activation(0.2, 0.015, 0.04), 0.0);
+        let mid = pinch_activation(0.0275, 0.015, 0.04);
+        assert!((mid - 0.5).abs() < 1e-12);
+        // No snapping: small distance changes give small activation changes.
+        let mut previous = 1.0;
+        for i in 0..=1000 {
+            let a = pinch_activation(0.01 + 0.04 * i as f64 / 1000.0, 0.015, 0.04);
+            assert!((a - previous).abs() < 0.01);
+            previous = a;
+        }
+    }
+
+    #[test]
+    fn huber_is_quadratic_then_linear_and_continuous() {
+        assert_eq!(huber(0.01, 0.02), 0.5e-4);
+        assert!((huber(0.02, 0.02) - 2e-4).abs() < 1e-18);
+        assert!((huber(0.05, 0.02) - 0.02 * 0.04).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_full_pinch_targets_the_closed_gap() {
+        let mut tips = [Vector3::zeros(); 5];
+        for (i, t) in tips.iter_mut().enumerate() {
+            *t = Vector3::new(0.02 * i as f64, 0.1, 0.0);
+        }
+        tips[1] = tips[0] + Vector3::new(0.005, 0.0, 0.0); // index 5 mm from thumb
+        let human = HumanKeyVectors {
+            tips,
+            mids: tips.map(|t| t * 0.5),
+            pinch_distances_m: [0.005, 0.04, 0.06, 0.08],
+        };
+        let config = RetargetConfig::default();
+        let v = key_vector_targets(&human, &config);
+        let thumb_index = v.iter().find(|k| k.from == Some(0) && k.to == 1).unwrap();
+        // Blend s = 10 / (0.5 + 10) of the way from the human vector to the closed gap.
+        let s = config.pinch.weight / (config.weights.tip_to_tip + config.pinch.weight);
+        let expected = 0.005 * (1.0 - s) + config.pinch.closed_gap_m * s;
+        assert!((thumb_index.target.norm() - expected).abs() < 1e-12);
+        assert_eq!(
+            thumb_index.weight,
+            config.weights.tip_to_tip + config.pinch.weight
+        );
+        let thumb_ring = v.iter().find(|k| k.from == Some(0) && k.to == 3).unwrap();
+        assert_eq!(thumb_ring.target, tips[3] - tips[0]);
+        // The middle finger, next to the pinching index, is kept at least separation_m away.
+        let index_middle = v.iter().find(|k| k.from == Some(1) && k.to == 2).unwrap();
+        assert!(index_middle.target.norm() > 0.02 + 1e-3);
+        // With the extra weights at zero the targets are the human vectors.
+        let mut plain = config.clone();
+        plain.pinch.weight = 0.0;
+        plain.pinch.separation_weight = 0.0;
+        for k in key_vector_targets(&human, &plain)
+            .iter()
+            .filter(|k| k.from.is_some())
+        {
+            assert_eq!(k.target, tips[k.to] - tips[k.from.unwrap()]);
+        }
+        let palm_mid = v.iter().filter(|k| k.from.is_none() && k.to >= 5).count();
+        assert_eq!(palm_mid, 5);
+    }
+}

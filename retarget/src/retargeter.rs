@@ -1,0 +1,446 @@
+//! [`Retargeter`]: per-frame energy minimisation by Gauss–Newton steps, each a box QP.
+//!
+//! For free joints `q` (the embodiment's unlocked degrees of freedom; the others stay at
+//! their neutral value exactly), previous command `q₋`, the energy is
+//!
+//! ```text
+//! E(q) = Σ_k w_k ρ_δ(‖r_k(q) − t_k‖) + ½ λ ‖q − q₋‖² + ½ μ Σ_{j ∈ abd} (q_j − q_rest,j)²
+//! ```
+//!
+//! (key vectors `r_k`, targets `t_k`: see [`crate::energy`]). A step linearises
+//! `r_k(q + Δ) ≈ r_k(q) + J_k Δ`, reweights each residual by `min(1, δ/‖e_k‖)` (IRLS for the
+//! Huber function ρ) and solves
+//!
+//! ```text
+//! min_Δ ½ Δᵀ (Σ w̃_k J_kᵀ J_k + (λ + ε) I + μ D) Δ + (Σ w̃_k J_kᵀ e_k + λ (q − q₋) + μ D (q − q_rest))ᵀ Δ
+//! s.t.  max(q_min, q₋ − v·τ) − q ≤ Δ ≤ min(q_max, q₋ + v·τ) − q
+//! ```
+//!
+//! with `τ = min(dt, max_rate_dt)`, the joint speed limit `v` and damping `ε`. A step is
+//! accepted when it lowers the true energy (halving it up to four times); the frame ends when
+//! a step is below tolerance, no step lowers the energy, or the step budget is spent. Every
+//! iterate lies in the box, so the returned command is always within limits and rate bounds.
+
+#![allow(non_snake_case)] // H, g: the normal equations
+
+use nalgebra::{DMatrix, DVector, Matrix3xX, Point3, Vector3};
+
+use crate::calibration_transform::CalibrationTransform;
+use crate::embodiment::EmbodimentCatalog;
+use crate::energy::{
+    KEY_VECTORS, KeyVector, POINTS, accumulate_key_vectors, key_vector_energy, key_vector_targets,
+};
+use crate::error::Error;
+use crate::forward_kinematics::FkState;
+use crate::hand_model::HandModel;
+use crate::hand_model::LinkId;
+use crate::human_key_vectors::human_key_vectors;
+use crate::qp_step::BoxQp;
+use crate::retarget_config::RetargetConfig;
+
+/// How a frame's solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolveStatus {
+    /// The last step was below tolerance, or no step could lower the energy further.
+    Converged,
+    /// The step budget ran out first; the command is the best iterate, still feasible.
+    StepLimit,
+    /// A QP failed (status named); the command is the best iterate before it.
+    QpFailed(&'static str),
+}
+
+/// The result of one frame: the command and how it was obtained.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// How the solve ended.
+    pub status: SolveStatus,
+    /// The joint command, radians, one value per degree of freedom of the model.
+    pub q: Vec<f64>,
+    /// Gauss–Newton steps taken (QPs solved).
+    pub steps: u32,
+    /// Interior-point iterations over all QPs.
+    pub qp_iterations: u32,
+    /// Energy at the previous command, for this frame's targets.
+    pub cost_before: f64,
+    /// Energy at the returned command.
+    pub cost_after: f64,
+    /// Clarabel's solve time summed over the frame's QPs, seconds.
+    pub qp_time_s: f64,
+    /// Mean over the 5 palm → fingertip key vectors of ‖robot − target‖, metres.
+    pub tip_error_m: f64,
+}
+
+/// The retargeter for one hand model, configuration and calibration.
+#[derive(Debug)]
+pub struct Retargeter {
+    model: HandModel,
+    config: RetargetConfig,
+    transform: CalibrationTransform,
+    /// Degrees of freedom solved for.
+    free: Vec<usize>,
+    /// Rest targets, as (position in `free`, radians).
+    rest: Vec<(usize, f64)>,
+    neutral: Vec<f64>,
+    command: Vec<f64>,
+    fk: FkState,
+    /// The links behind the energy's points: 5 fingertips, then 5 mid frames (the tips again
+    /// for a model without mid frames; their key vectors then weigh 0).
+    point_links: [LinkId; POINTS],
+    full_jacobian: Matrix3xX<f64>,
+    point_jacobians: [Matrix3xX<f64>; POINTS],
+    scratch: Matrix3xX<f64>,
+    H: DMatrix<f64>,
+    g: DVector<f64>,
+    step: DVector<f64>,
+    limits: Vec<crate::hand_model::Limits>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    lower_step: Vec<f64>,
+    upper_step: Vec<f64>,
+    trial: Vec<f64>,
+    qp: BoxQp,
+}
+
+impl Retargeter {
+    /// Build a retargeter; the embodiment named in `config` comes from `catalog`.
+    pub fn new(
+        model: HandModel,
+        config: RetargetConfig,
+        catalog: &EmbodimentCatalog,
+    ) -> Result<Retargeter, Error> {
+        config.validate()?;
+        let embodiment = catalog
+            .get(&config.embodiment)
+            .ok_or_else(|| Error::BadEmbodiment {
+                embodiment: config.embodiment.clone(),
+                problem: format!(
+                    "not in the catalog (known: {})",
+                    catalog.names().collect::<Vec<_>>().join(", ")
+                ),
+            })?;
+        let mask = embodiment.unlocked_mask(&model)?;
+        let free: Vec<usize> = (0..model.dof()).filter(|&i| mask[i]).collect();
+        let mut neutral = model.zero_pose();
+        let mut rest = Vec::new();
+        for (joint, &value) in &config.rest_posture_rad {
+            let dof = model.dof_index(joint).ok_or_else(|| Error::ConfigRange {
+                key: format!("rest_posture_rad.{joint}"),
+                value: value.to_string(),
+                allowed: format!("'{joint}' is not a joint of model '{}'", model.name()),
+            })?;
+            let limits = model.dofs()[dof].limits;
+            if !limits.contains(value) {
+                return Err(Error::ConfigRange {
+                    key: format!("rest_posture_rad.{joint}"),
+                    value: value.to_string(),
+                    allowed: format!(
+                        "must be within the joint limits [{}, {}]",
+                        limits.lower_rad, limits.upper_rad
+                    ),
+                });
+            }
+            if let Some(position) = free.iter().position(|&f| f == dof) {
+                rest.push((position, value));
+                neutral[dof] = value;
+            }
+        }
+        let n = free.len();
+        let dof = model.dof();
+        let frames = model.frames();
+        let mids = frames.mids.unwrap_or(frames.tips);
+        let point_links = std::array::from_fn(|i| if i < 5 { frames.tips[i] } else { mids[i - 5] });
+        let mut config = config;
+        if frames.mids.is_none() {
+            config.weights.palm_to_mid = 0.0;
+        }
+        Ok(Retargeter {
+            point_links,
+            fk: model.fk_state(),
+            full_jacobian: Matrix3xX::zeros(dof),
+            point_jacobians: std::array::from_fn(|_| Matrix3xX::zeros(n)),
+            scratch: Matrix3xX::zeros(n),
+            H: DMatrix::zeros(n, n),
+            g: DVector::zeros(n),
+            step: DVector::zeros(n),
+            limits: model.limits().collect(),
+            lower: vec![0.0; n],
+            upper: vec![0.0; n],
+            lower_step: vec![0.0; n],
+            upper_step: vec![0.0; n],
+            trial: neutral.clone(),
+            qp: BoxQp::new(n, config.solver.qp_max_iterations),
+            command: neutral.clone(),
+            neutral,
+            free,
+            rest,
+            model,
+            config,
+            transform: CalibrationTransform::IDENTITY,
+        })
+    }
+
+    /// Use a calibration transform from now on.
+    pub fn set_calibration(&mut self, transform: CalibrationTransform) -> Result<(), Error> {
+        transform.validate()?;
+        self.transform = transform;
+        Ok(())
+    }
+
+    /// The calibration transform in use.
+    pub fn calibration(&self) -> &CalibrationTransform {
+        &self.transform
+    }
+
+    /// The hand model.
+    pub fn model(&self) -> &HandModel {
+        &self.model
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &RetargetConfig {
+        &self.config
+    }
+
+    /// Degrees of freedom the solver moves (indices into the joint vector).
+    pub fn free_dofs(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// The last command (the neutral pose before the first frame).
+    pub fn command(&self) -> &[f64] {
+        &self.command
+    }
+
+    /// The neutral pose: zero, abduction joints at their rest posture.
+    pub fn neutral(&self) -> &[f64] {
+        &self.neutral
+    }
+
+    /// Start the next frame from `q` (e.g. the hand's measured state). Values are clamped into
+    /// the joint limits; locked joints keep their neutral value.
+    pub fn set_command(&mut self, q: &[f64]) -> Result<(), Error> {
+        if q.len() != self.model.dof() {
+            return Err(Error::DofMismatch {
+                expected: self.model.dof(),
+                got: q.len(),
+            });
+        }
+        for &dof in &self.free {
+            let value = if q[dof].is_finite() {
+                q[dof]
+            } else {
+                self.neutral[dof]
+            };
+            self.command[dof] = self.limits[dof].clamp(value);
+        }
+        Ok(())
+    }
+
+    /// Forget the last command and start the next frame from the neutral pose.
+    pub fn reset(&mut self) {
+        self.command.copy_from_slice(&self.neutral);
+    }
+
+    /// Retarget one frame of keypoints (layout from the configuration, metres), `dt_s`
+    /// seconds after the previous frame. On `Err` (malformed input) the command is unchanged:
+    /// the caller holds it.
+    pub fn retarget(&mut self, keypoints: &[Point3<f64>], dt_s: f64) -> Result<Solution, Error> {
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(Error::InvalidTimeStep { dt_s });
+        }
+        let human = human_key_vectors(self.config.layout, keypoints, &self.transform)?;
+        let targets = key_vector_targets(&human, &self.config);
+        Ok(self.solve(&targets, dt_s))
+    }
+
+    /// Fingertips of the robot at `q`, in the robot palm frame, metres.
+    pub fn robot_tips(&mut self, q: &[f64]) -> Result<[Vector3<f64>; 5], Error> {
+        let points = self.robot_points(q)?;
+        Ok(std::array::from_fn(|i| points[i]))
+    }
+
+    /// The energy's robot points at `q` (fingertips, then mid points), robot palm frame.
+    fn robot_points(&mut self, q: &[f64]) -> Result<[Vector3<f64>; POINTS], Error> {
+        self.model.forward(q, &mut self.fk)?;
+        let palm = self.model.palm_frame(&self.fk)?;
+        Ok(self
+            .point_links
+            .map(|l| palm.point_to_palm(&self.fk.position(l))))
+    }
+
+    fn solve(&mut self, targets: &[KeyVector; KEY_VECTORS], dt_s: f64) -> Solution {
+        let reach =
+            self.config.solver.max_joint_speed_rad_s * dt_s.min(self.config.solver.max_rate_dt_s);
+        for (k, &dof) in self.free.iter().enumerate() {
+            let previous = self.command[dof];
+            self.lower[k] = self.limits[dof].lower_rad.max(previous - reach);
+            self.upper[k] = self.limits[dof].upper_rad.min(previous + reach);
+        }
+        let mut q = self.command.clone();
+        let cost_before = self.energy(targets, &q);
+        let mut cost = cost_before;
+        let mut status = SolveStatus::StepLimit;
+        let mut steps = 0;
+        let mut qp_iterations = 0;
+        let mut qp_time_s = 0.0;
+        for _ in 0..self.config.solver.steps_per_frame {
+            self.normal_equations(targets, &q);
+            for (k, &dof) in self.free.iter().enumerate() {
+                self.lower_step[k] = (self.lower[k] - q[dof]).min(0.0);
+                self.upper_step[k] = (self.upper[k] - q[dof]).max(0.0);
+            }
+            let outcome = self.qp.solve(
+                &self.H,
+                &self.g,
+                &self.lower_step,
+                &self.upper_step,
+                &mut self.step,
+            );
+            steps += 1;
+            qp_iterations += outcome.iterations;
+            qp_time_s += outcome.solve_time_s;
+            if !outcome.usable() || !self.step.iter().all(|s| s.is_finite()) {
+                status = SolveStatus::QpFailed(status_name(outcome.status));
+                break;
+            }
+            match self.line_search(targets, &q, cost) {
+                Some((next_cost, step_size)) => {
+                    q.copy_from_slice(&self.trial);
+                    cost = next_cost;
+                    if step_size < self.config.solver.step_tolerance_rad {
+                        status = SolveStatus::Converged;
+                        break;
+                    }
+                }
+                None => {
+                    status = SolveStatus::Converged;
+                    break;
+                }
+            }
+        }
+        self.command.copy_from_slice(&q);
+        let points = self.robot_points(&q).unwrap_or([Vector3::zeros(); POINTS]);
+        let tip_error_m = targets[..5]
+            .iter()
+            .map(|v| (v.robot(&points) - v.target).norm())
+            .sum::<f64>()
+            / 5.0;
+        Solution {
+            status,
+            q,
+            steps,
+            qp_iterations,
+            cost_before,
+            cost_after: cost,
+            qp_time_s,
+            tip_error_m,
+        }
+    }
+
+    /// Try `q + α Δ` for α = 1, ½, ¼, ⅛ (clamped into the box); on the first that lowers the
+    /// energy, leave it in `self.trial` and return its energy and max-norm step size.
+    fn line_search(
+        &mut self,
+        targets: &[KeyVector; KEY_VECTORS],
+        q: &[f64],
+        cost: f64,
+    ) -> Option<(f64, f64)> {
+        let mut alpha = 1.0;
+        for _ in 0..4 {
+            self.trial.copy_from_slice(q);
+            let mut size: f64 = 0.0;
+            for (k, &dof) in self.free.iter().enumerate() {
+                let value = (q[dof] + alpha * self.step[k]).clamp(self.lower[k], self.upper[k]);
+                size = size.max((value - q[dof]).abs());
+                self.trial[dof] = value;
+            }
+            let trial = std::mem::take(&mut self.trial);
+            let trial_cost = self.energy(targets, &trial);
+            self.trial = trial;
+            if trial_cost < cost {
+                return Some((trial_cost, size));
+            }
+            alpha *= 0.5;
+        }
+        None
+    }
+
+    /// The energy at `q` (key vectors + regularisers).
+    fn energy(&mut self, targets: &[KeyVector; KEY_VECTORS], q: &[f64]) -> f64 {
+        let Ok(points) = self.robot_points(q) else {
+            return f64::INFINITY;
+        };
+        let reg = &self.config.regularisation;
+        let mut energy = key_vector_energy(targets, &points, self.config.huber_delta_m);
+        for &dof in &self.free {
+            energy += 0.5 * reg.previous_command * (q[dof] - self.command[dof]).powi(2);
+        }
+        for &(k, rest) in &self.rest {
+            energy += 0.5 * reg.rest_posture * (q[self.free[k]] - rest).powi(2);
+        }
+        energy
+    }
+
+    /// Assemble `H` and `g` at `q`.
+    fn normal_equations(&mut self, targets: &[KeyVector; KEY_VECTORS], q: &[f64]) {
+        let reg = self.config.regularisation.clone();
+        self.H.fill(0.0);
+        self.g.fill(0.0);
+        for (k, &dof) in self.free.iter().enumerate() {
+            self.H[(k, k)] = reg.previous_command + reg.damping;
+            self.g[k] = reg.previous_command * (q[dof] - self.command[dof]);
+        }
+        for &(k, rest) in &self.rest {
+            self.H[(k, k)] += reg.rest_posture;
+            self.g[k] += reg.rest_posture * (q[self.free[k]] - rest);
+        }
+        if self.model.forward(q, &mut self.fk).is_err() {
+            return;
+        }
+        let Ok(palm) = self.model.palm_frame(&self.fk) else {
+            return;
+        };
+        let positions = self
+            .point_links
+            .map(|l| palm.point_to_palm(&self.fk.position(l)));
+        let to_palm = palm.rotation.inverse();
+        for (i, &link) in self.point_links.iter().enumerate() {
+            if self
+                .model
+                .position_jacobian(&self.fk, link, &mut self.full_jacobian)
+                .is_err()
+            {
+                return;
+            }
+            for (k, &dof) in self.free.iter().enumerate() {
+                let column = to_palm * self.full_jacobian.column(dof).into_owned();
+                self.point_jacobians[i].set_column(k, &column);
+            }
+        }
+        accumulate_key_vectors(
+            targets,
+            &positions,
+            &self.point_jacobians,
+            self.config.huber_delta_m,
+            &mut self.H,
+            &mut self.g,
+            &mut self.scratch,
+        );
+    }
+}
+
+fn status_name(status: clarabel::solver::SolverStatus) -> &'static str {
+    use clarabel::solver::SolverStatus as S;
+    match status {
+        S::Unsolved => "unsolved",
+        S::Solved => "solved",
+        S::AlmostSolved => "almost solved",
+        S::PrimalInfeasible | S::AlmostPrimalInfeasible => "primal infeasible",
+        S::DualInfeasible | S::AlmostDualInfeasible => "dual infeasible",
+        S::MaxIterations => "iteration limit",
+        S::MaxTime => "time limit",
+        S::NumericalError => "numerical error",
+        S::InsufficientProgress => "insufficient progress",
+        S::CallbackTerminated => "callback terminated",
+    }
+}
