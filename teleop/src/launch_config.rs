@@ -5,6 +5,8 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 
+use retarget::RetargetConfig;
+
 use crate::hand_source::ImportFile;
 
 /// The kinds of file under `launch_configs/`, by the folder they live in.
@@ -12,6 +14,8 @@ use crate::hand_source::ImportFile;
 pub enum LaunchConfigKind {
     /// `hands/*.toml`: URDF import files.
     HandImport,
+    /// `retarget/*.toml`: retargeting configurations.
+    Retarget,
 }
 
 impl LaunchConfigKind {
@@ -20,6 +24,7 @@ impl LaunchConfigKind {
         let folder = path.parent()?.file_name()?.to_str()?;
         match folder {
             "hands" => Some(LaunchConfigKind::HandImport),
+            "retarget" => Some(LaunchConfigKind::Retarget),
             _ => None,
         }
     }
@@ -29,7 +34,7 @@ impl LaunchConfigKind {
 pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     let Some(kind) = LaunchConfigKind::of(path) else {
         bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/)",
+            "{}: not a known kind of launch config (expected under launch_configs/hands/ or launch_configs/retarget/)",
             path.display()
         );
     };
@@ -38,6 +43,9 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     match kind {
         LaunchConfigKind::HandImport => {
             ImportFile::from_toml_str(&text).map_err(|e| e.in_file(path))?;
+        }
+        LaunchConfigKind::Retarget => {
+            RetargetConfig::from_toml_str(&text).map_err(|e| e.in_file(path))?;
         }
     }
     Ok(kind)

@@ -30,3 +30,11 @@ fn a_broken_launch_config_is_reported_with_file_and_key() {
         "{err}"
     );
 }
+
+#[test]
+fn the_shipped_retarget_config_spells_out_the_defaults() {
+    let path = workspace_root().join("launch_configs/retarget/orca_full_lab22.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let config = retarget::RetargetConfig::from_toml_str(&text).unwrap();
+    assert_eq!(config, retarget::RetargetConfig::default());
+}

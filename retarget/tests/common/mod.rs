@@ -1,5 +1,9 @@
 //! Helpers for tests that read `../shared/reference/` beside the checkout.
 
+#![allow(dead_code)] // each test binary uses a part
+
+pub mod recording;
+
 use std::path::PathBuf;
 
 /// `../shared/reference/` relative to the workspace root, or `None` (with a printed skip
