@@ -69,6 +69,66 @@
 //!
 //! [`EmbodimentCatalog`] lists which joints each benchmarked embodiment (Orca_2, Orca_3,
 //! Orca_5, Orca_full) may move; the others are locked at zero.
+//!
+//! ## Retargeting: energy minimisation as a sequence of QPs
+//!
+//! [`Retargeter::retarget`] turns one frame of human keypoints into a joint command.
+//!
+//! **Frames.** Human points are expressed in the human palm frame `H` built from the wrist and
+//! the five digit bases ([`PalmFrame`]); robot points in the robot palm frame `R` built the same
+//! way from the model's named frames. Both are metres. The calibration transform
+//! `C = s · Rot(roll, pitch, yaw)` ([`CalibrationTransform`], identity by default) maps human
+//! vectors into robot proportions: `h ↦ C h`.
+//!
+//! **Points.** For each digit `i`: the fingertip `p_i` and the mid point `m_i` (finger PIP,
+//! thumb MCP; robot: the model's `*_mid` frames). Human: `p̂_i = C ·ᴴp_i`, `m̂_i = C ·ᴴm_i`.
+//! Robot: `p_i(q)`, `m_i(q)` in `R`.
+//!
+//! **Energy** over the free joints `q` (the embodiment's; locked joints are not variables and
+//! stay at their neutral value exactly), with `q₋` the previous command:
+//!
+//! ```text
+//! E(q) = Σ_i       w_pt · ρ(‖p_i(q) − p̂_i‖)                    5 palm → tip vectors
+//!      + Σ_{i<j}   w_ij · ρ(‖(p_j − p_i)(q) − t_ij‖)            10 tip → tip vectors
+//!      + Σ_i       w_pm · ρ(‖m_i(q) − m̂_i‖)                     5 palm → mid vectors
+//!      + ½ λ ‖q − q₋‖²  +  ½ μ Σ_{j ∈ abduction} (q_j − q_rest,j)²
+//! ```
+//!
+//! - `ρ` is the Huber function with threshold `δ` (`huber_delta_m`, 2 cm): quadratic for small
+//!   residuals, linear beyond, so one bad keypoint pulls with bounded force.
+//! - Tip → tip targets blend the human vector `h = p̂_j − p̂_i` with a pinch goal. For thumb →
+//!   finger `k`, the activation `β_k = smoothstep((release − d_k)/(release − engage))` of the
+//!   raw human thumb–finger distance `d_k` (1 below `engage_m`, 0 above `release_m`, C¹ in
+//!   between: no snapping) adds `β_k w_pinch ‖r − gap · ĥ‖²`, which pulls the robot pair to
+//!   `closed_gap_m`. For finger pairs, `β = max(β_a, β_b)` adds
+//!   `β w_sep ‖r − ĥ · max(‖h‖, separation_m)‖²`, keeping a pinching finger's neighbours away.
+//!   Each pair is one quadratic: weight `w_ij = w_tt + β w_extra`, target
+//!   `t_ij = (1 − σ) h + σ · goal`, `σ = β w_extra / w_ij` ([`energy::key_vector_targets`]).
+//! - `λ` (`regularisation.previous_command`) smooths without the lag of an output filter;
+//!   `μ` (`regularisation.rest_posture`) keeps abduction joints near a rest posture when the
+//!   key vectors leave them free.
+//!
+//! Units: residuals in metres, weights dimensionless per m², `λ`, `μ` per rad².
+//!
+//! **Steps.** Each Gauss–Newton step linearises `r(q + Δ) ≈ r(q) + J Δ` (palm-frame positional
+//! Jacobians of the points, couplings folded in), reweights every residual by
+//! `min(1, δ/‖e‖)` (iteratively reweighted least squares for ρ) and solves the box QP
+//!
+//! ```text
+//! min_Δ ½ Δᵀ (Σ w̃ JᵀJ + (λ + ε) I + μ D_abd) Δ + (Σ w̃ Jᵀe + λ (q − q₋) + μ D_abd (q − q_rest))ᵀ Δ
+//! s.t.  max(q_min, q₋ − v τ) − q  ≤  Δ  ≤  min(q_max, q₋ + v τ) − q,     τ = min(dt, max_rate_dt_s)
+//! ```
+//!
+//! with Clarabel ([`qp_step::BoxQp`]): one solver per retargeter, its data updated in place,
+//! the problem Jacobi-scaled to unit diagonal and unit gradient so tolerances are relative.
+//! A step is accepted when it lowers `E` (halved up to four times otherwise); every iterate is
+//! clamped into the box, so commands never leave the joint limits or the rate bound.
+//!
+//! **Outcome as data.** [`Solution`] carries the status ([`SolveStatus`]: converged, step
+//! budget spent, or QP failure with the best iterate before it), the Gauss–Newton steps and
+//! interior-point iterations, the energy before and after, the solver time and the mean
+//! palm → tip error. Malformed input (wrong point count, non-finite values, a collapsed palm,
+//! a bad time step) is an `Err` and leaves the command untouched: the caller holds it.
 
 mod calibration_transform;
 mod embodiment;

@@ -71,6 +71,25 @@ pub struct Solution {
 }
 
 /// The retargeter for one hand model, configuration and calibration.
+///
+/// ```
+/// use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, RetargetConfig, Retargeter};
+///
+/// let model = HandModel::orca_v1_right();
+/// let mut retargeter =
+///     Retargeter::new(model.clone(), RetargetConfig::default(), &EmbodimentCatalog::builtin())?;
+/// // Keypoints of the robot itself at a pose, in the lab's 22-point layout.
+/// let mut q = model.zero_pose();
+/// q[model.dof_index("index_mcp").unwrap()] = 0.9;
+/// let keypoints = model.synthetic_keypoints(&model.forward_new(&q)?, KeypointLayout::Lab22);
+/// for _ in 0..25 {
+///     let solution = retargeter.retarget(&keypoints, 0.04)?; // 25 Hz
+///     assert!(model.within_limits(&solution.q));
+/// }
+/// let index_mcp = retargeter.command()[model.dof_index("index_mcp").unwrap()];
+/// assert!((index_mcp - 0.9).abs() < 0.05);
+/// # Ok::<(), retarget::Error>(())
+/// ```
 #[derive(Debug)]
 pub struct Retargeter {
     model: HandModel,
