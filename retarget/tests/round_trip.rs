@@ -82,6 +82,40 @@ fn random_reachable_poses_from_a_neutral_start_reproduce_fingertips() {
 }
 
 #[test]
+fn one_solve_from_neutral_reproduces_fingertips() {
+    // A single frame from the neutral pose, as the calibration runs the retargeter: enough
+    // Gauss–Newton steps, no rate limit and no pull toward the previous (neutral) command.
+    let model = HandModel::orca_v1_right();
+    let mut config = key_vectors_only();
+    config.regularisation.previous_command = 0.0;
+    config.solver.steps_per_frame = 30;
+    config.solver.max_joint_speed_rad_s = 100.0;
+    config.solver.max_rate_dt_s = 1.0;
+    let mut retargeter =
+        Retargeter::new(model.clone(), config, &EmbodimentCatalog::builtin()).unwrap();
+    let mut rng = StdRng::seed_from_u64(5);
+    let (mut errors, mut steps) = (Vec::new(), 0);
+    for _ in 0..1000 {
+        let q_true = random_pose(&model, &mut rng);
+        let keypoints =
+            model.synthetic_keypoints(&model.forward_new(&q_true).unwrap(), KeypointLayout::Lab22);
+        retargeter.reset();
+        let solution = retargeter.retarget(&keypoints, 1.0).unwrap();
+        steps += solution.steps;
+        errors.push(tip_error(&mut retargeter, &q_true, &solution.q));
+    }
+    let p50 = percentile(&mut errors, 0.5);
+    let p95 = percentile(&mut errors, 0.95);
+    println!(
+        "round trip, one solve from neutral, 1000 poses: worst-tip error p50 {:.3} mm, p95 {:.3} mm, {:.1} GN steps on average",
+        p50 * 1e3,
+        p95 * 1e3,
+        f64::from(steps) / 1000.0
+    );
+    assert!(p95 <= 2e-3, "p95 {p95} m");
+}
+
+#[test]
 fn smooth_trajectories_with_warm_start_track_fingertips() {
     let model = HandModel::orca_v1_right();
     let mut retargeter = Retargeter::new(
