@@ -3,11 +3,15 @@
 //! `cargo bench -p retarget --bench kinematics` prints one JSON line per measured operation:
 //! per-call time p50/p99/mean in nanoseconds over batches of calls at seeded random poses.
 
+#[path = "../tests/common/poses.rs"]
+#[allow(dead_code)]
+mod poses;
+
 use std::hint::black_box;
 use std::time::Instant;
 
 use nalgebra::Matrix3xX;
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{SeedableRng, rngs::StdRng};
 use retarget::HandModel;
 
 const POSES: usize = 1024;
@@ -18,12 +22,7 @@ fn main() {
     let model = HandModel::orca_v1_right();
     let mut rng = StdRng::seed_from_u64(7);
     let poses: Vec<Vec<f64>> = (0..POSES)
-        .map(|_| {
-            model
-                .limits()
-                .map(|l| rng.random_range(l.lower_rad..=l.upper_rad))
-                .collect()
-        })
+        .map(|_| poses::random_pose(&model, &mut rng))
         .collect();
     let mut state = model.fk_state();
     let mut jacobians = vec![Matrix3xX::zeros(model.dof()); 5];

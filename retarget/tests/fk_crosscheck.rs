@@ -10,7 +10,7 @@ mod common;
 use std::collections::HashMap;
 
 use k::Chain;
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{SeedableRng, rngs::StdRng};
 use retarget::{FrameSpec, HandModel, JointMotion, UrdfImport};
 
 const URDF: &str = "orcahand_v1_right.urdf";
@@ -27,12 +27,7 @@ fn reference_chain(test: &str) -> Option<(Chain<f64>, String)> {
 fn random_poses(model: &HandModel, seed: u64) -> Vec<Vec<f64>> {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut poses: Vec<Vec<f64>> = (0..POSES - 2)
-        .map(|_| {
-            model
-                .limits()
-                .map(|l| rng.random_range(l.lower_rad..=l.upper_rad))
-                .collect()
-        })
+        .map(|_| common::poses::random_pose(model, &mut rng))
         .collect();
     poses.push(model.limits().map(|l| l.lower_rad).collect());
     poses.push(model.limits().map(|l| l.upper_rad).collect());

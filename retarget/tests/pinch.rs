@@ -11,6 +11,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+mod common;
+
 use nalgebra::{DMatrix, DVector, Matrix3xX, Point3};
 use retarget::{EmbodimentCatalog, Finger, HandModel, KeypointLayout, RetargetConfig, Retargeter};
 
@@ -81,13 +83,7 @@ fn scaled_keypoints(model: &HandModel, q: &[f64], scale: f64) -> Vec<Point3<f64>
 
 #[test]
 fn human_pinches_close_the_robot_pinch_for_every_finger() {
-    let model = HandModel::orca_v1_right();
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        RetargetConfig::default(),
-        &EmbodimentCatalog::builtin(),
-    )
-    .unwrap();
+    let (model, mut retargeter) = common::poses::orca_retargeter(RetargetConfig::default());
     let open = retargeter.neutral().to_vec();
     let thumb = model.frames().tip(Finger::Thumb);
     for finger in Finger::OPPOSING {

@@ -3,8 +3,10 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+mod common;
+
 use nalgebra::Vector3;
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{SeedableRng, rngs::StdRng};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, RetargetConfig, Retargeter};
 
 /// The key-vector energy alone: the pinch and separation terms deliberately depart from the
@@ -26,10 +28,7 @@ fn percentile(values: &mut [f64], p: f64) -> f64 {
 }
 
 fn random_pose(model: &HandModel, rng: &mut StdRng) -> Vec<f64> {
-    let mut q: Vec<f64> = model
-        .limits()
-        .map(|l| rng.random_range(l.lower_rad..=l.upper_rad))
-        .collect();
+    let mut q = common::poses::random_pose(model, rng);
     q[model.dof_index("wrist").unwrap()] = 0.0; // not an Orca_full finger joint
     q
 }
@@ -47,13 +46,7 @@ fn tip_error(retargeter: &mut Retargeter, q_true: &[f64], q_out: &[f64]) -> f64 
 
 #[test]
 fn random_reachable_poses_from_a_neutral_start_reproduce_fingertips() {
-    let model = HandModel::orca_v1_right();
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        key_vectors_only(),
-        &EmbodimentCatalog::builtin(),
-    )
-    .unwrap();
+    let (model, mut retargeter) = common::poses::orca_retargeter(key_vectors_only());
     let mut rng = StdRng::seed_from_u64(3);
     let mut errors = Vec::new();
     for _ in 0..1000 {
@@ -117,13 +110,7 @@ fn one_solve_from_neutral_reproduces_fingertips() {
 
 #[test]
 fn smooth_trajectories_with_warm_start_track_fingertips() {
-    let model = HandModel::orca_v1_right();
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        key_vectors_only(),
-        &EmbodimentCatalog::builtin(),
-    )
-    .unwrap();
+    let (model, mut retargeter) = common::poses::orca_retargeter(key_vectors_only());
     let mut rng = StdRng::seed_from_u64(11);
     let dt = 0.04; // 25 Hz
     let mut errors = Vec::new();

@@ -5,6 +5,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+mod common;
+
 use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng, rngs::StdRng};
@@ -17,10 +19,7 @@ const TOLERANCE: f64 = 1e-9;
 /// One frame, drawn from a mix of plausible and hostile inputs.
 fn frame(model: &HandModel, rng: &mut StdRng) -> Vec<Point3<f64>> {
     let layout = KeypointLayout::Lab22;
-    let q: Vec<f64> = model
-        .limits()
-        .map(|l| rng.random_range(l.lower_rad..=l.upper_rad))
-        .collect();
+    let q = common::poses::random_pose(model, rng);
     let mut points = model.synthetic_keypoints(&model.forward_new(&q).unwrap(), layout);
     match rng.random_range(0..8) {
         // A plausible hand with glove noise.
@@ -121,13 +120,7 @@ proptest! {
 
 #[test]
 fn malformed_frames_are_errors_and_hold_the_command() {
-    let model = HandModel::orca_v1_right();
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        RetargetConfig::default(),
-        &EmbodimentCatalog::builtin(),
-    )
-    .unwrap();
+    let (model, mut retargeter) = common::poses::orca_retargeter(RetargetConfig::default());
     let good = model.synthetic_keypoints(
         &model.forward_new(&model.zero_pose()).unwrap(),
         KeypointLayout::Lab22,

@@ -2,6 +2,7 @@
 
 #![allow(dead_code)] // each test binary uses a part
 
+pub mod poses;
 pub mod recording;
 
 use std::path::PathBuf;
