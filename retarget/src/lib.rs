@@ -137,6 +137,7 @@ mod error;
 mod finger;
 mod forward_kinematics;
 mod hand_model;
+pub mod human_hand;
 mod human_key_vectors;
 mod jacobian;
 pub mod keypoint_layout;

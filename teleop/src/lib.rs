@@ -4,6 +4,13 @@
 //! the operator console as later issues land. The pure crates (`retarget`, `calibration`,
 //! `scoring`, `msgs`) compute; this crate reads, writes and talks.
 
+pub mod arm;
+pub mod cli;
+pub mod clock;
+pub mod demo;
 pub mod hand_source;
 pub mod launch_config;
 pub mod model_report;
+pub mod ros;
+pub mod sim;
+pub mod station;

@@ -4,15 +4,17 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-
+use teleop::cli;
 use teleop::hand_source::HandSource;
 use teleop::model_report;
 
 /// The POMDAR station: teleoperate a robot hand through the POMDAR dexterity benchmark and
 /// score the trials.
 ///
-/// Today it inspects hand models. The ROS 2 station (`demo`, `station`), recording, replay,
-/// calibration, scoring and the operator console arrive in later issues.
+/// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
+/// pose out), a simulated glove, mock robot nodes, the all-in-one demo, and hand model
+/// inspection. Recording, replay, calibration, scoring and the operator console arrive in
+/// later issues.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -22,6 +24,35 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// The whole pipeline on loopback DDS: simulated glove → station → mock hand and arm.
+    ///
+    /// Runs in one process on its own ROS domain id (never the lab's 0 by default), prints a
+    /// status line every second and a summary at the end: input and output rates, end-to-end
+    /// latency (glove publish → joint target received) p50/p99, solver time, rejected frames,
+    /// fingertip error.
+    ///
+    /// Examples:
+    ///   pomdar demo
+    ///   pomdar demo --duration 60 --motion pinches
+    ///   pomdar demo --duration 5 --json
+    #[command(verbatim_doc_comment)]
+    Demo(cli::DemoArgs),
+    /// Run the station node (no simulated parts) until Ctrl-C.
+    ///
+    /// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
+    /// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
+    /// (launch_configs/station/*.toml). Engage with --engage or from the console.
+    ///
+    /// Example:
+    ///   pomdar station --config launch_configs/station/eth_lab.toml --engage
+    #[command(verbatim_doc_comment)]
+    Station(cli::StationArgs),
+    /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
+    SimGlove(cli::SimGloveArgs),
+    /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state.
+    MockHand(cli::MockHandArgs),
+    /// A mock Franka: follows pose commands at limited speed, publishes its pose.
+    MockFranka(cli::MockFrankaArgs),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -69,6 +100,11 @@ fn main() -> ExitCode {
             };
             model_report::run(&source, &pose, json)
         }
+        Command::Demo(args) => cli::run_async(cli::demo(args)),
+        Command::Station(args) => cli::run_async(cli::station(args)),
+        Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),
+        Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),
+        Command::MockFranka(args) => cli::run_async(cli::mock_franka(args)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,343 @@
+//! The node subcommands of `pomdar` (argument parsing is clap's; the work is in the modules).
+
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+use anyhow::Context as _;
+use clap::Args;
+use retarget::HandModel;
+use retarget::human_hand::MotionKind;
+use tokio::sync::{mpsc, watch};
+
+use crate::clock::StationClock;
+use crate::demo::{DemoOptions, default_domain_id, run_demo};
+use crate::ros::NetworkConfig;
+use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
+use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
+use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::station::ros_station::{OperatorCommand, run_station};
+use crate::station::station_config::StationConfig;
+
+/// `pomdar demo` options.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// How long the simulated glove plays, seconds.
+    #[arg(long, default_value_t = 20.0)]
+    pub duration: f64,
+    /// Print only a JSON summary on stdout (no live status).
+    #[arg(long)]
+    pub json: bool,
+    /// ROS domain id for the demo (default: 150–229, from the process id).
+    #[arg(long)]
+    pub domain_id: Option<u16>,
+    /// Station configuration (default: the ETH lab preset built in).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Scripted glove motion.
+    #[arg(long, value_enum, default_value = "task-like")]
+    pub motion: MotionArg,
+    /// Glove publishing rate, Hz.
+    #[arg(long, default_value_t = 100.0)]
+    pub glove_rate_hz: f64,
+}
+
+/// The glove's scripted motions.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum MotionArg {
+    /// Open hand to fist and back.
+    OpenClose,
+    /// The four thumb–finger pinches in turn.
+    Pinches,
+    /// Fingers spread and closed.
+    Abduction,
+    /// Grasp, release, pinches.
+    TaskLike,
+}
+
+impl From<MotionArg> for MotionKind {
+    fn from(m: MotionArg) -> MotionKind {
+        match m {
+            MotionArg::OpenClose => MotionKind::OpenClose,
+            MotionArg::Pinches => MotionKind::Pinches,
+            MotionArg::Abduction => MotionKind::Abduction,
+            MotionArg::TaskLike => MotionKind::TaskLike,
+        }
+    }
+}
+
+/// Options shared by the node commands.
+#[derive(Debug, Args)]
+pub struct NodeArgs {
+    /// ROS domain id (default: the config's, else ROS_DOMAIN_ID, else 0).
+    #[arg(long)]
+    pub domain_id: Option<u16>,
+    /// Restrict DDS to this local address (repeatable), e.g. 127.0.0.1.
+    #[arg(long = "interface", value_name = "ADDRESS")]
+    pub interfaces: Vec<std::net::IpAddr>,
+}
+
+impl NodeArgs {
+    fn network(&self, base: &NetworkConfig) -> NetworkConfig {
+        NetworkConfig {
+            domain_id: self.domain_id.or(base.domain_id),
+            interfaces: if self.interfaces.is_empty() {
+                base.interfaces.clone()
+            } else {
+                self.interfaces.clone()
+            },
+        }
+    }
+}
+
+/// `pomdar station` options.
+#[derive(Debug, Args)]
+pub struct StationArgs {
+    /// Station configuration file (launch_configs/station/*.toml).
+    #[arg(long, value_name = "FILE")]
+    pub config: PathBuf,
+    /// Engage as soon as glove input is fresh.
+    #[arg(long)]
+    pub engage: bool,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar sim-glove` options.
+#[derive(Debug, Args)]
+pub struct SimGloveArgs {
+    /// Scripted motion.
+    #[arg(long, value_enum, default_value = "task-like")]
+    pub motion: MotionArg,
+    /// Publishing rate, Hz.
+    #[arg(long, default_value_t = 100.0)]
+    pub rate_hz: f64,
+    /// Hand size relative to an average adult hand (0.8–1.25 realistic).
+    #[arg(long, default_value_t = 1.0)]
+    pub hand_scale: f64,
+    /// Keypoint noise, standard deviation per axis, metres.
+    #[arg(long, default_value_t = 0.001)]
+    pub jitter_m: f64,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar mock-hand` options.
+#[derive(Debug, Args)]
+pub struct MockHandArgs {
+    /// Joint target topic.
+    #[arg(long, default_value = "/pomdar/hand/joint_targets")]
+    pub targets_topic: String,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar mock-franka` options.
+#[derive(Debug, Args)]
+pub struct MockFrankaArgs {
+    /// Pose command topic.
+    #[arg(long, default_value = "/franka/end_effector_pose_cmd")]
+    pub command_topic: String,
+    /// Pose feedback topic.
+    #[arg(long, default_value = "/franka/end_effector_pose")]
+    pub pose_topic: String,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// Run an async command on a two-worker runtime.
+pub fn run_async(future: impl Future<Output = anyhow::Result<()>>) -> anyhow::Result<()> {
+    tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")?
+        .block_on(future)
+}
+
+/// A shutdown signal that turns true on Ctrl-C.
+fn ctrl_c_shutdown() -> watch::Receiver<bool> {
+    let (tx, rx) = watch::channel(false);
+    tokio::spawn(async move {
+        if tokio::signal::ctrl_c().await.is_ok() {
+            tx.send(true).ok();
+        }
+    });
+    rx
+}
+
+/// `pomdar demo`.
+pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
+    let station = match &args.config {
+        Some(path) => StationConfig::from_file(path)?,
+        None => StationConfig::default(),
+    };
+    let glove = SimGloveConfig {
+        motion: args.motion.into(),
+        period_s: MotionKind::from(args.motion).default_period_s(),
+        rate_hz: args.glove_rate_hz,
+        keypoints_topic: station.input.keypoints_topic.clone(),
+        wrist_topic: station.input.wrist_topic.clone(),
+        layout: station.retarget.layout,
+        ..SimGloveConfig::default()
+    };
+    if !(args.duration > 0.0 && args.duration <= 86_400.0) {
+        anyhow::bail!("--duration {} must be in (0, 86400] seconds", args.duration);
+    }
+    let domain_id = args.domain_id.unwrap_or_else(default_domain_id);
+    if !args.json {
+        eprintln!(
+            "pomdar demo: simulated glove ({:?}, {} Hz) → station → mock ORCA hand + mock Franka, loopback DDS, domain {domain_id}, {} s",
+            glove.motion, glove.rate_hz, args.duration
+        );
+    }
+    let summary = run_demo(DemoOptions {
+        duration_s: args.duration,
+        domain_id,
+        station,
+        glove,
+        live: !args.json,
+    })
+    .await?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+    } else {
+        let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2} ms"));
+        println!("summary over {:.1} s:", summary.duration_s);
+        println!("  glove frames       {:.1} /s", summary.input_rate_hz);
+        println!(
+            "  joint targets      {:.1} /s ({} received)",
+            summary.output_rate_hz, summary.hand_targets
+        );
+        println!("  arm targets        {}", summary.arm_targets);
+        println!(
+            "  end-to-end latency p50 {}, p99 {}",
+            ms(summary.latency_ms_p50),
+            ms(summary.latency_ms_p99)
+        );
+        println!(
+            "  control step       p50 {}, p99 {}",
+            ms(summary.solver_ms_p50),
+            ms(summary.solver_ms_p99)
+        );
+        println!("  rejected frames    {}", summary.rejected_frames);
+        println!(
+            "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",
+            summary
+                .fingertip_error_mm
+                .map_or("-".into(), |v| format!("{v:.1} mm"))
+        );
+    }
+    Ok(())
+}
+
+/// `pomdar station`.
+pub async fn station(args: StationArgs) -> anyhow::Result<()> {
+    let mut config = StationConfig::from_file(&args.config)?;
+    config.network = args.node.network(&config.network);
+    config.control.auto_engage |= args.engage;
+    let shutdown = ctrl_c_shutdown();
+    let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
+    eprintln!(
+        "pomdar station: domain {}, keypoints {}, joint targets {}, arm {}; Ctrl-C stops",
+        crate::ros::domain_id(config.network.domain_id)?,
+        config.input.keypoints_topic,
+        config.output.joint_targets_topic,
+        config.output.arm_target_topic
+    );
+    let summary = run_station(
+        config,
+        HandModel::orca_v1_right(),
+        StationClock::new(),
+        shutdown,
+        rx,
+    )
+    .await?;
+    eprintln!(
+        "stopped: {} new frames, {} hand commands, {} arm targets, rejected {:?}",
+        summary.counters.frames_new,
+        summary.hand_commands,
+        summary.arm_targets,
+        summary.counters.rejected
+    );
+    Ok(())
+}
+
+/// `pomdar sim-glove`.
+pub async fn sim_glove(args: SimGloveArgs) -> anyhow::Result<()> {
+    let config = SimGloveConfig {
+        motion: args.motion.into(),
+        period_s: MotionKind::from(args.motion).default_period_s(),
+        rate_hz: args.rate_hz,
+        hand_scale: args.hand_scale,
+        jitter_m: args.jitter_m,
+        ..SimGloveConfig::default()
+    };
+    let frames = run_sim_glove(
+        config,
+        args.node.network(&NetworkConfig::default()),
+        StationClock::new(),
+        ctrl_c_shutdown(),
+    )
+    .await?;
+    eprintln!("published {frames} frames");
+    Ok(())
+}
+
+/// `pomdar mock-hand`.
+pub async fn mock_hand(args: MockHandArgs) -> anyhow::Result<()> {
+    let report = Arc::new(Mutex::new(MockHandReport::default()));
+    let config = MockHandConfig {
+        targets_topic: args.targets_topic,
+        ..MockHandConfig::default()
+    };
+    run_mock_hand(
+        HandModel::orca_v1_right(),
+        config,
+        args.node.network(&NetworkConfig::default()),
+        StationClock::new(),
+        report.clone(),
+        ctrl_c_shutdown(),
+    )
+    .await?;
+    if let Ok(r) = report.lock() {
+        eprintln!(
+            "received {} targets, latency p50 {:?} ms",
+            r.targets,
+            r.latency.percentile(0.5)
+        );
+    }
+    Ok(())
+}
+
+/// `pomdar mock-franka`.
+pub async fn mock_franka(args: MockFrankaArgs) -> anyhow::Result<()> {
+    let report = Arc::new(Mutex::new(MockFrankaReport::default()));
+    let start = StationConfig::default()
+        .arm
+        .start_pose_isometry()
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let config = MockFrankaConfig {
+        command_topic: args.command_topic,
+        pose_topic: args.pose_topic,
+        start,
+        max_speed_m_s: 0.5,
+        max_rate_rad_s: 1.0,
+        rate_hz: 100.0,
+    };
+    run_mock_franka(
+        config,
+        args.node.network(&NetworkConfig::default()),
+        StationClock::new(),
+        report.clone(),
+        ctrl_c_shutdown(),
+    )
+    .await?;
+    if let Ok(r) = report.lock() {
+        eprintln!("received {} commands ({} rejected)", r.commands, r.rejected);
+    }
+    Ok(())
+}

@@ -1,0 +1,182 @@
+//! `pomdar demo`: the whole pipeline on loopback DDS in one process — simulated glove →
+//! station → mock ORCA hand and mock Franka — each on its own DDS participant, on the demo's
+//! own domain id, with a live status line and a summary.
+
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use anyhow::Context as _;
+use retarget::HandModel;
+use serde::Serialize;
+use tokio::sync::{mpsc, watch};
+
+use crate::arm::Constraint;
+use crate::clock::StationClock;
+use crate::ros::NetworkConfig;
+use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
+use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
+use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::station::ros_station::run_station;
+use crate::station::station_config::StationConfig;
+
+/// Options of a demo run.
+#[derive(Debug, Clone)]
+pub struct DemoOptions {
+    /// How long the glove plays, seconds.
+    pub duration_s: f64,
+    /// DDS domain id of the demo (never the lab's by default).
+    pub domain_id: u16,
+    /// The station configuration (the demo engages automatically and stays on loopback).
+    pub station: StationConfig,
+    /// The simulated glove.
+    pub glove: SimGloveConfig,
+    /// Print a status line every second.
+    pub live: bool,
+}
+
+/// The machine-readable summary (`--json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DemoSummary {
+    /// Seconds the glove played.
+    pub duration_s: f64,
+    /// DDS domain id used.
+    pub domain_id: u16,
+    /// Glove frames published per second.
+    pub input_rate_hz: f64,
+    /// Joint targets received by the mock hand per second.
+    pub output_rate_hz: f64,
+    /// Glove publish → joint target received, milliseconds.
+    pub latency_ms_p50: Option<f64>,
+    /// Glove publish → joint target received, milliseconds.
+    pub latency_ms_p99: Option<f64>,
+    /// Station control step (retargeting a new frame), milliseconds.
+    pub solver_ms_p50: Option<f64>,
+    /// Station control step (retargeting a new frame), milliseconds.
+    pub solver_ms_p99: Option<f64>,
+    /// Frames rejected by the station, all reasons.
+    pub rejected_frames: u64,
+    /// Mean palm-to-fingertip key-vector error, millimetres (uncalibrated).
+    pub fingertip_error_mm: Option<f64>,
+    /// Arm targets received by the mock Franka.
+    pub arm_targets: u64,
+    /// Joint targets received by the mock hand.
+    pub hand_targets: u64,
+}
+
+/// The demo's default domain id: away from 0 (the lab's usual), different per process.
+pub fn default_domain_id() -> u16 {
+    150 + (std::process::id() % 80) as u16
+}
+
+/// Run the demo.
+pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoSummary> {
+    let clock = StationClock::new();
+    let network = NetworkConfig {
+        domain_id: Some(options.domain_id),
+        interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
+    };
+    let mut station = options.station.clone();
+    station.network = network.clone();
+    station.control.auto_engage = true;
+    if station.arm.constraint == Constraint::Fixed {
+        station.arm.constraint = Constraint::Free;
+    }
+    station.validate()?;
+    let model = HandModel::orca_v1_right();
+    let (shutdown_tx, shutdown_rx) = watch::channel(false);
+    let (_operator_tx, operator_rx) = mpsc::unbounded_channel();
+
+    let hand_report = Arc::new(Mutex::new(MockHandReport::default()));
+    let arm_report = Arc::new(Mutex::new(MockFrankaReport::default()));
+    let hand = tokio::spawn(run_mock_hand(
+        model.clone(),
+        MockHandConfig {
+            targets_topic: station.output.joint_targets_topic.clone(),
+            ..MockHandConfig::default()
+        },
+        network.clone(),
+        clock,
+        hand_report.clone(),
+        shutdown_rx.clone(),
+    ));
+    let start = station
+        .arm
+        .start_pose_isometry()
+        .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
+    let arm = tokio::spawn(run_mock_franka(
+        MockFrankaConfig {
+            command_topic: station.output.arm_target_topic.clone(),
+            pose_topic: station.input.arm_feedback_topic.clone(),
+            start,
+            max_speed_m_s: 0.5,
+            max_rate_rad_s: 1.0,
+            rate_hz: 100.0,
+        },
+        network.clone(),
+        clock,
+        arm_report.clone(),
+        shutdown_rx.clone(),
+    ));
+    let station_task = tokio::spawn(run_station(
+        station.clone(),
+        model,
+        clock,
+        shutdown_rx.clone(),
+        operator_rx,
+    ));
+    let glove = tokio::spawn(run_sim_glove(
+        options.glove.clone(),
+        network.clone(),
+        clock,
+        shutdown_rx.clone(),
+    ));
+
+    let start_ns = clock.now_ns();
+    let mut seconds = 0u64;
+    while (clock.now_ns() - start_ns) as f64 * 1e-9 < options.duration_s {
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
+        if options.live && elapsed as u64 > seconds {
+            seconds = elapsed as u64;
+            if let Ok(report) = hand_report.lock() {
+                let recent = report
+                    .receive_times_ns
+                    .iter()
+                    .filter(|&&t| clock.now_ns() - t < 1_000_000_000)
+                    .count();
+                eprintln!(
+                    "[{seconds:>3} s] joint targets {recent:>4}/s  latency p50 {:>6} ms  p99 {:>6} ms  total {}",
+                    fmt_ms(report.latency.percentile(0.5)),
+                    fmt_ms(report.latency.percentile(0.99)),
+                    report.targets
+                );
+            }
+        }
+    }
+    shutdown_tx.send(true).ok();
+    let frames = glove.await.context("glove task")??;
+    let summary = station_task.await.context("station task")??;
+    hand.await.context("mock hand task")??;
+    arm.await.context("mock arm task")??;
+    let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
+    let hand_report = hand_report.lock().map(|r| r.clone()).unwrap_or_default();
+    let arm_report = arm_report.lock().map(|r| r.clone()).unwrap_or_default();
+    Ok(DemoSummary {
+        duration_s: elapsed,
+        domain_id: options.domain_id,
+        input_rate_hz: frames as f64 / elapsed,
+        output_rate_hz: hand_report.targets as f64 / elapsed,
+        latency_ms_p50: hand_report.latency.percentile(0.5),
+        latency_ms_p99: hand_report.latency.percentile(0.99),
+        solver_ms_p50: summary.step_time.percentile(0.5),
+        solver_ms_p99: summary.step_time.percentile(0.99),
+        rejected_frames: summary.counters.rejected.values().sum(),
+        fingertip_error_mm: summary.tip_error_mm.mean(),
+        arm_targets: arm_report.commands,
+        hand_targets: hand_report.targets,
+    })
+}
+
+fn fmt_ms(value: Option<f64>) -> String {
+    value.map_or("-".into(), |v| format!("{v:.2}"))
+}

@@ -1,0 +1,137 @@
+//! Typed publishers and subscriptions for the `msgs` types on one ROS 2 node.
+//!
+//! Topic types come from [`msgs::RosMessage`] (ROS 2 naming on the wire: topic `rt/<name>`,
+//! type `pkg::msg::dds_::Type_`), so peers such as Cyclone DDS or rclpy match by type name.
+
+use anyhow::Context as _;
+use msgs::RosMessage;
+use ros2_client::{
+    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, Subscription,
+};
+
+use crate::ros::qos::QosConfig;
+
+/// A message with the times the station knows about it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stamped<M> {
+    /// The message.
+    pub message: M,
+    /// When the station received it, nanoseconds on the station's clock.
+    pub received_ns: i64,
+    /// When the sender published it (DDS source timestamp), nanoseconds since the epoch.
+    pub source_ns: Option<i64>,
+}
+
+/// A ROS 2 node with typed endpoint helpers. The spinner runs on the tokio runtime.
+pub struct RosNode {
+    node: Node,
+    context: Context,
+}
+
+impl std::fmt::Debug for RosNode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RosNode").finish_non_exhaustive()
+    }
+}
+
+fn topic_name(name: &str) -> anyhow::Result<Name> {
+    let trimmed = name.trim_start_matches('/');
+    let (namespace, base) = match trimmed.rsplit_once('/') {
+        Some((ns, base)) => (format!("/{ns}"), base),
+        None => ("/".to_string(), trimmed),
+    };
+    Name::new(&namespace, base).with_context(|| format!("'{name}' is not a valid ROS 2 topic name"))
+}
+
+impl RosNode {
+    /// Create node `name` in `namespace` and spawn its spinner on the current tokio runtime.
+    pub fn new(context: &Context, namespace: &str, name: &str) -> anyhow::Result<RosNode> {
+        let node_name = NodeName::new(namespace, name)
+            .with_context(|| format!("'{namespace}/{name}' is not a valid ROS 2 node name"))?;
+        let mut node = context
+            .new_node(node_name, NodeOptions::new().enable_rosout(false))
+            .context("cannot create the ROS 2 node")?;
+        let spinner = node.spinner().context("cannot start the node's spinner")?;
+        tokio::spawn(spinner.spin());
+        Ok(RosNode {
+            node,
+            context: context.clone(),
+        })
+    }
+
+    /// The ROS 2 context (participant) of this node.
+    pub fn context(&self) -> &Context {
+        &self.context
+    }
+
+    /// The underlying ros2-client node (graph queries).
+    pub fn node(&self) -> &Node {
+        &self.node
+    }
+
+    /// A publisher of `M` on `topic`.
+    pub fn publisher<M: RosMessage>(
+        &mut self,
+        topic: &str,
+        qos: QosConfig,
+    ) -> anyhow::Result<Publisher<M>> {
+        let profile = qos.profile();
+        let definition = M::DEFINITION;
+        let topic_handle = self
+            .node
+            .create_topic(
+                &topic_name(topic)?,
+                MessageTypeName::new(definition.package, definition.name),
+                &profile,
+            )
+            .with_context(|| format!("cannot create topic {topic}"))?;
+        self.node
+            .create_publisher(&topic_handle, Some(profile))
+            .with_context(|| format!("cannot publish on {topic}"))
+    }
+
+    /// A subscription to `M` on `topic`.
+    pub fn subscription<M: RosMessage + 'static>(
+        &mut self,
+        topic: &str,
+        qos: QosConfig,
+    ) -> anyhow::Result<Subscription<M>> {
+        let profile = qos.profile();
+        let definition = M::DEFINITION;
+        let topic_handle = self
+            .node
+            .create_topic(
+                &topic_name(topic)?,
+                MessageTypeName::new(definition.package, definition.name),
+                &profile,
+            )
+            .with_context(|| format!("cannot create topic {topic}"))?;
+        self.node
+            .create_subscription(&topic_handle, Some(profile))
+            .with_context(|| format!("cannot subscribe to {topic}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn topic_names_split_into_namespace_and_base() {
+        assert_eq!(
+            topic_name("/ingress/mano").unwrap().to_string(),
+            "/ingress/mano"
+        );
+        assert_eq!(
+            topic_name("/target_pose").unwrap().to_string(),
+            "/target_pose"
+        );
+        assert_eq!(
+            topic_name("/fr3/arm/end_effector_pose_cmd")
+                .unwrap()
+                .to_string(),
+            "/fr3/arm/end_effector_pose_cmd"
+        );
+        assert!(topic_name("/bad name").is_err());
+    }
+}

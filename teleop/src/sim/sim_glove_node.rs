@@ -1,0 +1,103 @@
+//! The simulated glove node: publishes the lab's `/ingress/mano` (Float32MultiArray, N × 3
+//! metres) and `/ingress/wrist` (PoseStamped, frame `coil`) from the parametric human hand
+//! model at a fixed rate, optionally with keypoint noise and timing jitter.
+
+use std::time::Duration;
+
+use msgs::{Float32MultiArray, PoseStamped};
+use retarget::KeypointLayout;
+use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use serde::{Deserialize, Serialize};
+use tokio::sync::watch;
+
+use crate::clock::StationClock;
+use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::{NetworkConfig, QosConfig, RosNode};
+
+/// The simulated glove's settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimGloveConfig {
+    /// Publishing rate, Hz.
+    pub rate_hz: f64,
+    /// Scripted motion.
+    pub motion: MotionKind,
+    /// Motion period, seconds (per pinch for `pinches`).
+    pub period_s: f64,
+    /// Hand size relative to the average adult hand.
+    pub hand_scale: f64,
+    /// Keypoint noise, standard deviation, metres.
+    pub jitter_m: f64,
+    /// Layout published.
+    pub layout: KeypointLayout,
+    /// Keypoint topic.
+    pub keypoints_topic: String,
+    /// Wrist pose topic.
+    pub wrist_topic: String,
+    /// Seed of the noise.
+    pub seed: u64,
+}
+
+impl Default for SimGloveConfig {
+    fn default() -> Self {
+        SimGloveConfig {
+            rate_hz: 100.0,
+            motion: MotionKind::TaskLike,
+            period_s: MotionKind::TaskLike.default_period_s(),
+            hand_scale: 1.0,
+            jitter_m: 0.001,
+            layout: KeypointLayout::Lab22,
+            keypoints_topic: "/ingress/mano".into(),
+            wrist_topic: "/ingress/wrist".into(),
+            seed: 1,
+        }
+    }
+}
+
+impl SimGloveConfig {
+    /// The glove model for this configuration.
+    pub fn glove(&self) -> anyhow::Result<SimGlove> {
+        let shape = HumanHandShape::average().scaled(self.hand_scale);
+        let motion = Motion::new(self.motion, self.period_s, &shape)
+            .map_err(|e| anyhow::anyhow!("sim glove: {e}"))?;
+        let glove = SimGlove::new(shape, motion, self.layout)
+            .and_then(|g| g.with_jitter(self.jitter_m, self.seed))
+            .map_err(|e| anyhow::anyhow!("sim glove: {e}"))?;
+        Ok(glove)
+    }
+}
+
+/// Publish until `shutdown`; returns the number of frames published.
+pub async fn run_sim_glove(
+    config: SimGloveConfig,
+    network: NetworkConfig,
+    clock: StationClock,
+    mut shutdown: watch::Receiver<bool>,
+) -> anyhow::Result<u64> {
+    let glove = config.glove()?;
+    let context = network.context()?;
+    let mut node = RosNode::new(&context, "/", "pomdar_sim_glove")?;
+    let qos = QosConfig::best_effort(400);
+    let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, qos)?;
+    let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, qos)?;
+    let start_ns = clock.now_ns();
+    let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / config.rate_hz));
+    interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut frames = 0;
+    loop {
+        tokio::select! {
+            _ = shutdown.changed() => if *shutdown.borrow() { break },
+            _ = interval.tick() => {
+                let now = clock.now_ns();
+                let (points, wrist) = glove.frame((now - start_ns) as f64 * 1e-9);
+                let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
+                let array = Float32MultiArray::from_points(&rows)?;
+                keypoints_pub.async_publish(array).await.ok();
+                let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
+                wrist_pub.async_publish(pose).await.ok();
+                frames += 1;
+            }
+        }
+    }
+    Ok(frames)
+}

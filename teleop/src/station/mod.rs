@@ -1,0 +1,9 @@
+//! The station: the synchronous control step and its parts (frame gate, watchdog).
+
+pub mod frame_gate;
+pub mod policy_output;
+pub mod rate_meter;
+pub mod ros_station;
+pub mod station_config;
+pub mod station_core;
+pub mod watchdog;

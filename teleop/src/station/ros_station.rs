@@ -1,0 +1,354 @@
+//! The station as a ROS 2 node: subscriptions feed [`StationCore`], a timer ticks it, and its
+//! commands go out as `sensor_msgs/JointState`, the lab's `/hand/policy_output`, a
+//! `geometry_msgs/PoseStamped` arm target, and a JSON status on `std_msgs/String`.
+//!
+//! Stamps: a command's header carries the DDS source time of the glove frame it was computed
+//! from (its receive time when the sender gives none), so any subscriber can measure
+//! end-to-end latency; all other times come from the station's one clock.
+
+use std::time::Duration;
+
+use anyhow::Context as _;
+use futures::StreamExt;
+use msgs::{
+    Float32MultiArray, JointState, MultiArrayDimension, MultiArrayLayout, PoseArray, PoseStamped,
+    StringMsg,
+};
+use nalgebra::{Isometry3, Point3};
+use retarget::{EmbodimentCatalog, HandModel, Retargeter};
+use serde_json::json;
+use tokio::sync::{mpsc, watch};
+
+use crate::arm::ArmMapper;
+use crate::clock::StationClock;
+use crate::ros::convert::{
+    array_to_points, header, isometry_to_pose, pose_array_to_points, pose_to_isometry,
+};
+use crate::ros::{QosConfig, RosNode};
+use crate::sim::latency::Latencies;
+use crate::station::frame_gate::{FrameGate, Verdict};
+use crate::station::policy_output::PolicyOutput;
+use crate::station::rate_meter::RateMeter;
+use crate::station::station_config::{ControlMode, KeypointFormat, StationConfig};
+use crate::station::station_core::{Counters, HandCommand, StationCore};
+use crate::station::watchdog::{DriveState, Watchdog};
+
+/// What the operator (console, test, demo) tells a running station.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OperatorCommand {
+    /// Engage: drive hand and arm once input is fresh.
+    Engage,
+    /// Disengage: stop driving the arm; the hand holds.
+    Disengage,
+}
+
+/// Totals when the station stops.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StationSummary {
+    /// Frame and solver counters.
+    pub counters: Counters,
+    /// Hand commands published.
+    pub hand_commands: u64,
+    /// Arm targets published.
+    pub arm_targets: u64,
+    /// Wrist poses rejected (non-finite, non-unit quaternion).
+    pub wrist_rejected: u64,
+    /// Whether a second publisher on the arm command topic was seen.
+    pub second_publisher_seen: bool,
+    /// Wall time of each control step that retargeted a new frame, milliseconds.
+    pub step_time: Latencies,
+    /// Mean palm-to-tip key-vector error of each solve, millimetres.
+    pub tip_error_mm: Latencies,
+}
+
+/// Build the core for a configuration.
+pub fn station_core(config: &StationConfig, model: HandModel) -> anyhow::Result<StationCore> {
+    let retargeter = Retargeter::new(
+        model,
+        config.retarget.clone(),
+        &EmbodimentCatalog::builtin(),
+    )
+    .context("retargeter")?;
+    Ok(StationCore::new(
+        retargeter,
+        FrameGate::new(config.retarget.layout, config.gate.clone()),
+        Watchdog::new(config.watchdog.clone()),
+    ))
+}
+
+fn policy_array(values: Vec<f32>) -> Float32MultiArray {
+    Float32MultiArray {
+        layout: MultiArrayLayout {
+            dim: vec![MultiArrayDimension {
+                label: "joints".into(),
+                size: values.len() as u32,
+                stride: values.len() as u32,
+            }],
+            data_offset: 0,
+        },
+        data: values,
+    }
+}
+
+/// Run the station until `shutdown` turns true.
+pub async fn run_station(
+    config: StationConfig,
+    model: HandModel,
+    clock: StationClock,
+    mut shutdown: watch::Receiver<bool>,
+    mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
+) -> anyhow::Result<StationSummary> {
+    let mut core = station_core(&config, model.clone())?;
+    let policy = if config.policy_output.topic.is_empty() {
+        None
+    } else {
+        Some(PolicyOutput::new(&model, &config.policy_output)?)
+    };
+    let mut arm = ArmMapper::new(config.arm.clone()).map_err(|e| anyhow::anyhow!("arm: {e}"))?;
+    let joint_names: Vec<String> = model.dof_names().map(str::to_string).collect();
+
+    let context = config.network.context()?;
+    let mut node = RosNode::new(&context, "/", "pomdar_station")?;
+    let input_qos = config.input.qos;
+    let output_qos = config.output.qos;
+    let format = config.input.keypoints_format;
+    let array_sub = match format {
+        KeypointFormat::Float32MultiArray => {
+            Some(node.subscription::<Float32MultiArray>(&config.input.keypoints_topic, input_qos)?)
+        }
+        KeypointFormat::PoseArray => None,
+    };
+    let pose_array_sub = match format {
+        KeypointFormat::PoseArray => {
+            Some(node.subscription::<PoseArray>(&config.input.keypoints_topic, input_qos)?)
+        }
+        KeypointFormat::Float32MultiArray => None,
+    };
+    let wrist_sub = node.subscription::<PoseStamped>(&config.input.wrist_topic, input_qos)?;
+    let feedback_sub = node.subscription::<PoseStamped>(
+        &config.input.arm_feedback_topic,
+        QosConfig::best_effort(10),
+    )?;
+    let joint_pub = node.publisher::<JointState>(&config.output.joint_targets_topic, output_qos)?;
+    let policy_pub = match &policy {
+        Some(_) => {
+            Some(node.publisher::<Float32MultiArray>(&config.policy_output.topic, output_qos)?)
+        }
+        None => None,
+    };
+    let arm_enabled = !config.output.arm_target_topic.is_empty();
+    let (arm_pub, arm_monitor) = if arm_enabled {
+        (
+            Some(node.publisher::<PoseStamped>(&config.output.arm_target_topic, output_qos)?),
+            Some(node.subscription::<PoseStamped>(&config.output.arm_target_topic, output_qos)?),
+        )
+    } else {
+        (None, None)
+    };
+    let status_pub =
+        node.publisher::<StringMsg>(&config.output.status_topic, QosConfig::reliable(10))?;
+
+    let mut keypoints = match (&array_sub, &pose_array_sub) {
+        (Some(sub), _) => sub
+            .async_stream()
+            .map(|r| {
+                r.map(|(m, info)| {
+                    (
+                        array_to_points(&m),
+                        info.source_timestamp().map(|t| t.to_nanos()),
+                    )
+                })
+            })
+            .boxed(),
+        (None, Some(sub)) => sub
+            .async_stream()
+            .map(|r| {
+                r.map(|(m, info)| {
+                    (
+                        Some(pose_array_to_points(&m)),
+                        info.source_timestamp().map(|t| t.to_nanos()),
+                    )
+                })
+            })
+            .boxed(),
+        (None, None) => futures::stream::pending().boxed(),
+    };
+    let mut wrists = Box::pin(wrist_sub.async_stream());
+    let mut feedback = Box::pin(feedback_sub.async_stream());
+    let mut tick = tokio::time::interval(Duration::from_secs_f64(1.0 / config.control.rate_hz));
+    tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut status_tick =
+        tokio::time::interval(Duration::from_secs_f64(1.0 / config.output.status_rate_hz));
+
+    let mut glove_wrist: Option<Isometry3<f64>> = None;
+    let mut robot_pose: Option<Isometry3<f64>> = None;
+    let mut frame_source_ns: i64 = 0;
+    let mut input_rate = RateMeter::new(1.0);
+    let mut repeat_rate = RateMeter::new(1.0);
+    let mut output_rate = RateMeter::new(1.0);
+    let mut auto_engage_pending = config.control.auto_engage;
+    let mut summary = StationSummary {
+        counters: Counters::default(),
+        hand_commands: 0,
+        arm_targets: 0,
+        wrist_rejected: 0,
+        second_publisher_seen: false,
+        step_time: Latencies::default(),
+        tip_error_mm: Latencies::default(),
+    };
+    let mut second_publisher = false;
+    let mut previous_state = DriveState::Disengaged;
+    let mut last_latency_ms = f64::NAN;
+
+    loop {
+        let mut tick_now = false;
+        tokio::select! {
+            _ = shutdown.changed() => {
+                if *shutdown.borrow() { break; }
+            }
+            Some(command) = operator.recv() => {
+                let now = clock.now_ns();
+                match command {
+                    OperatorCommand::Engage => { core.engage(now); }
+                    OperatorCommand::Disengage => core.disengage(),
+                }
+            }
+            Some(item) = keypoints.next() => {
+                let now = clock.now_ns();
+                if let Ok((points, source_ns)) = item {
+                    let points: Vec<Point3<f64>> = points.unwrap_or_default();
+                    match core.on_keypoints(&points, now) {
+                        Verdict::New => {
+                            input_rate.record(now);
+                            frame_source_ns = source_ns.unwrap_or(now);
+                            if auto_engage_pending && core.engage(now) {
+                                auto_engage_pending = false;
+                            }
+                            tick_now = config.control.mode == ControlMode::EveryFrame;
+                        }
+                        Verdict::Repeat => repeat_rate.record(now),
+                        Verdict::Rejected(_) => {}
+                    }
+                }
+            }
+            Some(Ok((pose, _))) = wrists.next() => {
+                match pose_to_isometry(&pose.pose) {
+                    Some(iso) => glove_wrist = Some(iso),
+                    None => summary.wrist_rejected += 1,
+                }
+            }
+            Some(Ok((pose, _))) = feedback.next() => {
+                robot_pose = pose_to_isometry(&pose.pose);
+            }
+            _ = tick.tick() => tick_now = true,
+            _ = status_tick.tick() => {
+                let now = clock.now_ns();
+                if let Some(monitor) = &arm_monitor {
+                    let publishers = monitor.get_publisher_count(node.node());
+                    if publishers > 1 && !second_publisher {
+                        eprintln!("warning: {} publishers on {}: refusing to drive the arm until the other stops",
+                            publishers, config.output.arm_target_topic);
+                    }
+                    second_publisher = publishers > 1;
+                    summary.second_publisher_seen |= second_publisher;
+                }
+                let status = json!({
+                    "stamp_ns": now,
+                    "state": core.state(),
+                    "input_rate_hz": input_rate.rate_hz(now),
+                    "repeat_rate_hz": repeat_rate.rate_hz(now),
+                    "output_rate_hz": output_rate.rate_hz(now),
+                    "input_age_ms": core.input_age_ns(now).map(|a| a as f64 * 1e-6),
+                    "processing_latency_ms": if last_latency_ms.is_finite() { Some(last_latency_ms) } else { None },
+                    "counters": core.counters(),
+                    "wrist_rejected": summary.wrist_rejected,
+                    "arm": {
+                        "enabled": arm_enabled,
+                        "engaged": arm.is_engaged(),
+                        "second_publisher": second_publisher,
+                        "constraint": arm.constraint(),
+                    },
+                });
+                status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
+            }
+        }
+        if !tick_now {
+            continue;
+        }
+        let now = clock.now_ns();
+        let started = std::time::Instant::now();
+        let step = core.tick(now);
+        if step.hand.as_ref().is_some_and(|h| !h.held) {
+            summary
+                .step_time
+                .push(started.elapsed().as_secs_f64() * 1e3);
+            summary.tip_error_mm.push(core.counters().last_tip_error_mm);
+        }
+        // Engage or release the arm clutch with the station's state.
+        match (previous_state, step.state) {
+            (DriveState::Engaged, DriveState::Engaged)
+            | (DriveState::Held, DriveState::Engaged)
+            | (DriveState::Engaged, DriveState::Held) => {}
+            (_, DriveState::Engaged) => {
+                if let Some(wrist) = glove_wrist {
+                    let engaged = match robot_pose {
+                        Some(robot) => arm.engage(wrist, robot),
+                        None => arm.engage_at_start_pose(wrist),
+                    };
+                    if let Err(e) = engaged {
+                        eprintln!("warning: arm not engaged: {e}");
+                    }
+                }
+            }
+            (_, DriveState::Disengaged) => arm.disengage(),
+            _ => {}
+        }
+        previous_state = step.state;
+        if let Some(HandCommand {
+            q,
+            held,
+            frame_received_ns,
+        }) = &step.hand
+        {
+            let stamp = if *held { now } else { frame_source_ns };
+            let message = JointState {
+                header: header(stamp, ""),
+                name: joint_names.clone(),
+                position: q.clone(),
+                velocity: vec![],
+                effort: vec![],
+            };
+            joint_pub.async_publish(message).await.ok();
+            if let (Some(policy), Some(publisher)) = (&policy, &policy_pub) {
+                publisher
+                    .async_publish(policy_array(policy.values(q)))
+                    .await
+                    .ok();
+            }
+            summary.hand_commands += 1;
+            output_rate.record(now);
+            if !*held {
+                last_latency_ms = (clock.now_ns() - frame_received_ns) as f64 * 1e-6;
+            }
+        }
+        if let (Some(publisher), Some(wrist)) = (&arm_pub, glove_wrist) {
+            let target = match step.state {
+                DriveState::Engaged if !second_publisher => {
+                    arm.step(wrist).ok().flatten().map(|c| c.target)
+                }
+                DriveState::Held if !second_publisher => arm.last_command().map(|c| c.target),
+                _ => None,
+            };
+            if let Some(target) = target {
+                let message = PoseStamped {
+                    header: header(now, &config.output.arm_frame_id),
+                    pose: isometry_to_pose(&target),
+                };
+                publisher.async_publish(message).await.ok();
+                summary.arm_targets += 1;
+            }
+        }
+    }
+    summary.counters = core.counters().clone();
+    Ok(summary)
+}
