@@ -8,6 +8,7 @@ use anyhow::{Context, bail};
 use retarget::RetargetConfig;
 
 use crate::hand_source::ImportFile;
+use crate::station::station_config::StationConfig;
 
 /// The kinds of file under `launch_configs/`, by the folder they live in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,6 +17,8 @@ pub enum LaunchConfigKind {
     HandImport,
     /// `retarget/*.toml`: retargeting configurations.
     Retarget,
+    /// `station/*.toml`: station presets.
+    Station,
 }
 
 impl LaunchConfigKind {
@@ -25,6 +28,7 @@ impl LaunchConfigKind {
         match folder {
             "hands" => Some(LaunchConfigKind::HandImport),
             "retarget" => Some(LaunchConfigKind::Retarget),
+            "station" => Some(LaunchConfigKind::Station),
             _ => None,
         }
     }
@@ -34,7 +38,7 @@ impl LaunchConfigKind {
 pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     let Some(kind) = LaunchConfigKind::of(path) else {
         bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/ or launch_configs/retarget/)",
+            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/ or station/)",
             path.display()
         );
     };
@@ -46,6 +50,9 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
         }
         LaunchConfigKind::Retarget => {
             RetargetConfig::from_toml_str(&text).map_err(|e| e.in_file(path))?;
+        }
+        LaunchConfigKind::Station => {
+            StationConfig::from_toml_str(&text).with_context(|| path.display().to_string())?;
         }
     }
     Ok(kind)

@@ -199,6 +199,7 @@ pub async fn run_station(
     let mut second_publisher = false;
     let mut previous_state = DriveState::Disengaged;
     let mut last_latency_ms = f64::NAN;
+    let mut last_published_frame_ns = i64::MIN;
 
     loop {
         let mut tick_now = false;
@@ -304,12 +305,22 @@ pub async fn run_station(
             _ => {}
         }
         previous_state = step.state;
+        // On every-frame control, the timer only keeps a held command alive; fresh commands
+        // go out once per new frame.
+        let repeat = step
+            .hand
+            .as_ref()
+            .is_some_and(|h| !h.held && h.frame_received_ns == last_published_frame_ns);
+        if repeat && config.control.mode == ControlMode::EveryFrame {
+            continue;
+        }
         if let Some(HandCommand {
             q,
             held,
             frame_received_ns,
         }) = &step.hand
         {
+            last_published_frame_ns = *frame_received_ns;
             let stamp = if *held { now } else { frame_source_ns };
             let message = JointState {
                 header: header(stamp, ""),

@@ -1,0 +1,237 @@
+//! A station under test on real loopback DDS: the station node runs as in production, and a
+//! test node plays the glove and listens to every output, recording what arrives and when.
+
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use futures::StreamExt;
+use msgs::{Float32MultiArray, JointState, PoseStamped, StringMsg};
+use nalgebra::{Isometry3, Point3};
+use retarget::HandModel;
+use teleop::clock::StationClock;
+use teleop::ros::convert::{header, isometry_to_pose};
+use teleop::ros::{NetworkConfig, QosConfig, RosNode};
+use teleop::station::ros_station::{OperatorCommand, StationSummary, run_station};
+use teleop::station::station_config::StationConfig;
+use tokio::sync::{mpsc, watch};
+use tokio::task::JoinHandle;
+
+/// A test-unique ROS domain id: `slot` (0–9) within a block chosen by the process id.
+pub fn test_domain(slot: u16) -> u16 {
+    10 + (std::process::id() % 20) as u16 * 10 + slot
+}
+
+/// Loopback-only network on `domain`.
+pub fn loopback(domain: u16) -> NetworkConfig {
+    NetworkConfig {
+        domain_id: Some(domain),
+        interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
+    }
+}
+
+/// Everything the test node heard, with receive times (station clock, ns).
+#[derive(Debug, Default)]
+pub struct Heard {
+    /// Joint targets.
+    pub targets: Vec<(i64, JointState)>,
+    /// Arm targets.
+    pub arm: Vec<(i64, PoseStamped)>,
+    /// Status documents.
+    pub status: Vec<(i64, serde_json::Value)>,
+}
+
+/// The running station and the test's glove/listener node.
+pub struct Harness {
+    /// The clock shared with the station.
+    pub clock: StationClock,
+    /// What was heard so far.
+    pub heard: Arc<Mutex<Heard>>,
+    shutdown: watch::Sender<bool>,
+    operator: mpsc::UnboundedSender<OperatorCommand>,
+    station: JoinHandle<anyhow::Result<StationSummary>>,
+    /// The test node (keep alive).
+    pub node: RosNode,
+    keypoints: ros2_client::Publisher<Float32MultiArray>,
+    wrist: ros2_client::Publisher<PoseStamped>,
+    /// The network the station runs on.
+    pub network: NetworkConfig,
+    listeners: Vec<JoinHandle<()>>,
+}
+
+fn collect<M, F>(
+    sub: ros2_client::Subscription<M>,
+    clock: StationClock,
+    heard: Arc<Mutex<Heard>>,
+    push: F,
+) -> JoinHandle<()>
+where
+    M: serde::de::DeserializeOwned + Send + Sync + 'static,
+    F: Fn(&mut Heard, i64, M) + Send + 'static,
+{
+    tokio::spawn(async move {
+        let mut stream = Box::pin(sub.async_stream());
+        while let Some(item) = stream.next().await {
+            if let Ok((message, _)) = item {
+                let now = clock.now_ns();
+                if let Ok(mut heard) = heard.lock() {
+                    push(&mut heard, now, message);
+                }
+            }
+        }
+    })
+}
+
+impl Harness {
+    /// Start a station with `config` (its network replaced by loopback on `domain`) and a test
+    /// node, and wait until the glove topics and outputs are matched.
+    pub async fn start(mut config: StationConfig, domain: u16) -> anyhow::Result<Harness> {
+        let network = loopback(domain);
+        config.network = network.clone();
+        config.validate()?;
+        let clock = StationClock::new();
+        let (shutdown, shutdown_rx) = watch::channel(false);
+        let (operator, operator_rx) = mpsc::unbounded_channel();
+        let station = tokio::spawn(run_station(
+            config.clone(),
+            HandModel::orca_v1_right(),
+            clock,
+            shutdown_rx,
+            operator_rx,
+        ));
+
+        let context = network.context()?;
+        let mut node = RosNode::new(&context, "/", "pomdar_test")?;
+        let keypoints = node.publisher::<Float32MultiArray>(
+            &config.input.keypoints_topic,
+            QosConfig::reliable(1000),
+        )?;
+        let wrist =
+            node.publisher::<PoseStamped>(&config.input.wrist_topic, QosConfig::reliable(1000))?;
+        let heard = Arc::new(Mutex::new(Heard::default()));
+        let targets = node.subscription::<JointState>(
+            &config.output.joint_targets_topic,
+            QosConfig::reliable(1000),
+        )?;
+        let arm = node.subscription::<PoseStamped>(
+            &config.output.arm_target_topic,
+            QosConfig::reliable(1000),
+        )?;
+        let status =
+            node.subscription::<StringMsg>(&config.output.status_topic, QosConfig::reliable(100))?;
+        let listeners = vec![
+            collect(targets, clock, heard.clone(), |h, t, m| {
+                h.targets.push((t, m))
+            }),
+            collect(arm, clock, heard.clone(), |h, t, m| h.arm.push((t, m))),
+            collect(status, clock, heard.clone(), |h, t, m: StringMsg| {
+                if let Ok(v) = serde_json::from_str(&m.data) {
+                    h.status.push((t, v));
+                }
+            }),
+        ];
+        let harness = Harness {
+            clock,
+            heard,
+            shutdown,
+            operator,
+            station,
+            node,
+            keypoints,
+            wrist,
+            network,
+            listeners,
+        };
+        harness.wait_for_match().await?;
+        Ok(harness)
+    }
+
+    async fn wait_for_match(&self) -> anyhow::Result<()> {
+        let start = Instant::now();
+        while self.keypoints.get_subscription_count(self.node.node()) == 0
+            || self.wrist.get_subscription_count(self.node.node()) == 0
+        {
+            anyhow::ensure!(
+                start.elapsed() < Duration::from_secs(15),
+                "station did not match the glove topics in 15 s"
+            );
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+        // Outputs: wait for the first status document.
+        self.wait_until(Duration::from_secs(15), |h| !h.status.is_empty())
+            .await
+    }
+
+    /// Publish one glove frame (keypoints as f32, and the wrist pose).
+    pub async fn publish(
+        &self,
+        points: &[Point3<f64>],
+        wrist: &Isometry3<f64>,
+    ) -> anyhow::Result<()> {
+        let rows: Vec<[f32; 3]> = points
+            .iter()
+            .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        self.publish_rows(&rows).await?;
+        let pose = PoseStamped {
+            header: header(self.clock.now_ns(), "coil"),
+            pose: isometry_to_pose(wrist),
+        };
+        self.wrist
+            .async_publish(pose)
+            .await
+            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        Ok(())
+    }
+
+    /// Publish raw keypoint rows (possibly malformed).
+    pub async fn publish_rows(&self, rows: &[[f32; 3]]) -> anyhow::Result<()> {
+        let array = Float32MultiArray::from_points(rows)?;
+        self.keypoints
+            .async_publish(array)
+            .await
+            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        Ok(())
+    }
+
+    /// Send an operator command.
+    pub fn operator(&self, command: OperatorCommand) {
+        self.operator.send(command).ok();
+    }
+
+    /// Wait until `condition` holds on what was heard, at most `timeout`.
+    pub async fn wait_until(
+        &self,
+        timeout: Duration,
+        condition: impl Fn(&Heard) -> bool,
+    ) -> anyhow::Result<()> {
+        let start = Instant::now();
+        loop {
+            if self.heard.lock().map(|h| condition(&h)).unwrap_or(false) {
+                return Ok(());
+            }
+            anyhow::ensure!(
+                start.elapsed() < timeout,
+                "condition not met within {timeout:?}"
+            );
+            tokio::time::sleep(Duration::from_millis(5)).await;
+        }
+    }
+
+    /// The latest status document.
+    pub fn last_status(&self) -> Option<serde_json::Value> {
+        self.heard
+            .lock()
+            .ok()
+            .and_then(|h| h.status.last().map(|(_, v)| v.clone()))
+    }
+
+    /// Stop the station and the listeners; returns the station's summary.
+    pub async fn stop(self) -> anyhow::Result<StationSummary> {
+        self.shutdown.send(true).ok();
+        let summary = self.station.await??;
+        for l in self.listeners {
+            l.abort();
+        }
+        Ok(summary)
+    }
+}
