@@ -201,7 +201,8 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         glove,
         live: !args.json,
     })
-    .await?;
+    .await?
+    .summary;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {

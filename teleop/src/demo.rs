@@ -61,6 +61,23 @@ pub struct DemoSummary {
     pub arm_targets: u64,
     /// Joint targets received by the mock hand.
     pub hand_targets: u64,
+    /// Glove frames published.
+    pub frames_published: u64,
+    /// Frames the station took as new.
+    pub frames_new: u64,
+    /// Frames the station recognised as repeats.
+    pub frames_repeated: u64,
+}
+
+/// Everything a demo run produced: the summary and the mock robots' full reports.
+#[derive(Debug, Clone)]
+pub struct DemoOutcome {
+    /// The summary.
+    pub summary: DemoSummary,
+    /// What the mock hand received.
+    pub hand: MockHandReport,
+    /// What the mock Franka received.
+    pub arm: MockFrankaReport,
 }
 
 /// The demo's default domain id: away from 0 (the lab's usual), different per process.
@@ -69,7 +86,7 @@ pub fn default_domain_id() -> u16 {
 }
 
 /// Run the demo.
-pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoSummary> {
+pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let clock = StationClock::new();
     let network = NetworkConfig {
         domain_id: Some(options.domain_id),
@@ -124,11 +141,12 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoSummary> {
         shutdown_rx.clone(),
         operator_rx,
     ));
+    let (glove_stop_tx, glove_stop_rx) = watch::channel(false);
     let glove = tokio::spawn(run_sim_glove(
         options.glove.clone(),
         network.clone(),
         clock,
-        shutdown_rx.clone(),
+        glove_stop_rx,
     ));
 
     let start_ns = clock.now_ns();
@@ -153,15 +171,18 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoSummary> {
             }
         }
     }
-    shutdown_tx.send(true).ok();
+    // Stop the glove first and let its last frames arrive before the rest stops.
+    glove_stop_tx.send(true).ok();
     let frames = glove.await.context("glove task")??;
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    shutdown_tx.send(true).ok();
     let summary = station_task.await.context("station task")??;
     hand.await.context("mock hand task")??;
     arm.await.context("mock arm task")??;
     let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
     let hand_report = hand_report.lock().map(|r| r.clone()).unwrap_or_default();
     let arm_report = arm_report.lock().map(|r| r.clone()).unwrap_or_default();
-    Ok(DemoSummary {
+    let summary = DemoSummary {
         duration_s: elapsed,
         domain_id: options.domain_id,
         input_rate_hz: frames as f64 / elapsed,
@@ -174,6 +195,14 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoSummary> {
         fingertip_error_mm: summary.tip_error_mm.mean(),
         arm_targets: arm_report.commands,
         hand_targets: hand_report.targets,
+        frames_published: frames,
+        frames_new: summary.counters.frames_new,
+        frames_repeated: summary.counters.frames_repeated,
+    };
+    Ok(DemoOutcome {
+        summary,
+        hand: hand_report,
+        arm: arm_report,
     })
 }
 

@@ -14,6 +14,9 @@ use crate::clock::StationClock;
 use crate::ros::convert::{header, isometry_to_pose};
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 
+/// How long the glove waits for a subscriber before publishing anyway.
+const MATCH_WAIT: Duration = Duration::from_secs(5);
+
 /// The simulated glove's settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -80,6 +83,16 @@ pub async fn run_sim_glove(
     let qos = QosConfig::best_effort(400);
     let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, qos)?;
     let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, qos)?;
+    // Start once a station listens (bounded), so no frame is lost to discovery.
+    let waiting_since = std::time::Instant::now();
+    while keypoints_pub.get_subscription_count(node.node()) == 0
+        && waiting_since.elapsed() < MATCH_WAIT
+    {
+        tokio::select! {
+            _ = shutdown.changed() => if *shutdown.borrow() { return Ok(0) },
+            _ = tokio::time::sleep(Duration::from_millis(10)) => {}
+        }
+    }
     let start_ns = clock.now_ns();
     let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / config.rate_hz));
     interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
