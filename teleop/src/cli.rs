@@ -188,6 +188,14 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         anyhow::bail!("--duration {} must be in (0, 86400] seconds", args.duration);
     }
     let domain_id = args.domain_id.unwrap_or_else(default_domain_id);
+    let control = match station.control.mode {
+        crate::station::station_config::ControlMode::Rate => {
+            format!("{} Hz control ticks", station.control.rate_hz)
+        }
+        crate::station::station_config::ControlMode::EveryFrame => {
+            "every-frame control".to_string()
+        }
+    };
     if !args.json {
         eprintln!(
             "pomdar demo: simulated glove ({:?}, {} Hz) → station → mock ORCA hand + mock Franka, loopback DDS, domain {domain_id}, {} s",

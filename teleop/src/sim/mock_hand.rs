@@ -21,7 +21,8 @@ use crate::sim::latency::Latencies;
 pub struct MockHandReport {
     /// Targets received.
     pub targets: u64,
-    /// End-to-end latencies of the targets, milliseconds.
+    /// End-to-end latency of each target computed from a new glove frame (the first target
+    /// carrying a given stamp), milliseconds; repeats of a command are not counted.
     pub latency: Latencies,
     /// Targets naming a joint the hand lacks or carrying a non-finite value.
     pub rejected: u64,
@@ -80,6 +81,7 @@ pub async fn run_mock_hand(
     let mut state = model.zero_pose();
     let mut target = state.clone();
     let period = 1.0 / rate_hz;
+    let mut last_stamp = None;
     let mut interval = tokio::time::interval(Duration::from_secs_f64(period));
     loop {
         tokio::select! {
@@ -89,7 +91,11 @@ pub async fn run_mock_hand(
                 let Ok(mut report) = report.lock() else { break };
                 report.targets += 1;
                 report.receive_times_ns.push(now);
-                report.latency.push((now - message.header.stamp.to_nanos()) as f64 * 1e-6);
+                let stamp = message.header.stamp.to_nanos();
+                if last_stamp != Some(stamp) {
+                    report.latency.push((now - stamp) as f64 * 1e-6);
+                    last_stamp = Some(stamp);
+                }
                 let mut ok = message.name.len() == message.position.len();
                 let mut next = target.clone();
                 for (name, value) in message.name.iter().zip(&message.position) {
