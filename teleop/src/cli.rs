@@ -223,7 +223,7 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         );
         println!("  arm targets        {}", summary.arm_targets);
         println!(
-            "  end-to-end latency p50 {}, p99 {}",
+            "  end-to-end latency p50 {}, p99 {} (glove publish → joint target received, {control})",
             ms(summary.latency_ms_p50),
             ms(summary.latency_ms_p99)
         );
