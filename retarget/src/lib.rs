@@ -159,7 +159,7 @@ pub use forward_kinematics::FkState;
 pub use hand_model::{Dof, HandModel, Joint, JointMotion, Limits, LinkId, NamedFrames};
 pub use human_key_vectors::{HumanKeyVectors, human_key_vectors, validate_keypoints};
 pub use keypoint_layout::KeypointLayout;
-pub use model_file::ORCA_V1_RIGHT_TOML;
+pub use model_file::{ORCA_CORE_JOINTS, ORCA_V1_RIGHT_TOML};
 pub use model_spec::{FrameSpec, ModelSpec};
 pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
 pub use retarget_config::{

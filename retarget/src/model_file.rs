@@ -6,6 +6,27 @@ use crate::error::Error;
 use crate::hand_model::HandModel;
 use crate::model_spec::ModelSpec;
 
+/// orca_core's joint order: the built-in ORCA model's degrees of freedom, in this order.
+pub const ORCA_CORE_JOINTS: [&str; 17] = [
+    "thumb_mcp",
+    "thumb_abd",
+    "thumb_pip",
+    "thumb_dip",
+    "index_abd",
+    "index_mcp",
+    "index_pip",
+    "middle_abd",
+    "middle_mcp",
+    "middle_pip",
+    "ring_abd",
+    "ring_mcp",
+    "ring_pip",
+    "pinky_abd",
+    "pinky_mcp",
+    "pinky_pip",
+    "wrist",
+];
+
 /// The built-in ORCA v1 right-hand description, in the project's model format.
 pub const ORCA_V1_RIGHT_TOML: &str = include_str!("../models/orca_v1_right.toml");
 
@@ -36,31 +57,10 @@ impl HandModel {
 mod tests {
     use super::*;
 
-    /// orca_core's joint order.
-    const ORCA_CORE_ORDER: [&str; 17] = [
-        "thumb_mcp",
-        "thumb_abd",
-        "thumb_pip",
-        "thumb_dip",
-        "index_abd",
-        "index_mcp",
-        "index_pip",
-        "middle_abd",
-        "middle_mcp",
-        "middle_pip",
-        "ring_abd",
-        "ring_mcp",
-        "ring_pip",
-        "pinky_abd",
-        "pinky_mcp",
-        "pinky_pip",
-        "wrist",
-    ];
-
     #[test]
     fn builtin_orca_parses_with_orca_core_joint_order() {
         let model = HandModel::from_toml_str(ORCA_V1_RIGHT_TOML).unwrap();
-        assert_eq!(model.dof_names().collect::<Vec<_>>(), ORCA_CORE_ORDER);
+        assert_eq!(model.dof_names().collect::<Vec<_>>(), ORCA_CORE_JOINTS);
         assert_eq!(model.name(), "orca_v1_right");
     }
 

@@ -235,3 +235,47 @@ impl Harness {
         Ok(summary)
     }
 }
+
+/// Check a sequence of arm targets against the arm configuration: on the line along `axis`
+/// through the first target (if given), inside the workspace box, within the step caps.
+/// Panics naming the first target that breaks a rule.
+pub fn check_arm_targets(
+    targets: &[Isometry3<f64>],
+    arm: &teleop::arm::ArmConfig,
+    axis: Option<[f64; 3]>,
+) {
+    let Some(first) = targets.first().map(|t| t.translation.vector) else {
+        return;
+    };
+    for (i, target) in targets.iter().enumerate() {
+        let p = target.translation.vector;
+        if let Some(a) = axis {
+            let a = nalgebra::Vector3::from(a).normalize();
+            let d = p - first;
+            let off = (d - a * a.dot(&d)).norm();
+            assert!(
+                off < 1e-9,
+                "arm target {i} is {off} m off the constraint axis"
+            );
+        }
+        for k in 0..3 {
+            assert!(
+                p[k] >= arm.workspace_min_m[k] - 1e-9 && p[k] <= arm.workspace_max_m[k] + 1e-9,
+                "arm target {i} outside the workspace box: {p}"
+            );
+        }
+        if i > 0 {
+            let previous = &targets[i - 1];
+            let step = (p - previous.translation.vector).norm();
+            assert!(
+                step <= arm.max_translation_step_m + 1e-9,
+                "arm translation step {step} m at {i}"
+            );
+            let turn = target.rotation.angle_to(&previous.rotation);
+            assert!(
+                turn <= arm.max_rotation_step_rad + 1e-9,
+                "arm rotation step {turn} rad at {i}"
+            );
+        }
+    }
+}

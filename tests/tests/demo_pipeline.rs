@@ -4,7 +4,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use pomdar_tests::station_harness::test_domain;
+use pomdar_tests::station_harness::{check_arm_targets, test_domain};
 use teleop::arm::Constraint;
 use teleop::demo::{DemoOptions, run_demo};
 use teleop::sim::sim_glove_node::SimGloveConfig;
@@ -38,25 +38,10 @@ async fn sim_glove_station_mock_hand_and_arm() {
 
     // The mock arm's targets: on the horizontal axis line through the first, inside the box,
     // within the step caps.
-    let targets = &outcome.arm.targets;
-    assert!(targets.len() > 40, "{} arm targets", targets.len());
-    let first = targets[0].translation.vector;
-    for (i, t) in targets.iter().enumerate() {
-        let p = t.translation.vector;
-        assert!(
-            (p.y - first.y).abs() < 1e-9 && (p.z - first.z).abs() < 1e-9,
-            "target {i} off the x axis: {p}"
-        );
-        for k in 0..3 {
-            assert!(p[k] >= arm.workspace_min_m[k] - 1e-9 && p[k] <= arm.workspace_max_m[k] + 1e-9);
-        }
-        if i > 0 {
-            assert!(
-                (p - targets[i - 1].translation.vector).norm() <= arm.max_translation_step_m + 1e-9
-            );
-            assert!(
-                t.rotation.angle_to(&targets[i - 1].rotation) <= arm.max_rotation_step_rad + 1e-9
-            );
-        }
-    }
+    assert!(
+        outcome.arm.targets.len() > 40,
+        "{} arm targets",
+        outcome.arm.targets.len()
+    );
+    check_arm_targets(&outcome.arm.targets, &arm, Some(arm.horizontal_axis));
 }

@@ -7,7 +7,7 @@
 use std::time::Duration;
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
-use pomdar_tests::station_harness::{Harness, test_domain};
+use pomdar_tests::station_harness::{Harness, check_arm_targets, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
 use teleop::arm::Constraint;
@@ -98,31 +98,8 @@ fn check_rate_and_arm(h: &Harness, start: i64, end: i64) {
         .map(|(_, m)| teleop::ros::convert::pose_to_isometry(&m.pose).unwrap())
         .collect();
     assert!(poses.len() > 40, "{} arm targets", poses.len());
+    check_arm_targets(&poses, &arm, Some(arm.vertical_axis));
     let first = poses[0].translation.vector;
-    for (i, pose) in poses.iter().enumerate() {
-        let p = pose.translation.vector;
-        assert!(
-            (p.x - first.x).abs() < 1e-9 && (p.y - first.y).abs() < 1e-9,
-            "target {i} left the vertical axis: {p}"
-        );
-        for k in 0..3 {
-            assert!(
-                p[k] >= arm.workspace_min_m[k] - 1e-9 && p[k] <= arm.workspace_max_m[k] + 1e-9,
-                "target {i} outside the box"
-            );
-        }
-        if i > 0 {
-            let previous = &poses[i - 1];
-            assert!(
-                (p - previous.translation.vector).norm() <= arm.max_translation_step_m + 1e-9,
-                "translation step at {i}"
-            );
-            assert!(
-                pose.rotation.angle_to(&previous.rotation) <= arm.max_rotation_step_rad + 1e-9,
-                "rotation step at {i}"
-            );
-        }
-    }
     let moved = poses
         .iter()
         .map(|p| (p.translation.vector.z - first.z).abs())

@@ -5,8 +5,10 @@
 
 use anyhow::Context as _;
 use msgs::RosMessage;
+use ros2_client::dds::rustdds::Topic;
 use ros2_client::{
-    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, Subscription,
+    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
+    Subscription,
 };
 
 use crate::ros::qos::QosConfig;
@@ -69,15 +71,15 @@ impl RosNode {
         &self.node
     }
 
-    /// A publisher of `M` on `topic`.
-    pub fn publisher<M: RosMessage>(
-        &mut self,
+    /// The DDS topic of `M` named `topic`, with its QoS profile.
+    fn topic<M: RosMessage>(
+        &self,
         topic: &str,
         qos: QosConfig,
-    ) -> anyhow::Result<Publisher<M>> {
+    ) -> anyhow::Result<(Topic, QosProfile)> {
         let profile = qos.profile();
         let definition = M::DEFINITION;
-        let topic_handle = self
+        let handle = self
             .node
             .create_topic(
                 &topic_name(topic)?,
@@ -85,8 +87,18 @@ impl RosNode {
                 &profile,
             )
             .with_context(|| format!("cannot create topic {topic}"))?;
+        Ok((handle, profile))
+    }
+
+    /// A publisher of `M` on `topic`.
+    pub fn publisher<M: RosMessage>(
+        &mut self,
+        topic: &str,
+        qos: QosConfig,
+    ) -> anyhow::Result<Publisher<M>> {
+        let (handle, profile) = self.topic::<M>(topic, qos)?;
         self.node
-            .create_publisher(&topic_handle, Some(profile))
+            .create_publisher(&handle, Some(profile))
             .with_context(|| format!("cannot publish on {topic}"))
     }
 
@@ -96,18 +108,9 @@ impl RosNode {
         topic: &str,
         qos: QosConfig,
     ) -> anyhow::Result<Subscription<M>> {
-        let profile = qos.profile();
-        let definition = M::DEFINITION;
-        let topic_handle = self
-            .node
-            .create_topic(
-                &topic_name(topic)?,
-                MessageTypeName::new(definition.package, definition.name),
-                &profile,
-            )
-            .with_context(|| format!("cannot create topic {topic}"))?;
+        let (handle, profile) = self.topic::<M>(topic, qos)?;
         self.node
-            .create_subscription(&topic_handle, Some(profile))
+            .create_subscription(&handle, Some(profile))
             .with_context(|| format!("cannot subscribe to {topic}"))
     }
 }

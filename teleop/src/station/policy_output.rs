@@ -10,28 +10,8 @@
 use std::collections::BTreeMap;
 
 use anyhow::bail;
-use retarget::HandModel;
+use retarget::{HandModel, ORCA_CORE_JOINTS};
 use serde::{Deserialize, Serialize};
-
-/// orca_core's joint order after the wrist.
-pub const ORCA_CORE_ORDER: [&str; 16] = [
-    "thumb_mcp",
-    "thumb_abd",
-    "thumb_pip",
-    "thumb_dip",
-    "index_abd",
-    "index_mcp",
-    "index_pip",
-    "middle_abd",
-    "middle_mcp",
-    "middle_pip",
-    "ring_abd",
-    "ring_mcp",
-    "ring_pip",
-    "pinky_abd",
-    "pinky_mcp",
-    "pinky_pip",
-];
 
 /// `/hand/policy_output` configuration.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -55,7 +35,9 @@ impl PolicyOutput {
     /// Resolve the 17 slots on `model`; errors name a joint the model lacks or an unknown
     /// offset key.
     pub fn new(model: &HandModel, config: &PolicyOutputConfig) -> anyhow::Result<PolicyOutput> {
-        let names = std::iter::once("wrist").chain(ORCA_CORE_ORDER);
+        // Wrist first, then orca_core's order of the finger joints.
+        let fingers = &ORCA_CORE_JOINTS[..16];
+        let names = std::iter::once("wrist").chain(fingers.iter().copied());
         let mut slots = Vec::with_capacity(17);
         let mut offsets = Vec::with_capacity(17);
         for name in names {
@@ -69,7 +51,7 @@ impl PolicyOutput {
             offsets.push(config.offsets_rad.get(name).copied().unwrap_or(0.0));
         }
         for (name, value) in &config.offsets_rad {
-            if !ORCA_CORE_ORDER.contains(&name.as_str()) && name != "wrist" {
+            if !ORCA_CORE_JOINTS.contains(&name.as_str()) {
                 bail!("policy_output.offsets_rad.{name}: not an ORCA joint");
             }
             if !(value.is_finite() && value.abs() <= std::f64::consts::PI) {
