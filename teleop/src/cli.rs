@@ -350,3 +350,126 @@ pub async fn mock_franka(args: MockFrankaArgs) -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+/// `pomdar resim` options.
+#[derive(Debug, Args)]
+pub struct ResimArgs {
+    /// The recorded log (MCAP) whose glove input is re-simulated.
+    pub input: PathBuf,
+    /// Station configuration (default: the built-in ETH lab preset).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Output log (MCAP) for the station's outputs.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Write the statistics as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub stats_json: Option<PathBuf>,
+    /// Replace an existing output file.
+    #[arg(long)]
+    pub overwrite: bool,
+}
+
+/// `pomdar resim`.
+pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
+    use crate::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
+    let config = match &args.config {
+        Some(path) => StationConfig::from_file(path)?,
+        None => StationConfig::default(),
+    };
+    let reader = TrialReader::open(&args.input)?;
+    let options = TrialWriterOptions {
+        overwrite: args.overwrite,
+        ..TrialWriterOptions::default()
+    };
+    let mut writer = TrialWriter::create(&args.out, options)?;
+    let stats = crate::resim::resim(&reader, &config, HandModel::orca_v1_right(), &mut writer)?;
+    writer.finish()?;
+    let json = serde_json::to_string_pretty(&stats)?;
+    if let Some(path) = &args.stats_json {
+        std::fs::write(path, &json).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    eprintln!(
+        "re-simulated {}: {} frames ({} new, {} repeated, rejected {:?}), {} joint targets, layout {}, step p50 {:?} ms p99 {:?} ms → {}",
+        args.input.display(),
+        stats.frames_read,
+        stats.frames_new,
+        stats.frames_repeated,
+        stats.rejected,
+        stats.joint_targets,
+        stats.layout,
+        stats.step_ms_p50,
+        stats.step_ms_p99,
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// `pomdar recover` options.
+#[derive(Debug, Args)]
+pub struct RecoverArgs {
+    /// The interrupted log (`NAME.mcap.part`).
+    pub part: PathBuf,
+    /// Where to write the repaired log (default: the name without `.part`).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+/// `pomdar recover`.
+pub fn recover(args: RecoverArgs) -> anyhow::Result<()> {
+    let out = match args.out {
+        Some(out) => out,
+        None => {
+            let name = args.part.to_string_lossy();
+            let Some(stem) = name.strip_suffix(".part") else {
+                anyhow::bail!("{} does not end in .part: give --out", args.part.display());
+            };
+            PathBuf::from(stem)
+        }
+    };
+    let report = crate::mcap_log::recover(&args.part, &out)?;
+    println!("{report}");
+    Ok(())
+}
+
+/// `pomdar replay` options.
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The log (MCAP) to republish.
+    pub input: PathBuf,
+    /// Speed factor (1 = original timing).
+    #[arg(long, default_value_t = 1.0)]
+    pub rate: f64,
+    /// Topics to republish (default: every topic of a supported type).
+    #[arg(long, value_delimiter = ',')]
+    pub topics: Vec<String>,
+    /// Start again at the end.
+    #[arg(long = "loop")]
+    pub looped: bool,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar replay`.
+pub async fn replay(args: ReplayArgs) -> anyhow::Result<()> {
+    let reader = crate::mcap_log::TrialReader::open(&args.input)?;
+    let options = crate::replay::ReplayOptions {
+        rate: args.rate,
+        topics: args.topics,
+        looped: args.looped,
+        ..crate::replay::ReplayOptions::default()
+    };
+    let report = crate::replay::replay(
+        &reader,
+        &args.node.network(&NetworkConfig::default()),
+        &options,
+        ctrl_c_shutdown(),
+    )
+    .await?;
+    eprintln!(
+        "replayed {:?} ({} passes); skipped {:?}",
+        report.published, report.passes, report.skipped
+    );
+    Ok(())
+}

@@ -12,9 +12,9 @@ use teleop::model_report;
 /// score the trials.
 ///
 /// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
-/// pose out), a simulated glove, mock robot nodes, the all-in-one demo, and hand model
-/// inspection. Recording, replay, calibration, scoring and the operator console arrive in
-/// later issues.
+/// pose out), a simulated glove, mock robot nodes, the all-in-one demo, MCAP re-simulation,
+/// recovery and replay, and hand model inspection. Trial recording, calibration, scoring and
+/// the operator console arrive in later issues.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -53,6 +53,27 @@ enum Command {
     MockHand(cli::MockHandArgs),
     /// A mock Franka: follows pose commands at limited speed, publishes its pose.
     MockFranka(cli::MockFrankaArgs),
+    /// Re-simulate a recorded log's glove input through the station, deterministically.
+    ///
+    /// The station's processing is fed from the log with the log's clock, in process; the
+    /// outputs (joint targets, policy output, arm targets) are written to a new MCAP. Use it to
+    /// re-retarget recorded glove data with a new configuration. Accepts the lab's 22- and
+    /// 21-point layouts. Same log + same config = byte-identical output.
+    ///
+    /// Example:
+    ///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
+    #[command(verbatim_doc_comment)]
+    Resim(cli::ResimArgs),
+    /// Repair an interrupted log (NAME.mcap.part) up to its last flushed chunk.
+    ///
+    /// Prints what was recovered and what was lost; never modifies the input.
+    Recover(cli::RecoverArgs),
+    /// Republish a log's recorded topics over ROS 2 with their original timing.
+    ///
+    /// Example:
+    ///   pomdar replay rokoko_orca_2024-11-20.mcap --topics /ingress/mano,/ingress/wrist --rate 1
+    #[command(verbatim_doc_comment)]
+    Replay(cli::ReplayArgs),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -101,6 +122,9 @@ fn main() -> ExitCode {
             model_report::run(&source, &pose, json)
         }
         Command::Demo(args) => cli::run_async(cli::demo(args)),
+        Command::Resim(args) => cli::resim(args),
+        Command::Recover(args) => cli::recover(args),
+        Command::Replay(args) => cli::run_async(cli::replay(args)),
         Command::Station(args) => cli::run_async(cli::station(args)),
         Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),
         Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),

@@ -1,6 +1,7 @@
 //! The station: the synchronous control step and its parts (frame gate, watchdog).
 
 pub mod frame_gate;
+pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
 pub mod ros_station;

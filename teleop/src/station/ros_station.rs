@@ -10,28 +10,22 @@ use std::time::Duration;
 
 use anyhow::Context as _;
 use futures::StreamExt;
-use msgs::{
-    Float32MultiArray, JointState, MultiArrayDimension, MultiArrayLayout, PoseArray, PoseStamped,
-    StringMsg,
-};
+use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
 use nalgebra::{Isometry3, Point3};
 use retarget::{EmbodimentCatalog, HandModel, Retargeter};
 use serde_json::json;
 use tokio::sync::{mpsc, watch};
 
-use crate::arm::ArmMapper;
 use crate::clock::StationClock;
-use crate::ros::convert::{
-    array_to_points, header, isometry_to_pose, pose_array_to_points, pose_to_isometry,
-};
+use crate::ros::convert::{array_to_points, pose_array_to_points, pose_to_isometry};
 use crate::ros::{QosConfig, RosNode};
 use crate::sim::latency::Latencies;
 use crate::station::frame_gate::{FrameGate, Verdict};
-use crate::station::policy_output::PolicyOutput;
+use crate::station::output_stage::OutputStage;
 use crate::station::rate_meter::RateMeter;
 use crate::station::station_config::{ControlMode, KeypointFormat, StationConfig};
-use crate::station::station_core::{Counters, HandCommand, StationCore};
-use crate::station::watchdog::{DriveState, Watchdog};
+use crate::station::station_core::{Counters, StationCore};
+use crate::station::watchdog::Watchdog;
 
 /// What the operator (console, test, demo) tells a running station.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,20 +70,6 @@ pub fn station_core(config: &StationConfig, model: HandModel) -> anyhow::Result<
     ))
 }
 
-fn policy_array(values: Vec<f32>) -> Float32MultiArray {
-    Float32MultiArray {
-        layout: MultiArrayLayout {
-            dim: vec![MultiArrayDimension {
-                label: "joints".into(),
-                size: values.len() as u32,
-                stride: values.len() as u32,
-            }],
-            data_offset: 0,
-        },
-        data: values,
-    }
-}
-
 /// Run the station until `shutdown` turns true.
 pub async fn run_station(
     config: StationConfig,
@@ -99,13 +79,7 @@ pub async fn run_station(
     mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
 ) -> anyhow::Result<StationSummary> {
     let mut core = station_core(&config, model.clone())?;
-    let policy = if config.policy_output.topic.is_empty() {
-        None
-    } else {
-        Some(PolicyOutput::new(&model, &config.policy_output)?)
-    };
-    let mut arm = ArmMapper::new(config.arm.clone()).map_err(|e| anyhow::anyhow!("arm: {e}"))?;
-    let joint_names: Vec<String> = model.dof_names().map(str::to_string).collect();
+    let mut stage = OutputStage::new(&config, &model)?;
 
     let context = config.network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_station")?;
@@ -130,11 +104,10 @@ pub async fn run_station(
         QosConfig::best_effort(10),
     )?;
     let joint_pub = node.publisher::<JointState>(&config.output.joint_targets_topic, output_qos)?;
-    let policy_pub = match &policy {
-        Some(_) => {
-            Some(node.publisher::<Float32MultiArray>(&config.policy_output.topic, output_qos)?)
-        }
-        None => None,
+    let policy_pub = if config.policy_output.topic.is_empty() {
+        None
+    } else {
+        Some(node.publisher::<Float32MultiArray>(&config.policy_output.topic, output_qos)?)
     };
     let arm_enabled = !config.output.arm_target_topic.is_empty();
     let (arm_pub, arm_monitor) = if arm_enabled {
@@ -197,9 +170,7 @@ pub async fn run_station(
         tip_error_mm: Latencies::default(),
     };
     let mut second_publisher = false;
-    let mut previous_state = DriveState::Disengaged;
     let mut last_latency_ms = f64::NAN;
-    let mut last_published_frame_ns = i64::MIN;
 
     loop {
         let mut tick_now = false;
@@ -265,9 +236,9 @@ pub async fn run_station(
                     "wrist_rejected": summary.wrist_rejected,
                     "arm": {
                         "enabled": arm_enabled,
-                        "engaged": arm.is_engaged(),
+                        "engaged": stage.arm().is_engaged(),
                         "second_publisher": second_publisher,
-                        "constraint": arm.constraint(),
+                        "constraint": stage.arm().constraint(),
                     },
                 });
                 status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
@@ -285,79 +256,28 @@ pub async fn run_station(
                 .push(started.elapsed().as_secs_f64() * 1e3);
             summary.tip_error_mm.push(core.counters().last_tip_error_mm);
         }
-        // Engage or release the arm clutch with the station's state.
-        match (previous_state, step.state) {
-            (DriveState::Engaged, DriveState::Engaged)
-            | (DriveState::Held, DriveState::Engaged)
-            | (DriveState::Engaged, DriveState::Held) => {}
-            (_, DriveState::Engaged) => {
-                if let Some(wrist) = glove_wrist {
-                    let engaged = match robot_pose {
-                        Some(robot) => arm.engage(wrist, robot),
-                        None => arm.engage_at_start_pose(wrist),
-                    };
-                    if let Err(e) = engaged {
-                        eprintln!("warning: arm not engaged: {e}");
-                    }
-                }
-            }
-            (_, DriveState::Disengaged) => arm.disengage(),
-            _ => {}
-        }
-        previous_state = step.state;
-        // On every-frame control, the timer only keeps a held command alive; fresh commands
-        // go out once per new frame.
-        let repeat = step
-            .hand
-            .as_ref()
-            .is_some_and(|h| !h.held && h.frame_received_ns == last_published_frame_ns);
-        if repeat && config.control.mode == ControlMode::EveryFrame {
-            continue;
-        }
-        if let Some(HandCommand {
-            q,
-            held,
-            frame_received_ns,
-        }) = &step.hand
-        {
-            last_published_frame_ns = *frame_received_ns;
-            let stamp = if *held { now } else { frame_source_ns };
-            let message = JointState {
-                header: header(stamp, ""),
-                name: joint_names.clone(),
-                position: q.clone(),
-                velocity: vec![],
-                effort: vec![],
-            };
+        let outputs = stage.outputs(
+            &step,
+            now,
+            frame_source_ns,
+            glove_wrist,
+            robot_pose,
+            second_publisher,
+        );
+        if let Some(message) = outputs.joint_state {
             joint_pub.async_publish(message).await.ok();
-            if let (Some(policy), Some(publisher)) = (&policy, &policy_pub) {
-                publisher
-                    .async_publish(policy_array(policy.values(q)))
-                    .await
-                    .ok();
-            }
             summary.hand_commands += 1;
             output_rate.record(now);
-            if !*held {
-                last_latency_ms = (clock.now_ns() - frame_received_ns) as f64 * 1e-6;
+            if let (true, Some(hand)) = (outputs.fresh_hand, &step.hand) {
+                last_latency_ms = (clock.now_ns() - hand.frame_received_ns) as f64 * 1e-6;
             }
         }
-        if let (Some(publisher), Some(wrist)) = (&arm_pub, glove_wrist) {
-            let target = match step.state {
-                DriveState::Engaged if !second_publisher => {
-                    arm.step(wrist).ok().flatten().map(|c| c.target)
-                }
-                DriveState::Held if !second_publisher => arm.last_command().map(|c| c.target),
-                _ => None,
-            };
-            if let Some(target) = target {
-                let message = PoseStamped {
-                    header: header(now, &config.output.arm_frame_id),
-                    pose: isometry_to_pose(&target),
-                };
-                publisher.async_publish(message).await.ok();
-                summary.arm_targets += 1;
-            }
+        if let (Some(message), Some(publisher)) = (outputs.policy, &policy_pub) {
+            publisher.async_publish(message).await.ok();
+        }
+        if let (Some(message), Some(publisher)) = (outputs.arm, &arm_pub) {
+            publisher.async_publish(message).await.ok();
+            summary.arm_targets += 1;
         }
     }
     summary.counters = core.counters().clone();

@@ -1,0 +1,316 @@
+//! One pass over an MCAP file's data section, in file order, that stops at the first record it
+//! cannot read: the common ground of [`TrialReader`](super::TrialReader) (which insists on a
+//! clean ending) and [`recover`](super::recover()) (which keeps what came before the damage).
+//!
+//! The top-level framing (opcode `u8`, length `u64` LE, body) is walked here so that every
+//! stop has an exact byte offset; records are parsed by `mcap::parse_record` and chunks
+//! decompressed and CRC-checked by `mcap::read::ChunkReader`. Checks beyond parsing: the
+//! first record is the header; schema ids are not 0; a schema or channel id redefined must
+//! have the same content; a channel's schema and a message's channel must already be known.
+//! An opcode of 0 (a zero-filled tail after a power cut) is damage.
+//!
+//! A chunk counts as a whole: if any of it cannot be read, none of it is kept. Records after
+//! the data end record (the summary) are not scanned.
+
+use std::collections::HashMap;
+
+use mcap::records::{self, AttachmentHeader, MessageHeader, Record, op};
+
+/// One record of the data section that the log readers care about.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum DataRecord {
+    /// A schema (first definition of its id).
+    Schema {
+        /// Schema id (not 0).
+        id: u16,
+        /// `pkg/msg/Type` for ROS 2.
+        name: String,
+        /// `ros2msg` for ROS 2.
+        encoding: String,
+        /// The schema text.
+        data: Vec<u8>,
+    },
+    /// A channel (first definition of its id).
+    Channel(records::Channel),
+    /// A message.
+    Message {
+        /// Channel, sequence and times.
+        header: MessageHeader,
+        /// The payload.
+        data: Vec<u8>,
+    },
+    /// A metadata record.
+    Metadata(records::Metadata),
+    /// An attachment.
+    Attachment {
+        /// Name, media type and times.
+        header: AttachmentHeader,
+        /// The attached bytes.
+        data: Vec<u8>,
+    },
+}
+
+/// How the scan ended.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum ScanEnd {
+    /// At the data end record: the file was finished (the summary follows).
+    DataEnd,
+    /// At the end of the file, after a complete record, without a data end record.
+    EndOfFile,
+    /// At a record that cannot be read.
+    Damaged {
+        /// Byte offset where that record starts.
+        offset: u64,
+        /// Why it cannot be read.
+        reason: String,
+    },
+}
+
+/// What [`scan`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ScannedLog {
+    /// Header `profile`.
+    pub profile: String,
+    /// Header `library`.
+    pub library: String,
+    /// Data records in file order, up to the end of the scan.
+    pub records: Vec<DataRecord>,
+    /// Offset just past the last record kept (or the data end record).
+    pub intact_end: u64,
+    /// Why the scan stopped.
+    pub end: ScanEnd,
+}
+
+/// Largest decompressed chunk accepted (a damaged size field must not exhaust memory).
+const MAX_CHUNK_UNCOMPRESSED_BYTES: u64 = 1 << 30;
+const RECORD_PREFIX: usize = 9;
+
+/// Scans `bytes` up to the data end record, the end of the file or the first damage. `Err`
+/// says why it is not an MCAP file at all (no magic, or no readable header record).
+pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
+    if bytes.len() < mcap::MAGIC.len() || !bytes.starts_with(mcap::MAGIC) {
+        return Err(format!(
+            "{} bytes, not starting with the MCAP magic",
+            bytes.len()
+        ));
+    }
+    let mut offset = mcap::MAGIC.len();
+    let header = match next_frame(bytes, offset) {
+        Ok((op::HEADER, body, next)) => match mcap::parse_record(op::HEADER, body) {
+            Ok(Record::Header(h)) => {
+                offset = next;
+                h
+            }
+            Ok(_) | Err(_) => return Err("header record does not parse".to_string()),
+        },
+        Ok((opcode, _, _)) => {
+            return Err(format!(
+                "first record has opcode {opcode:#04x}, not a header"
+            ));
+        }
+        Err(reason) => return Err(format!("header record: {reason}")),
+    };
+    let mut state = ScanState {
+        intact_end: offset,
+        ..ScanState::default()
+    };
+    let end = loop {
+        if offset == bytes.len() {
+            break ScanEnd::EndOfFile;
+        }
+        let damaged = |reason: String| ScanEnd::Damaged {
+            offset: offset as u64,
+            reason,
+        };
+        let (opcode, body, next) = match next_frame(bytes, offset) {
+            Ok(frame) => frame,
+            Err(reason) => break damaged(reason),
+        };
+        let outcome = match opcode {
+            0 => Err("opcode 0 (zero-filled or overwritten bytes)".to_string()),
+            op::DATA_END => {
+                offset = next;
+                break ScanEnd::DataEnd;
+            }
+            op::CHUNK => state.take_chunk(body),
+            op::SCHEMA | op::CHANNEL | op::MESSAGE | op::METADATA => {
+                parse(opcode, body).and_then(|record| state.take(record))
+            }
+            op::ATTACHMENT => check_attachment_length(body)
+                .and_then(|()| parse(opcode, body))
+                .and_then(|record| state.take(record)),
+            op::HEADER => Err("a second header record".to_string()),
+            // Indexes, statistics, private records: nothing to keep.
+            _ => Ok(()),
+        };
+        if let Err(reason) = outcome {
+            break damaged(reason);
+        }
+        offset = next;
+        state.intact_end = offset;
+    };
+    let intact_end = match end {
+        ScanEnd::DataEnd => offset,
+        _ => state.intact_end,
+    } as u64;
+    Ok(ScannedLog {
+        profile: header.profile,
+        library: header.library,
+        records: state.records,
+        intact_end,
+        end,
+    })
+}
+
+/// The record framed at `offset`: `(opcode, body, offset after it)`.
+fn next_frame(bytes: &[u8], offset: usize) -> Result<(u8, &[u8], usize), String> {
+    let rest = &bytes[offset..];
+    if rest.len() < RECORD_PREFIX {
+        return Err(format!(
+            "file ends {} bytes into a record prefix",
+            rest.len()
+        ));
+    }
+    let opcode = rest[0];
+    let mut len_bytes = [0u8; 8];
+    len_bytes.copy_from_slice(&rest[1..RECORD_PREFIX]);
+    let len = u64::from_le_bytes(len_bytes);
+    let available = (rest.len() - RECORD_PREFIX) as u64;
+    if len > available {
+        return Err(format!(
+            "record {opcode:#04x} claims {len} bytes, only {available} remain (unterminated)"
+        ));
+    }
+    let end = RECORD_PREFIX + len as usize;
+    Ok((opcode, &rest[RECORD_PREFIX..end], offset + end))
+}
+
+fn parse(opcode: u8, body: &[u8]) -> Result<Record<'_>, String> {
+    mcap::parse_record(opcode, body).map_err(|e| format!("record {opcode:#04x}: {e}"))
+}
+
+/// `mcap::parse_record` slices an attachment body assuming its fields fit; check first.
+fn check_attachment_length(body: &[u8]) -> Result<(), String> {
+    let read_u32 = |at: usize| -> Option<usize> {
+        let b = body.get(at..at + 4)?;
+        Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+    };
+    let too_short = || "attachment record shorter than its fields".to_string();
+    let name_len = read_u32(16).ok_or_else(too_short)?;
+    let media_at = 20usize.checked_add(name_len).ok_or_else(too_short)?;
+    let media_len = read_u32(media_at).ok_or_else(too_short)?;
+    let fixed = media_at
+        .checked_add(4 + media_len + 8 + 4)
+        .ok_or_else(too_short)?;
+    if body.len() < fixed {
+        return Err(too_short());
+    }
+    Ok(())
+}
+
+#[derive(Default)]
+struct ScanState {
+    schemas: HashMap<u16, (String, String, Vec<u8>)>,
+    channels: HashMap<u16, records::Channel>,
+    records: Vec<DataRecord>,
+    intact_end: usize,
+}
+
+impl ScanState {
+    /// Decompresses a whole chunk, then takes its records; on any failure, none of them.
+    fn take_chunk(&mut self, body: &[u8]) -> Result<(), String> {
+        let Record::Chunk { header, data } = parse(op::CHUNK, body)? else {
+            return Err("chunk record does not parse as a chunk".to_string());
+        };
+        if header.uncompressed_size > MAX_CHUNK_UNCOMPRESSED_BYTES {
+            return Err(format!(
+                "chunk claims {} uncompressed bytes",
+                header.uncompressed_size
+            ));
+        }
+        let inner: Vec<Record<'_>> = mcap::read::ChunkReader::new(header, &data)
+            .and_then(|reader| reader.collect::<Result<Vec<_>, _>>())
+            .map_err(|e| format!("chunk: {e}"))?;
+        let (record_count, schema_ids, channel_ids) = (
+            self.records.len(),
+            self.schemas.keys().copied().collect::<Vec<_>>(),
+            self.channels.keys().copied().collect::<Vec<_>>(),
+        );
+        for record in inner {
+            let kept = match record {
+                Record::Schema { .. } | Record::Channel(_) | Record::Message { .. } => {
+                    self.take(record)
+                }
+                _ => Ok(()),
+            };
+            if let Err(reason) = kept {
+                // Roll back the partial chunk.
+                self.records.truncate(record_count);
+                self.schemas.retain(|id, _| schema_ids.contains(id));
+                self.channels.retain(|id, _| channel_ids.contains(id));
+                return Err(format!("in chunk: {reason}"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks one record against what came before and keeps it.
+    fn take(&mut self, record: Record<'_>) -> Result<(), String> {
+        match record {
+            Record::Schema { header, data } => {
+                if header.id == 0 {
+                    return Err(format!("schema {:?} has id 0", header.name));
+                }
+                let content = (header.name, header.encoding, data.into_owned());
+                match self.schemas.get(&header.id) {
+                    Some(existing) if *existing == content => {}
+                    Some(_) => return Err(format!("schema {} redefined differently", header.id)),
+                    None => {
+                        self.records.push(DataRecord::Schema {
+                            id: header.id,
+                            name: content.0.clone(),
+                            encoding: content.1.clone(),
+                            data: content.2.clone(),
+                        });
+                        self.schemas.insert(header.id, content);
+                    }
+                }
+            }
+            Record::Channel(channel) => {
+                if channel.schema_id != 0 && !self.schemas.contains_key(&channel.schema_id) {
+                    return Err(format!(
+                        "channel {} ({}) refers to unknown schema {}",
+                        channel.id, channel.topic, channel.schema_id
+                    ));
+                }
+                match self.channels.get(&channel.id) {
+                    Some(existing) if *existing == channel => {}
+                    Some(_) => return Err(format!("channel {} redefined differently", channel.id)),
+                    None => {
+                        self.records.push(DataRecord::Channel(channel.clone()));
+                        self.channels.insert(channel.id, channel);
+                    }
+                }
+            }
+            Record::Message { header, data } => {
+                if !self.channels.contains_key(&header.channel_id) {
+                    return Err(format!(
+                        "message refers to unknown channel {}",
+                        header.channel_id
+                    ));
+                }
+                self.records.push(DataRecord::Message {
+                    header,
+                    data: data.into_owned(),
+                });
+            }
+            Record::Metadata(metadata) => self.records.push(DataRecord::Metadata(metadata)),
+            Record::Attachment { header, data, .. } => self.records.push(DataRecord::Attachment {
+                header,
+                data: data.into_owned(),
+            }),
+            _ => {}
+        }
+        Ok(())
+    }
+}
