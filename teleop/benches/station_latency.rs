@@ -46,6 +46,7 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
             station,
             glove,
             live: false,
+            out: None,
         }))
         .unwrap()
         .summary;

@@ -39,6 +39,9 @@ pub struct DemoArgs {
     /// Glove publishing rate, Hz.
     #[arg(long, default_value_t = 100.0)]
     pub glove_rate_hz: f64,
+    /// Record the run to an MCAP log in this directory (demo-<time>.mcap).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// The glove's scripted motions.
@@ -98,6 +101,9 @@ pub struct StationArgs {
     /// Engage as soon as glove input is fresh.
     #[arg(long)]
     pub engage: bool,
+    /// Record the run (inputs, outputs, status, events) to this MCAP file.
+    #[arg(long, value_name = "FILE.mcap")]
+    pub record: Option<PathBuf>,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -202,15 +208,17 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             glove.motion, glove.rate_hz, args.duration
         );
     }
-    let summary = run_demo(DemoOptions {
+    let outcome = run_demo(DemoOptions {
         duration_s: args.duration,
         domain_id,
         station,
         glove,
         live: !args.json,
+        out: args.out.clone(),
     })
-    .await?
-    .summary;
+    .await?;
+    let recorded = outcome.recorded.clone();
+    let summary = outcome.summary;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
@@ -233,6 +241,9 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             ms(summary.solver_ms_p99)
         );
         println!("  rejected frames    {}", summary.rejected_frames);
+        if let Some(path) = &recorded {
+            println!("  recorded           {}", path.display());
+        }
         println!(
             "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",
             summary
@@ -257,12 +268,22 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
         config.output.joint_targets_topic,
         config.output.arm_target_topic
     );
+    let recording = args
+        .record
+        .map(|path| crate::station::recorder::RecordingOptions {
+            path,
+            metadata: std::collections::BTreeMap::from([(
+                "source".to_string(),
+                "pomdar station".to_string(),
+            )]),
+        });
     let summary = run_station(
         config,
         HandModel::orca_v1_right(),
         StationClock::new(),
         shutdown,
         rx,
+        recording,
     )
     .await?;
     eprintln!(

@@ -2,6 +2,7 @@
 //! station → mock ORCA hand and mock Franka — each on its own DDS participant, on the demo's
 //! own domain id, with a live status line and a summary.
 
+use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -16,6 +17,7 @@ use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::station::recorder::RecordingOptions;
 use crate::station::ros_station::run_station;
 use crate::station::station_config::StationConfig;
 
@@ -32,6 +34,8 @@ pub struct DemoOptions {
     pub glove: SimGloveConfig,
     /// Print a status line every second.
     pub live: bool,
+    /// Record the station's run to `DIR/demo-<unix seconds>.mcap`.
+    pub out: Option<std::path::PathBuf>,
 }
 
 /// The machine-readable summary (`--json`).
@@ -78,6 +82,8 @@ pub struct DemoOutcome {
     pub hand: MockHandReport,
     /// What the mock Franka received.
     pub arm: MockFrankaReport,
+    /// The log written, with `out`.
+    pub recorded: Option<std::path::PathBuf>,
 }
 
 /// The demo's default domain id: away from 0 (the lab's usual), different per process.
@@ -134,12 +140,28 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
         arm_report.clone(),
         shutdown_rx.clone(),
     ));
+    let recording = match &options.out {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create {}", dir.display()))?;
+            Some(RecordingOptions {
+                path: dir.join(format!("demo-{}.mcap", clock.now_ns() / 1_000_000_000)),
+                metadata: BTreeMap::from([
+                    ("source".to_string(), "pomdar demo".to_string()),
+                    ("task".to_string(), "demo".to_string()),
+                    ("user".to_string(), "simulated glove".to_string()),
+                ]),
+            })
+        }
+        None => None,
+    };
     let station_task = tokio::spawn(run_station(
         station.clone(),
         model,
         clock,
         shutdown_rx.clone(),
         operator_rx,
+        recording,
     ));
     let (glove_stop_tx, glove_stop_rx) = watch::channel(false);
     let glove = tokio::spawn(run_sim_glove(
@@ -176,7 +198,8 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let frames = glove.await.context("glove task")??;
     tokio::time::sleep(Duration::from_millis(200)).await;
     shutdown_tx.send(true).ok();
-    let summary = station_task.await.context("station task")??;
+    let station_summary = station_task.await.context("station task")??;
+    let summary = &station_summary;
     hand.await.context("mock hand task")??;
     arm.await.context("mock arm task")??;
     let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
@@ -200,6 +223,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
         frames_repeated: summary.counters.frames_repeated,
     };
     Ok(DemoOutcome {
+        recorded: station_summary.recorded,
         summary,
         hand: hand_report,
         arm: arm_report,

@@ -97,6 +97,7 @@ impl Harness {
             clock,
             shutdown_rx,
             operator_rx,
+            None,
         ));
 
         let context = network.context()?;

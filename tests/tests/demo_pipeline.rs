@@ -7,6 +7,7 @@
 use pomdar_tests::station_harness::{check_arm_targets, test_domain};
 use teleop::arm::Constraint;
 use teleop::demo::{DemoOptions, run_demo};
+use teleop::mcap_log::TrialReader;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 use teleop::station::station_config::StationConfig;
 
@@ -15,12 +16,15 @@ async fn sim_glove_station_mock_hand_and_arm() {
     let mut station = StationConfig::default();
     station.arm.constraint = Constraint::HorizontalAxis;
     let arm = station.arm.clone();
+    let out_dir = std::env::temp_dir().join(format!("pomdar-demo-{}", std::process::id()));
+    std::fs::remove_dir_all(&out_dir).ok();
     let outcome = run_demo(DemoOptions {
         duration_s: 3.0,
         domain_id: test_domain(6),
         station,
         glove: SimGloveConfig::default(),
         live: false,
+        out: Some(out_dir.clone()),
     })
     .await
     .unwrap();
@@ -44,4 +48,89 @@ async fn sim_glove_station_mock_hand_and_arm() {
         outcome.arm.targets.len()
     );
     check_arm_targets(&outcome.arm.targets, &arm, Some(arm.horizontal_axis));
+
+    // The run's log: the same topics and counts as the run, with schemas, QoS and statistics;
+    // the independent readers decode every message.
+    let path = outcome.recorded.clone().expect("the demo recorded its run");
+    assert!(
+        !teleop::mcap_log::part_path_for(&path).exists(),
+        ".part left behind"
+    );
+    let log = TrialReader::open(&path).unwrap();
+    let count = |topic: &str| log.topic(topic).map_or(0, |t| t.message_count);
+    assert_eq!(
+        count("/pomdar/hand/joint_targets"),
+        outcome.summary.hand_targets
+    );
+    assert_eq!(
+        count("/franka/end_effector_pose_cmd"),
+        outcome.summary.arm_targets
+    );
+    let s = &outcome.summary;
+    assert_eq!(
+        count("/ingress/mano"),
+        s.frames_new + s.frames_repeated + s.rejected_frames,
+        "every received frame"
+    );
+    assert!(
+        count("/ingress/wrist") > 0
+            && count("/pomdar/status") > 0
+            && count("/hand/policy_output") > 0
+    );
+    assert_eq!(count("/pomdar/trial_events"), 2, "start and stop");
+    for topic in log.topics() {
+        assert!(topic.schema_text.contains(' '), "{}: schema", topic.topic);
+        assert!(
+            topic.offered_qos().is_some_and(|q| q.is_ok()),
+            "{}: offered_qos_profiles",
+            topic.topic
+        );
+    }
+    let statistics = log.statistics().expect("statistics record");
+    assert_eq!(statistics.message_count, log.message_count() as u64);
+    let trial = log.metadata_named("pomdar_trial").expect("trial metadata");
+    assert_eq!(trial["embodiment"], "orca_full");
+    assert!(trial["config_digest"].starts_with("fnv1a64:"));
+    if let Some(report) = independent_readers(&path) {
+        for reader in ["mcap_ros2", "rosbags"] {
+            for topic in log.topics() {
+                assert_eq!(
+                    report[reader]["counts"][&topic.topic].as_u64(),
+                    Some(topic.message_count),
+                    "{reader}: {}",
+                    topic.topic
+                );
+            }
+        }
+    }
+    std::fs::remove_dir_all(&out_dir).ok();
+}
+
+/// The independent readers' report on `path` (None, with a notice, where the interop Python
+/// is not installed outside CI).
+fn independent_readers(path: &std::path::Path) -> Option<serde_json::Value> {
+    let root = pomdar_tests::workspace_root();
+    let python = root.join("target/interop-venv/bin/python");
+    if !python.is_file() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must run tests/interop/setup_python.sh first"
+        );
+        eprintln!(
+            "SKIPPED: independent readers ({} not found)",
+            python.display()
+        );
+        return None;
+    }
+    let output = std::process::Command::new(python)
+        .arg(root.join("tests/interop/read_mcap.py"))
+        .arg(path)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stdout)
+    );
+    Some(serde_json::from_slice(&output.stdout).unwrap())
 }

@@ -4,6 +4,7 @@ pub mod frame_gate;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
+pub mod recorder;
 pub mod ros_station;
 pub mod station_config;
 pub mod station_core;

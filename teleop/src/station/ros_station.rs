@@ -23,6 +23,7 @@ use crate::sim::latency::Latencies;
 use crate::station::frame_gate::{FrameGate, Verdict};
 use crate::station::output_stage::OutputStage;
 use crate::station::rate_meter::RateMeter;
+use crate::station::recorder::{RecordingOptions, StationRecorder};
 use crate::station::station_config::{ControlMode, KeypointFormat, StationConfig};
 use crate::station::station_core::{Counters, StationCore};
 use crate::station::watchdog::Watchdog;
@@ -53,6 +54,14 @@ pub struct StationSummary {
     pub step_time: Latencies,
     /// Mean palm-to-tip key-vector error of each solve, millimetres.
     pub tip_error_mm: Latencies,
+    /// The log written, when recording.
+    pub recorded: Option<std::path::PathBuf>,
+}
+
+/// A keypoint message as received, in either supported format.
+enum KeypointMessage {
+    Array(Float32MultiArray),
+    Poses(PoseArray),
 }
 
 /// Build the core for a configuration.
@@ -77,7 +86,12 @@ pub async fn run_station(
     clock: StationClock,
     mut shutdown: watch::Receiver<bool>,
     mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
+    recording: Option<RecordingOptions>,
 ) -> anyhow::Result<StationSummary> {
+    let mut recorder = match &recording {
+        Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
+        None => None,
+    };
     let mut core = station_core(&config, model.clone())?;
     let mut stage = OutputStage::new(&config, &model)?;
 
@@ -127,7 +141,7 @@ pub async fn run_station(
             .map(|r| {
                 r.map(|(m, info)| {
                     (
-                        array_to_points(&m),
+                        KeypointMessage::Array(m),
                         info.source_timestamp().map(|t| t.to_nanos()),
                     )
                 })
@@ -138,7 +152,7 @@ pub async fn run_station(
             .map(|r| {
                 r.map(|(m, info)| {
                     (
-                        Some(pose_array_to_points(&m)),
+                        KeypointMessage::Poses(m),
                         info.source_timestamp().map(|t| t.to_nanos()),
                     )
                 })
@@ -168,6 +182,7 @@ pub async fn run_station(
         second_publisher_seen: false,
         step_time: Latencies::default(),
         tip_error_mm: Latencies::default(),
+        recorded: None,
     };
     let mut second_publisher = false;
     let mut last_latency_ms = f64::NAN;
@@ -187,8 +202,17 @@ pub async fn run_station(
             }
             Some(item) = keypoints.next() => {
                 let now = clock.now_ns();
-                if let Ok((points, source_ns)) = item {
-                    let points: Vec<Point3<f64>> = points.unwrap_or_default();
+                if let Ok((message, source_ns)) = item {
+                    let points: Vec<Point3<f64>> = match &message {
+                        KeypointMessage::Array(m) => {
+                            if let Some(r) = recorder.as_mut() { r.input(&config.input.keypoints_topic, now, source_ns, m); }
+                            array_to_points(m).unwrap_or_default()
+                        }
+                        KeypointMessage::Poses(m) => {
+                            if let Some(r) = recorder.as_mut() { r.input(&config.input.keypoints_topic, now, source_ns, m); }
+                            pose_array_to_points(m)
+                        }
+                    };
                     match core.on_keypoints(&points, now) {
                         Verdict::New => {
                             input_rate.record(now);
@@ -203,13 +227,19 @@ pub async fn run_station(
                     }
                 }
             }
-            Some(Ok((pose, _))) = wrists.next() => {
+            Some(Ok((pose, info))) = wrists.next() => {
+                if let Some(r) = recorder.as_mut() {
+                    r.input(&config.input.wrist_topic, clock.now_ns(), info.source_timestamp().map(|t| t.to_nanos()), &pose);
+                }
                 match pose_to_isometry(&pose.pose) {
                     Some(iso) => glove_wrist = Some(iso),
                     None => summary.wrist_rejected += 1,
                 }
             }
-            Some(Ok((pose, _))) = feedback.next() => {
+            Some(Ok((pose, info))) = feedback.next() => {
+                if let Some(r) = recorder.as_mut() {
+                    r.input(&config.input.arm_feedback_topic, clock.now_ns(), info.source_timestamp().map(|t| t.to_nanos()), &pose);
+                }
                 robot_pose = pose_to_isometry(&pose.pose);
             }
             _ = tick.tick() => tick_now = true,
@@ -241,7 +271,12 @@ pub async fn run_station(
                         "constraint": stage.arm().constraint(),
                     },
                 });
-                status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
+                let status = StringMsg { data: status.to_string() };
+                if let Some(r) = recorder.as_mut() {
+                    r.output(&config.output.status_topic, now, &status);
+                    r.tick(now);
+                }
+                status_pub.async_publish(status).await.ok();
             }
         }
         if !tick_now {
@@ -265,6 +300,9 @@ pub async fn run_station(
             second_publisher,
         );
         if let Some(message) = outputs.joint_state {
+            if let Some(r) = recorder.as_mut() {
+                r.output(&config.output.joint_targets_topic, now, &message);
+            }
             joint_pub.async_publish(message).await.ok();
             summary.hand_commands += 1;
             output_rate.record(now);
@@ -273,13 +311,28 @@ pub async fn run_station(
             }
         }
         if let (Some(message), Some(publisher)) = (outputs.policy, &policy_pub) {
+            if let Some(r) = recorder.as_mut() {
+                r.output(&config.policy_output.topic, now, &message);
+            }
             publisher.async_publish(message).await.ok();
         }
         if let (Some(message), Some(publisher)) = (outputs.arm, &arm_pub) {
+            if let Some(r) = recorder.as_mut() {
+                r.output(&config.output.arm_target_topic, now, &message);
+            }
             publisher.async_publish(message).await.ok();
             summary.arm_targets += 1;
         }
     }
     summary.counters = core.counters().clone();
+    if let Some(r) = recorder {
+        let totals = json!({
+            "frames_new": summary.counters.frames_new,
+            "hand_commands": summary.hand_commands,
+            "arm_targets": summary.arm_targets,
+        });
+        let finished = r.finish(clock.now_ns(), totals)?;
+        summary.recorded = Some(finished.path);
+    }
     Ok(summary)
 }

@@ -1,0 +1,152 @@
+//! Recording a station run to one MCAP log: every input as received (log time = receive time
+//! on the station's clock, publish time = the sender's DDS source time), every output as sent,
+//! the status, a metadata record and start/stop events on `/pomdar/trial_events`.
+//!
+//! The log is written as `NAME.mcap.part`, flushed at least once a second and on every event,
+//! and renamed when the run ends; `pomdar recover` repairs a `.part` left by a crash. A write
+//! failure is reported once and recording continues where it can: the hand is never stopped
+//! for the log's sake.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use msgs::RosMessage;
+use serde_json::json;
+
+use crate::mcap_log::{FinishedTrial, OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::station::station_config::StationConfig;
+
+/// Where and what to record.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RecordingOptions {
+    /// The final log path (`.part` is appended while recording).
+    pub path: PathBuf,
+    /// Trial metadata (task, embodiment, user, operator, ...), written as the `pomdar_trial`
+    /// metadata record together with the station version and the configuration digest.
+    pub metadata: BTreeMap<String, String>,
+}
+
+/// FNV-1a 64 of the configuration's canonical JSON: a stable digest that says whether two
+/// logs were produced with the same configuration.
+pub fn config_digest(config: &StationConfig) -> String {
+    let text = serde_json::to_string(config).unwrap_or_default();
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for byte in text.bytes() {
+        hash ^= u64::from(byte);
+        hash = hash.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("fnv1a64:{hash:016x}")
+}
+
+/// The recorder of one run.
+pub struct StationRecorder {
+    writer: TrialWriter,
+    failed: bool,
+}
+
+impl std::fmt::Debug for StationRecorder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StationRecorder")
+            .field("part_path", &self.writer.part_path())
+            .field("failed", &self.failed)
+            .finish()
+    }
+}
+
+impl StationRecorder {
+    /// Create the log, write the metadata and the start event.
+    pub fn start(
+        options: &RecordingOptions,
+        config: &StationConfig,
+        now_ns: i64,
+    ) -> anyhow::Result<StationRecorder> {
+        let mut writer = TrialWriter::create(&options.path, TrialWriterOptions::default())?;
+        let input_qos = OfferedQos::from(config.input.qos);
+        let output_qos = OfferedQos::from(config.output.qos);
+        for topic in [&config.input.keypoints_topic] {
+            match config.input.keypoints_format {
+                crate::station::station_config::KeypointFormat::Float32MultiArray => {
+                    writer.add_channel::<msgs::Float32MultiArray>(topic, &[input_qos])?;
+                }
+                crate::station::station_config::KeypointFormat::PoseArray => {
+                    writer.add_channel::<msgs::PoseArray>(topic, &[input_qos])?;
+                }
+            }
+        }
+        writer.add_channel::<msgs::PoseStamped>(&config.input.wrist_topic, &[input_qos])?;
+        writer
+            .add_channel::<msgs::JointState>(&config.output.joint_targets_topic, &[output_qos])?;
+        let mut metadata = options.metadata.clone();
+        metadata.insert("station_version".into(), env!("CARGO_PKG_VERSION").into());
+        metadata.insert("config_digest".into(), config_digest(config));
+        metadata.insert("embodiment".into(), config.retarget.embodiment.clone());
+        metadata.insert("layout".into(), config.retarget.layout.name().into());
+        writer.write_metadata("pomdar_trial", metadata)?;
+        writer.write_event(now_ns, &json!({ "event": "start" }))?;
+        Ok(StationRecorder {
+            writer,
+            failed: false,
+        })
+    }
+
+    fn check(&mut self, result: Result<(), crate::mcap_log::LogError>) {
+        if let Err(e) = result {
+            if !self.failed {
+                eprintln!(
+                    "error: recording: {e} (the station keeps running; the log may be incomplete)"
+                );
+            }
+            self.failed = true;
+        }
+    }
+
+    /// Record an input message.
+    pub fn input<M: RosMessage>(
+        &mut self,
+        topic: &str,
+        received_ns: i64,
+        source_ns: Option<i64>,
+        message: &M,
+    ) {
+        let result = self.writer.write(
+            topic,
+            received_ns,
+            source_ns.unwrap_or(received_ns),
+            message,
+        );
+        self.check(result);
+    }
+
+    /// Record an output message sent at `now_ns`.
+    pub fn output<M: RosMessage>(&mut self, topic: &str, now_ns: i64, message: &M) {
+        let result = self.writer.write(topic, now_ns, now_ns, message);
+        self.check(result);
+    }
+
+    /// Record a trial event (flushes).
+    pub fn event(&mut self, now_ns: i64, event: &serde_json::Value) {
+        let result = self.writer.write_event(now_ns, event);
+        self.check(result);
+    }
+
+    /// Flush if a second of log time has passed since the last flush.
+    pub fn tick(&mut self, now_ns: i64) {
+        let result = self.writer.flush_if_due(now_ns).map(|_| ());
+        self.check(result);
+    }
+
+    /// Whether any write failed.
+    pub fn failed(&self) -> bool {
+        self.failed
+    }
+
+    /// Write the stop event with `summary`, the summary section, and rename the log.
+    pub fn finish(
+        mut self,
+        now_ns: i64,
+        summary: serde_json::Value,
+    ) -> anyhow::Result<FinishedTrial> {
+        self.event(now_ns, &json!({ "event": "stop", "summary": summary }));
+        Ok(self.writer.finish()?)
+    }
+}
