@@ -2,8 +2,10 @@
 //!
 //! Every keypoint, wrist and arm-feedback message of the input log is handed to the same
 //! [`StationCore`] and [`OutputStage`] the ROS node uses, in log-time order, with its log time
-//! as "now"; control ticks fall on the log's clock (every `1 / rate_hz` from the first message,
-//! or on every new frame). The outputs go to a new log, stamped with tick times only — no wall
+//! as "now"; control ticks fall on the log's clock: every `1 / rate_hz` from the first message
+//! (or on every new frame) for plain glove recordings, and at the recorded times of the
+//! station's own joint targets for a log the station recorded, so re-simulating a recorded
+//! run with the same configuration reproduces its joint targets exactly. The outputs go to a new log, stamped with tick times only — no wall
 //! clock reaches the output, so re-simulating the same log with the same configuration gives
 //! the same file, byte for byte. Wall-clock processing time is measured for the statistics
 //! only.
@@ -43,6 +45,9 @@ pub struct ResimStats {
     pub arm_targets: u64,
     /// The keypoint layout used.
     pub layout: String,
+    /// Where the control ticks came from: "recorded" (the station's own tick times in the
+    /// log) or "log clock" (a grid at `rate_hz`, or every new frame).
+    pub ticks: String,
     /// Wall time of each control step that retargeted a new frame, ms: p50.
     pub step_ms_p50: Option<f64>,
     /// Wall time of each control step that retargeted a new frame, ms: p99.
@@ -157,11 +162,28 @@ pub fn resim(
         },
         step_ms: Latencies::default(),
     };
+    // A log the station recorded carries its tick times: the joint targets' log times.
+    let recorded_ticks: Vec<i64> = messages
+        .iter()
+        .filter(|m| m.topic == config.output.joint_targets_topic)
+        .map(|m| m.log_time_ns)
+        .collect();
+    let replay_ticks = !recorded_ticks.is_empty();
+    r.stats.ticks = if replay_ticks {
+        "recorded".into()
+    } else {
+        "log clock".into()
+    };
+    let mut recorded = recorded_ticks.into_iter().peekable();
     let period_ns = (1e9 / config.control.rate_hz).round() as i64;
     let mut next_tick = messages.first().map(|m| m.log_time_ns + period_ns);
     for message in &messages {
         let now = message.log_time_ns;
-        if config.control.mode == ControlMode::Rate {
+        if replay_ticks {
+            while let Some(t) = recorded.next_if(|t| *t < now) {
+                r.tick(t)?;
+            }
+        } else if config.control.mode == ControlMode::Rate {
             while let Some(t) = next_tick.filter(|t| *t <= now) {
                 r.tick(t)?;
                 next_tick = Some(t + period_ns);
@@ -182,7 +204,7 @@ pub fn resim(
                     if !r.engaged_once {
                         r.engaged_once = r.core.engage(now);
                     }
-                    if config.control.mode == ControlMode::EveryFrame {
+                    if config.control.mode == ControlMode::EveryFrame && !replay_ticks {
                         r.tick(now)?;
                     }
                 }
@@ -193,6 +215,9 @@ pub fn resim(
         } else if message.topic == input.arm_feedback_topic {
             r.robot_pose = pose_to_isometry(&message.decode::<PoseStamped>()?.pose);
         }
+    }
+    for t in recorded {
+        r.tick(t)?;
     }
     let counters = r.core.counters().clone();
     r.stats.frames_new = counters.frames_new;

@@ -16,6 +16,7 @@ async fn sim_glove_station_mock_hand_and_arm() {
     let mut station = StationConfig::default();
     station.arm.constraint = Constraint::HorizontalAxis;
     let arm = station.arm.clone();
+    let station_config = station.clone();
     let out_dir = std::env::temp_dir().join(format!("pomdar-demo-{}", std::process::id()));
     std::fs::remove_dir_all(&out_dir).ok();
     let outcome = run_demo(DemoOptions {
@@ -91,6 +92,31 @@ async fn sim_glove_station_mock_hand_and_arm() {
     let trial = log.metadata_named("pomdar_trial").expect("trial metadata");
     assert_eq!(trial["embodiment"], "orca_full");
     assert!(trial["config_digest"].starts_with("fnv1a64:"));
+    // Re-simulating the recorded run with the same configuration reproduces its joint targets
+    // exactly.
+    let resim_out = out_dir.join("resim.mcap");
+    let mut writer = teleop::mcap_log::TrialWriter::create(&resim_out, Default::default()).unwrap();
+    let stats = teleop::resim::resim(
+        &log,
+        &station_config,
+        retarget::HandModel::orca_v1_right(),
+        &mut writer,
+    )
+    .unwrap();
+    writer.finish().unwrap();
+    assert_eq!(stats.ticks, "recorded");
+    let recorded = log
+        .decode_topic::<msgs::JointState>("/pomdar/hand/joint_targets")
+        .unwrap();
+    let resimulated = TrialReader::open(&resim_out)
+        .unwrap()
+        .decode_topic::<msgs::JointState>("/pomdar/hand/joint_targets")
+        .unwrap();
+    assert_eq!(resimulated.len(), recorded.len());
+    for (i, (a, b)) in recorded.iter().zip(&resimulated).enumerate() {
+        assert_eq!(a.position, b.position, "joint target {i}");
+        assert_eq!(a.header.stamp, b.header.stamp, "stamp of joint target {i}");
+    }
     if let Some(report) = independent_readers(&path) {
         for reader in ["mcap_ros2", "rosbags"] {
             for topic in log.topics() {
