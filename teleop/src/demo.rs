@@ -150,6 +150,10 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
                     ("source".to_string(), "pomdar demo".to_string()),
                     ("task".to_string(), "demo".to_string()),
                     ("user".to_string(), "simulated glove".to_string()),
+                    ("operator".to_string(), "pomdar demo".to_string()),
+                    ("calibration_profile".to_string(), "none".to_string()),
+                    ("trial_index".to_string(), "0".to_string()),
+                    ("practice".to_string(), "false".to_string()),
                 ]),
             })
         }

@@ -43,14 +43,20 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
     let out = std::env::temp_dir().join(format!("pomdar-replay-resim-{}.mcap", std::process::id()));
     std::fs::remove_file(&out).ok();
     let mut writer = TrialWriter::create(&out, TrialWriterOptions::default()).unwrap();
-    let stats = teleop::resim::resim(&reader, &config, HandModel::orca_v1_right(), &mut writer).unwrap();
+    let stats =
+        teleop::resim::resim(&reader, &config, HandModel::orca_v1_right(), &mut writer).unwrap();
     writer.finish().unwrap();
-    let expected = TrialReader::open(&out).unwrap().decode_topic::<JointState>("/pomdar/hand/joint_targets").unwrap();
+    let expected = TrialReader::open(&out)
+        .unwrap()
+        .decode_topic::<JointState>("/pomdar/hand/joint_targets")
+        .unwrap();
     std::fs::remove_file(&out).ok();
     assert_eq!(expected.len() as u64, stats.frames_new);
 
     // Over DDS: the station under test, the recording replayed in real time (30 s).
-    let h = Harness::start(config.clone(), test_domain(8)).await.unwrap();
+    let h = Harness::start(config.clone(), test_domain(8))
+        .await
+        .unwrap();
     let options = ReplayOptions {
         rate: 1.0,
         topics: vec!["/ingress/mano".into(), "/ingress/wrist".into()],
@@ -58,12 +64,23 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
         ..ReplayOptions::default()
     };
     let (_stop, stop_rx) = watch::channel(false);
-    let report = replay(&reader, &h.network, &options, stop_rx).await.unwrap();
+    let report = replay(&reader, &h.network, &options, stop_rx)
+        .await
+        .unwrap();
     assert_eq!(report.published["/ingress/mano"], 6003);
     let _ = h
-        .wait_until(Duration::from_secs(5), |heard| heard.targets.len() >= expected.len())
+        .wait_until(Duration::from_secs(5), |heard| {
+            heard.targets.len() >= expected.len()
+        })
         .await;
-    let live: Vec<Vec<f64>> = h.heard.lock().unwrap().targets.iter().map(|(_, m)| m.position.clone()).collect();
+    let live: Vec<Vec<f64>> = h
+        .heard
+        .lock()
+        .unwrap()
+        .targets
+        .iter()
+        .map(|(_, m)| m.position.clone())
+        .collect();
     h.stop().await.unwrap();
 
     // Match frame for frame (each target names its frame by its stamp: the glove frame's
@@ -72,13 +89,24 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
     let matching = expected
         .iter()
         .zip(&live)
-        .filter(|(e, l)| e.position.iter().zip(l.iter()).all(|(a, b)| (a - b).abs() <= 1e-6))
+        .filter(|(e, l)| {
+            e.position
+                .iter()
+                .zip(l.iter())
+                .all(|(a, b)| (a - b).abs() <= 1e-6)
+        })
         .count();
     let share = matching as f64 / expected.len() as f64;
     let worst = expected
         .iter()
         .zip(&live)
-        .map(|(e, l)| e.position.iter().zip(l.iter()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+        .map(|(e, l)| {
+            e.position
+                .iter()
+                .zip(l.iter())
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        })
         .fold(0.0, f64::max);
     println!("largest difference {worst:.2e} rad");
     println!(

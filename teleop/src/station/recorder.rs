@@ -21,8 +21,9 @@ use crate::station::station_config::StationConfig;
 pub struct RecordingOptions {
     /// The final log path (`.part` is appended while recording).
     pub path: PathBuf,
-    /// Trial metadata (task, embodiment, user, operator, ...), written as the `pomdar_trial`
-    /// metadata record together with the station version and the configuration digest.
+    /// Trial metadata (task, user, operator, calibration_profile, trial_index, practice, ...),
+    /// written as the `pomdar_trial` metadata record together with the embodiment, the layout,
+    /// the station version and the configuration digest.
     pub metadata: BTreeMap<String, String>,
 }
 

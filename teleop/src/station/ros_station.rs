@@ -29,12 +29,16 @@ use crate::station::station_core::{Counters, StationCore};
 use crate::station::watchdog::Watchdog;
 
 /// What the operator (console, test, demo) tells a running station.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum OperatorCommand {
     /// Engage: drive hand and arm once input is fresh.
     Engage,
     /// Disengage: stop driving the arm; the hand holds.
     Disengage,
+    /// A trial event for the log (`/pomdar/trial_events`, flushed at once), e.g.
+    /// `{"event": "progress", "value": 1}`, `{"event": "drop"}`, `{"event": "abort"}`,
+    /// `{"event": "note", "text": "..."}`. The station adds the event's time.
+    TrialEvent(serde_json::Value),
 }
 
 /// Totals when the station stops.
@@ -198,6 +202,11 @@ pub async fn run_station(
                 match command {
                     OperatorCommand::Engage => { core.engage(now); }
                     OperatorCommand::Disengage => core.disengage(),
+                    OperatorCommand::TrialEvent(event) => {
+                        if let Some(r) = recorder.as_mut() {
+                            r.event(now, &event);
+                        }
+                    }
                 }
             }
             Some(item) = keypoints.next() => {
