@@ -227,7 +227,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
         frames_repeated: summary.counters.frames_repeated,
     };
     Ok(DemoOutcome {
-        recorded: station_summary.recorded,
+        recorded: station_summary.recorded.first().cloned(),
         summary,
         hand: hand_report,
         arm: arm_report,

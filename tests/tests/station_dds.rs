@@ -375,3 +375,62 @@ async fn a_second_publisher_on_the_arm_command_topic_is_detected_and_the_arm_sto
     let summary = h.stop().await.unwrap();
     assert!(summary.second_publisher_seen);
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn each_trial_is_recorded_to_its_own_log() {
+    use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
+    use teleop::station::recorder::RecordingOptions;
+    let h = Harness::start(config(ControlMode::Rate), test_domain(9))
+        .await
+        .unwrap();
+    let glove = glove();
+    let dir = std::env::temp_dir().join(format!("pomdar-trials-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let trial = |n: u32| RecordingOptions {
+        path: dir.join(format!("trial{n}.mcap")),
+        metadata: [("trial_index".to_string(), n.to_string())].into(),
+    };
+    h.operator(OperatorCommand::StartTrial(trial(1)));
+    play(&h, &glove, 0.0, 0.5, 50.0).await;
+    h.operator(OperatorCommand::TrialEvent(
+        serde_json::json!({"event": "progress", "value": 1}),
+    ));
+    play(&h, &glove, 0.5, 0.2, 50.0).await;
+    h.operator(OperatorCommand::StartTrial(trial(2))); // finishes trial 1
+    play(&h, &glove, 0.7, 0.5, 50.0).await;
+    h.operator(OperatorCommand::StopTrial);
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let summary = h.stop().await.unwrap();
+    assert_eq!(
+        summary.recorded,
+        vec![dir.join("trial1.mcap"), dir.join("trial2.mcap")]
+    );
+    for (n, expected) in [
+        (1, vec!["start", "progress", "stop"]),
+        (2, vec!["start", "stop"]),
+    ] {
+        let log = TrialReader::open(&dir.join(format!("trial{n}.mcap"))).unwrap();
+        let kinds: Vec<String> = log
+            .decode_topic::<msgs::StringMsg>(TRIAL_EVENTS_TOPIC)
+            .unwrap()
+            .iter()
+            .map(|m| {
+                serde_json::from_str::<serde_json::Value>(&m.data).unwrap()["event"]
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            })
+            .collect();
+        assert_eq!(kinds, expected, "trial {n}");
+        assert_eq!(
+            log.metadata_named("pomdar_trial").unwrap()["trial_index"],
+            n.to_string()
+        );
+        let targets = log
+            .topic("/pomdar/hand/joint_targets")
+            .map_or(0, |t| t.message_count);
+        assert!(targets >= 8, "trial {n}: {targets} joint targets");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

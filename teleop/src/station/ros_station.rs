@@ -39,6 +39,10 @@ pub enum OperatorCommand {
     /// `{"event": "progress", "value": 1}`, `{"event": "drop"}`, `{"event": "abort"}`,
     /// `{"event": "note", "text": "..."}`. The station adds the event's time.
     TrialEvent(serde_json::Value),
+    /// Start recording a new trial to its own log (finishing the current one, if any).
+    StartTrial(RecordingOptions),
+    /// Finish the current trial's log (stop event, summary, rename from `.part`).
+    StopTrial,
 }
 
 /// Totals when the station stops.
@@ -58,8 +62,8 @@ pub struct StationSummary {
     pub step_time: Latencies,
     /// Mean palm-to-tip key-vector error of each solve, millimetres.
     pub tip_error_mm: Latencies,
-    /// The log written, when recording.
-    pub recorded: Option<std::path::PathBuf>,
+    /// The logs written (one per trial), in order.
+    pub recorded: Vec<std::path::PathBuf>,
 }
 
 /// A keypoint message as received, in either supported format.
@@ -186,7 +190,7 @@ pub async fn run_station(
         second_publisher_seen: false,
         step_time: Latencies::default(),
         tip_error_mm: Latencies::default(),
-        recorded: None,
+        recorded: Vec::new(),
     };
     let mut second_publisher = false;
     let mut last_latency_ms = f64::NAN;
@@ -205,6 +209,20 @@ pub async fn run_station(
                     OperatorCommand::TrialEvent(event) => {
                         if let Some(r) = recorder.as_mut() {
                             r.event(now, &event);
+                        }
+                    }
+                    OperatorCommand::StartTrial(options) => {
+                        if let Some(r) = recorder.take() {
+                            finish_trial(r, now, &core, &mut summary);
+                        }
+                        match StationRecorder::start(&options, &config, now) {
+                            Ok(r) => recorder = Some(r),
+                            Err(e) => eprintln!("error: cannot start recording {}: {e:#}", options.path.display()),
+                        }
+                    }
+                    OperatorCommand::StopTrial => {
+                        if let Some(r) = recorder.take() {
+                            finish_trial(r, now, &core, &mut summary);
                         }
                     }
                 }
@@ -335,13 +353,25 @@ pub async fn run_station(
     }
     summary.counters = core.counters().clone();
     if let Some(r) = recorder {
-        let totals = json!({
-            "frames_new": summary.counters.frames_new,
-            "hand_commands": summary.hand_commands,
-            "arm_targets": summary.arm_targets,
-        });
-        let finished = r.finish(clock.now_ns(), totals)?;
-        summary.recorded = Some(finished.path);
+        finish_trial(r, clock.now_ns(), &core, &mut summary);
     }
     Ok(summary)
+}
+
+/// Finish a trial's log with the run's totals so far; a failure is reported, never fatal.
+fn finish_trial(
+    recorder: StationRecorder,
+    now_ns: i64,
+    core: &StationCore,
+    summary: &mut StationSummary,
+) {
+    let totals = json!({
+        "frames_new": core.counters().frames_new,
+        "hand_commands": summary.hand_commands,
+        "arm_targets": summary.arm_targets,
+    });
+    match recorder.finish(now_ns, totals) {
+        Ok(finished) => summary.recorded.push(finished.path),
+        Err(e) => eprintln!("error: cannot finish the trial log: {e:#}"),
+    }
 }
