@@ -23,25 +23,8 @@ const TRIAL_SEED: u64 = 0x5eed_0f7e_1e0b;
 /// Log times start here (2024-11-20, like the reference recording).
 const T0: i64 = 1_732_100_000 * S;
 
-const JOINTS: [&str; 17] = [
-    "thumb_mcp",
-    "thumb_abd",
-    "thumb_pip",
-    "thumb_dip",
-    "index_abd",
-    "index_mcp",
-    "index_pip",
-    "middle_abd",
-    "middle_mcp",
-    "middle_pip",
-    "ring_abd",
-    "ring_mcp",
-    "ring_pip",
-    "pinky_abd",
-    "pinky_mcp",
-    "pinky_pip",
-    "wrist",
-];
+/// The ORCA joint names, in orca_core order.
+const JOINTS: [&str; 17] = retarget::ORCA_CORE_JOINTS;
 
 /// A scratch directory, emptied first and removed at the end of the test.
 struct TestDir(PathBuf);
