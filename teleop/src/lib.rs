@@ -1,7 +1,7 @@
 //! # teleop: the POMDAR station application
 //!
-//! The one crate that does I/O: files today; ROS 2 (ros2-client + tokio), MCAP recording and
-//! the operator console as later issues land. The pure crates (`retarget`, `calibration`,
+//! The one crate that does I/O: files, ROS 2 (ros2-client + tokio) and MCAP logs; the
+//! operator console arrives with issue 8. The pure crates (`retarget`, `calibration`,
 //! `scoring`, `msgs`) compute; this crate reads, writes and talks.
 
 pub mod arm;
