@@ -12,9 +12,9 @@ use teleop::model_report;
 /// score the trials.
 ///
 /// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
-/// pose out), a simulated glove, mock robot nodes, the all-in-one demo, MCAP re-simulation,
-/// recovery and replay, and hand model inspection. Trial recording, calibration, scoring and
-/// the operator console arrive in later issues.
+/// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
+/// glove, mock robot nodes, the all-in-one demo, and hand model inspection. Calibration,
+/// scoring and the operator console arrive in later issues.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -35,16 +35,18 @@ enum Command {
     ///   pomdar demo
     ///   pomdar demo --duration 60 --motion pinches
     ///   pomdar demo --duration 5 --json
+    ///   pomdar demo --out logs/        # also record the run to logs/demo-<time>.mcap
     #[command(verbatim_doc_comment)]
     Demo(cli::DemoArgs),
     /// Run the station node (no simulated parts) until Ctrl-C.
     ///
     /// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
     /// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
-    /// (launch_configs/station/*.toml). Engage with --engage or from the console.
+    /// (launch_configs/station/*.toml). Engage with --engage or from the console; --record
+    /// logs the run (inputs, outputs, status, events) to an MCAP file.
     ///
     /// Example:
-    ///   pomdar station --config launch_configs/station/eth_lab.toml --engage
+    ///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap
     #[command(verbatim_doc_comment)]
     Station(cli::StationArgs),
     /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
