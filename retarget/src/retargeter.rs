@@ -402,16 +402,19 @@ impl Retargeter {
 
     /// Assemble `H` and `g` at `q`.
     fn normal_equations(&mut self, targets: &[KeyVector; KEY_VECTORS], q: &[f64]) {
-        let reg = self.config.regularisation.clone();
+        let (previous_command, rest_posture, damping) = {
+            let r = &self.config.regularisation;
+            (r.previous_command, r.rest_posture, r.damping)
+        };
         self.H.fill(0.0);
         self.g.fill(0.0);
         for (k, &dof) in self.free.iter().enumerate() {
-            self.H[(k, k)] = reg.previous_command + reg.damping;
-            self.g[k] = reg.previous_command * (q[dof] - self.command[dof]);
+            self.H[(k, k)] = previous_command + damping;
+            self.g[k] = previous_command * (q[dof] - self.command[dof]);
         }
         for &(k, rest) in &self.rest {
-            self.H[(k, k)] += reg.rest_posture;
-            self.g[k] += reg.rest_posture * (q[self.free[k]] - rest);
+            self.H[(k, k)] += rest_posture;
+            self.g[k] += rest_posture * (q[self.free[k]] - rest);
         }
         if self.model.forward(q, &mut self.fk).is_err() {
             return;

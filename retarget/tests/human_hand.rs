@@ -4,14 +4,16 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+mod common;
+
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use retarget::human_hand::{
     Handedness, HumanHandPose, HumanHandShape, JOINT_RANGES_RAD, KeyPose, Motion, MotionKind,
     POSE_ANGLES, SimGlove, SplitMix64, WristSway, pinch_pose,
 };
 use retarget::{
-    CalibrationTransform, EmbodimentCatalog, Finger, HandModel, KeypointLayout, PalmFrame,
-    PinchConfig, RetargetConfig, Retargeter, human_key_vectors,
+    CalibrationTransform, Finger, HandModel, KeypointLayout, PalmFrame, PinchConfig,
+    RetargetConfig, Retargeter, human_key_vectors,
 };
 
 const SCALES: [f64; 3] = [0.8, 1.0, 1.25];
@@ -419,14 +421,7 @@ fn jitter_is_seeded_and_of_the_requested_size() {
 }
 
 fn orca() -> (HandModel, Retargeter) {
-    let model = HandModel::orca_v1_right();
-    let retargeter = Retargeter::new(
-        model.clone(),
-        RetargetConfig::default(),
-        &EmbodimentCatalog::builtin(),
-    )
-    .unwrap();
-    (model, retargeter)
+    common::poses::orca_retargeter(RetargetConfig::default())
 }
 
 /// A glove as a lab would see it: the hand turned and moved in the tracker frame, swaying,

@@ -42,7 +42,8 @@ enum Command {
     ///
     /// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
     /// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
-    /// (launch_configs/station/*.toml). Engage with --engage or from the console; --record
+    /// (launch_configs/station/*.toml). --engage engages once glove input is fresh (the
+    /// operator console, issue 8, will engage explicitly); --record
     /// logs the run (inputs, outputs, status, events) to an MCAP file.
     ///
     /// Example:

@@ -14,14 +14,14 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use anyhow::Context as _;
-use msgs::{Float32MultiArray, PoseArray, PoseStamped};
-use nalgebra::{Isometry3, Point3};
+use msgs::PoseStamped;
+use nalgebra::Isometry3;
 use retarget::{HandModel, KeypointLayout};
 use serde::Serialize;
 
 use crate::mcap_log::{LoggedMessage, TrialReader, TrialWriter};
-use crate::ros::convert::{array_to_points, pose_array_to_points, pose_to_isometry};
-use crate::sim::latency::Latencies;
+use crate::ros::convert::{KeypointMessage, pose_to_isometry};
+use crate::sim::samples::Samples;
 use crate::station::frame_gate::Verdict;
 use crate::station::output_stage::OutputStage;
 use crate::station::ros_station::station_core;
@@ -65,15 +65,10 @@ fn layout_for(config: &StationConfig, first_frame_points: Option<usize>) -> Keyp
     }
 }
 
-fn keypoints(
-    message: &LoggedMessage,
-    format: KeypointFormat,
-) -> anyhow::Result<Option<Vec<Point3<f64>>>> {
+fn keypoints(message: &LoggedMessage, format: KeypointFormat) -> anyhow::Result<KeypointMessage> {
     Ok(match format {
-        KeypointFormat::Float32MultiArray => {
-            array_to_points(&message.decode::<Float32MultiArray>()?)
-        }
-        KeypointFormat::PoseArray => Some(pose_array_to_points(&message.decode::<PoseArray>()?)),
+        KeypointFormat::Float32MultiArray => KeypointMessage::Array(message.decode()?),
+        KeypointFormat::PoseArray => KeypointMessage::Poses(message.decode()?),
     })
 }
 
@@ -87,7 +82,7 @@ struct Replayer<'w> {
     robot_pose: Option<Isometry3<f64>>,
     engaged_once: bool,
     stats: ResimStats,
-    step_ms: Latencies,
+    step_ms: Samples,
 }
 
 impl Replayer<'_> {
@@ -141,8 +136,7 @@ pub fn resim(
         .find(|m| m.topic == input.keypoints_topic)
         .map(|m| keypoints(m, format))
         .transpose()?
-        .flatten()
-        .map(|p| p.len());
+        .map(|k| k.points().len());
     let mut config = config.clone();
     config.retarget.layout = layout_for(&config, first_count);
     let core = station_core(&config, model.clone())?;
@@ -160,7 +154,7 @@ pub fn resim(
             layout: config.retarget.layout.name().to_string(),
             ..ResimStats::default()
         },
-        step_ms: Latencies::default(),
+        step_ms: Samples::default(),
     };
     // A log the station recorded carries its tick times: the joint targets' log times.
     let recorded_ticks: Vec<i64> = messages
@@ -193,7 +187,7 @@ pub fn resim(
             r.stats.frames_read += 1;
             let points = keypoints(message, format)
                 .with_context(|| format!("keypoints at log time {now} ns"))?
-                .unwrap_or_default();
+                .points();
             match r.core.on_keypoints(&points, now) {
                 Verdict::New => {
                     r.frame_source_ns = if message.publish_time_ns > 0 {

@@ -1,6 +1,7 @@
 //! Helpers shared by the workspace integration tests in `tests/tests/`.
 
 pub mod dependency_rule;
+pub mod interop;
 pub mod station_harness;
 
 use std::path::{Path, PathBuf};

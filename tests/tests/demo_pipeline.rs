@@ -4,6 +4,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+use pomdar_tests::interop::{assert_readers_agree, independent_readers};
 use pomdar_tests::station_harness::{check_arm_targets, test_domain};
 use teleop::arm::Constraint;
 use teleop::demo::{DemoOptions, run_demo};
@@ -118,45 +119,7 @@ async fn sim_glove_station_mock_hand_and_arm() {
         assert_eq!(a.header.stamp, b.header.stamp, "stamp of joint target {i}");
     }
     if let Some(report) = independent_readers(&path) {
-        for reader in ["mcap_ros2", "rosbags"] {
-            for topic in log.topics() {
-                assert_eq!(
-                    report[reader]["counts"][&topic.topic].as_u64(),
-                    Some(topic.message_count),
-                    "{reader}: {}",
-                    topic.topic
-                );
-            }
-        }
+        assert_readers_agree(&report, &log);
     }
     std::fs::remove_dir_all(&out_dir).ok();
-}
-
-/// The independent readers' report on `path` (None, with a notice, where the interop Python
-/// is not installed outside CI).
-fn independent_readers(path: &std::path::Path) -> Option<serde_json::Value> {
-    let root = pomdar_tests::workspace_root();
-    let python = root.join("target/interop-venv/bin/python");
-    if !python.is_file() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must run tests/interop/setup_python.sh first"
-        );
-        eprintln!(
-            "SKIPPED: independent readers ({} not found)",
-            python.display()
-        );
-        return None;
-    }
-    let output = std::process::Command::new(python)
-        .arg(root.join("tests/interop/read_mcap.py"))
-        .arg(path)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stdout)
-    );
-    Some(serde_json::from_slice(&output.stdout).unwrap())
 }

@@ -12,8 +12,8 @@
 use std::time::Duration;
 
 use msgs::JointState;
+use pomdar_tests::interop::reference_file;
 use pomdar_tests::station_harness::{Harness, test_domain};
-use pomdar_tests::workspace_root;
 use retarget::HandModel;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::replay::{ReplayOptions, replay};
@@ -23,11 +23,9 @@ use tokio::sync::watch;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn replayed_reference_matches_the_in_process_resimulation() {
-    let path = workspace_root().join("../shared/reference/rokoko_orca_2024-11-20.mcap");
-    if !path.is_file() {
-        eprintln!("SKIPPED: {} not found", path.display());
+    let Some(path) = reference_file("rokoko_orca_2024-11-20.mcap") else {
         return;
-    }
+    };
     let mut config = StationConfig::default();
     config.control.mode = ControlMode::EveryFrame;
     config.control.auto_engage = true;

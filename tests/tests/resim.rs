@@ -7,20 +7,14 @@
 use std::path::{Path, PathBuf};
 
 use msgs::{Float32MultiArray, JointState};
-use pomdar_tests::workspace_root;
+use pomdar_tests::interop::{assert_readers_agree, independent_readers, reference_file};
 use retarget::HandModel;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::resim::resim;
 use teleop::station::station_config::StationConfig;
 
 fn reference() -> Option<PathBuf> {
-    let path = workspace_root().join("../shared/reference/rokoko_orca_2024-11-20.mcap");
-    if path.is_file() {
-        Some(path)
-    } else {
-        eprintln!("SKIPPED: {} not found", path.display());
-        None
-    }
+    reference_file("rokoko_orca_2024-11-20.mcap")
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -123,54 +117,14 @@ fn the_21_point_lab_layout_is_accepted() {
     assert!(a.iter().zip(&b).all(|(x, y)| x.position == y.position));
 }
 
-/// The interop Python (installed by tests/interop/setup_python.sh, which `.ci/run` runs).
-fn interop_python() -> Option<PathBuf> {
-    let python = workspace_root().join("target/interop-venv/bin/python");
-    if python.is_file() {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "CI must run tests/interop/setup_python.sh first"
-    );
-    eprintln!(
-        "SKIPPED: {} not found (run tests/interop/setup_python.sh)",
-        python.display()
-    );
-    None
-}
-
 #[test]
 fn independent_readers_decode_every_message_of_a_resimulated_log() {
     let Some(input) = reference() else { return };
-    let Some(python) = interop_python() else {
-        return;
-    };
     let out = scratch("interop.mcap");
     run_resim(&input, &out);
-    let result = std::process::Command::new(python)
-        .arg(workspace_root().join("tests/interop/read_mcap.py"))
-        .arg(&out)
-        .output()
-        .unwrap();
-    let report: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap_or_else(|_| {
-        panic!(
-            "reader output: {} {}",
-            String::from_utf8_lossy(&result.stdout),
-            String::from_utf8_lossy(&result.stderr)
-        )
-    });
+    let Some(report) = independent_readers(&out) else {
+        return;
+    };
     println!("{report}");
-    assert!(result.status.success(), "{report}");
-    let ours = TrialReader::open(&out).unwrap();
-    for reader in ["mcap_ros2", "rosbags"] {
-        for topic in ours.topics() {
-            assert_eq!(
-                report[reader]["counts"][&topic.topic].as_u64(),
-                Some(topic.message_count),
-                "{reader} on {}",
-                topic.topic
-            );
-        }
-    }
+    assert_readers_agree(&report, &TrialReader::open(&out).unwrap());
 }

@@ -51,6 +51,26 @@ pub fn array_to_points(array: &Float32MultiArray) -> Option<Vec<Point3<f64>>> {
     )
 }
 
+/// A keypoint message in either supported format, as received or logged.
+#[derive(Debug, Clone, PartialEq)]
+pub enum KeypointMessage {
+    /// The lab's N × 3 `Float32MultiArray`.
+    Array(Float32MultiArray),
+    /// A stamped `PoseArray` (positions used).
+    Poses(PoseArray),
+}
+
+impl KeypointMessage {
+    /// The keypoints, metres; empty when an array is not N × 3 (the frame gate then rejects
+    /// the frame as the wrong size).
+    pub fn points(&self) -> Vec<Point3<f64>> {
+        match self {
+            KeypointMessage::Array(m) => array_to_points(m).unwrap_or_default(),
+            KeypointMessage::Poses(m) => pose_array_to_points(m),
+        }
+    }
+}
+
 /// Keypoints of a pose array: the positions.
 pub fn pose_array_to_points(array: &PoseArray) -> Vec<Point3<f64>> {
     array

@@ -14,7 +14,7 @@ use tokio::sync::watch;
 use crate::clock::StationClock;
 use crate::ros::convert::header;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::sim::latency::Latencies;
+use crate::sim::samples::Samples;
 
 /// What the mock hand saw.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -23,7 +23,7 @@ pub struct MockHandReport {
     pub targets: u64,
     /// End-to-end latency of each target computed from a new glove frame (the first target
     /// carrying a given stamp), milliseconds; repeats of a command are not counted.
-    pub latency: Latencies,
+    pub latency: Samples,
     /// Targets naming a joint the hand lacks or carrying a non-finite value.
     pub rejected: u64,
     /// Receive times of the targets, nanoseconds (for rate checks).

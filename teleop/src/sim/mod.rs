@@ -2,7 +2,7 @@
 //! model driven by scripted motions), a mock ORCA hand and a mock Franka arm, each a ROS 2
 //! node on its own DDS participant, exactly as separate processes would be.
 
-pub mod latency;
 pub mod mock_franka;
 pub mod mock_hand;
+pub mod samples;
 pub mod sim_glove_node;

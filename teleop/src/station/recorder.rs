@@ -14,6 +14,7 @@ use msgs::RosMessage;
 use serde_json::json;
 
 use crate::mcap_log::{FinishedTrial, OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::ros::convert::KeypointMessage;
 use crate::station::station_config::StationConfig;
 
 /// Where and what to record.
@@ -116,6 +117,20 @@ impl StationRecorder {
             message,
         );
         self.check(result);
+    }
+
+    /// Record a keypoint message, in whichever format it came.
+    pub fn keypoints(
+        &mut self,
+        topic: &str,
+        received_ns: i64,
+        source_ns: Option<i64>,
+        message: &KeypointMessage,
+    ) {
+        match message {
+            KeypointMessage::Array(m) => self.input(topic, received_ns, source_ns, m),
+            KeypointMessage::Poses(m) => self.input(topic, received_ns, source_ns, m),
+        }
     }
 
     /// Record an output message sent at `now_ns`.

@@ -11,15 +11,15 @@ use std::time::Duration;
 use anyhow::Context as _;
 use futures::StreamExt;
 use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
-use nalgebra::{Isometry3, Point3};
+use nalgebra::Isometry3;
 use retarget::{EmbodimentCatalog, HandModel, Retargeter};
 use serde_json::json;
 use tokio::sync::{mpsc, watch};
 
 use crate::clock::StationClock;
-use crate::ros::convert::{array_to_points, pose_array_to_points, pose_to_isometry};
+use crate::ros::convert::{KeypointMessage, pose_to_isometry};
 use crate::ros::{QosConfig, RosNode};
-use crate::sim::latency::Latencies;
+use crate::sim::samples::Samples;
 use crate::station::frame_gate::{FrameGate, Verdict};
 use crate::station::output_stage::OutputStage;
 use crate::station::rate_meter::RateMeter;
@@ -59,17 +59,11 @@ pub struct StationSummary {
     /// Whether a second publisher on the arm command topic was seen.
     pub second_publisher_seen: bool,
     /// Wall time of each control step that retargeted a new frame, milliseconds.
-    pub step_time: Latencies,
+    pub step_time: Samples,
     /// Mean palm-to-tip key-vector error of each solve, millimetres.
-    pub tip_error_mm: Latencies,
+    pub tip_error_mm: Samples,
     /// The logs written (one per trial), in order.
     pub recorded: Vec<std::path::PathBuf>,
-}
-
-/// A keypoint message as received, in either supported format.
-enum KeypointMessage {
-    Array(Float32MultiArray),
-    Poses(PoseArray),
 }
 
 /// Build the core for a configuration.
@@ -188,8 +182,8 @@ pub async fn run_station(
         arm_targets: 0,
         wrist_rejected: 0,
         second_publisher_seen: false,
-        step_time: Latencies::default(),
-        tip_error_mm: Latencies::default(),
+        step_time: Samples::default(),
+        tip_error_mm: Samples::default(),
         recorded: Vec::new(),
     };
     let mut second_publisher = false;
@@ -230,16 +224,10 @@ pub async fn run_station(
             Some(item) = keypoints.next() => {
                 let now = clock.now_ns();
                 if let Ok((message, source_ns)) = item {
-                    let points: Vec<Point3<f64>> = match &message {
-                        KeypointMessage::Array(m) => {
-                            if let Some(r) = recorder.as_mut() { r.input(&config.input.keypoints_topic, now, source_ns, m); }
-                            array_to_points(m).unwrap_or_default()
-                        }
-                        KeypointMessage::Poses(m) => {
-                            if let Some(r) = recorder.as_mut() { r.input(&config.input.keypoints_topic, now, source_ns, m); }
-                            pose_array_to_points(m)
-                        }
-                    };
+                    if let Some(r) = recorder.as_mut() {
+                        r.keypoints(&config.input.keypoints_topic, now, source_ns, &message);
+                    }
+                    let points = message.points();
                     match core.on_keypoints(&points, now) {
                         Verdict::New => {
                             input_rate.record(now);

@@ -1,13 +1,14 @@
-//! Latency samples and their percentiles.
+//! Samples of a measured quantity (latencies, step times, errors) and their statistics.
 
-/// Collected latencies, milliseconds.
+/// Collected samples (the caller's unit, e.g. milliseconds).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Latencies {
+pub struct Samples {
     samples_ms: Vec<f64>,
 }
 
-impl Latencies {
-    /// Add one sample (ignored if not finite or negative beyond clock noise).
+impl Samples {
+    /// Add one sample (ignored if not finite; values below −1, beyond clock noise on a
+    /// latency, are ignored and small negatives count as 0).
     pub fn push(&mut self, ms: f64) {
         if ms.is_finite() && ms > -1.0 {
             self.samples_ms.push(ms.max(0.0));
@@ -47,7 +48,7 @@ mod tests {
 
     #[test]
     fn percentiles_by_nearest_rank() {
-        let mut l = Latencies::default();
+        let mut l = Samples::default();
         assert_eq!(l.percentile(0.5), None);
         for i in 1..=100 {
             l.push(f64::from(i));
