@@ -1,6 +1,6 @@
 //! The calibration crate's error type.
 
-/// Malformed calibration data.
+/// Why a calibration input was refused or a calibration failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// The file does not parse or has an unknown key.
@@ -17,4 +17,30 @@ pub enum Error {
         /// What is wrong.
         problem: String,
     },
+    /// A setting or profile value outside its allowed range.
+    #[error("{key} = {value}: {allowed}")]
+    Setting {
+        /// The key, dotted.
+        key: String,
+        /// The value found.
+        value: String,
+        /// The allowed range.
+        allowed: String,
+    },
+    /// A capture that cannot be used: what was wrong and what the user should do.
+    #[error("capture of pose '{pose}' refused: {problem}. {advice}")]
+    Capture {
+        /// The pose being captured.
+        pose: String,
+        /// What is wrong with the capture.
+        problem: String,
+        /// What to do about it.
+        advice: String,
+    },
+    /// The retargeter refused its model, configuration or a capture.
+    #[error("retargeter: {0}")]
+    Retarget(#[from] retarget::Error),
+    /// The optimiser failed.
+    #[error("Bayesian optimisation failed: {0}")]
+    Optimiser(String),
 }

@@ -2,13 +2,53 @@
 //!
 //! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/dependency_rule.rs`).
 //!
-//! Today: the seven calibration poses as data ([`PoseSet`]: four pinches, open hand without
-//! and with abduction, closed hand), each a ground-truth ORCA joint configuration and an
-//! instruction. The capture checks and the Bayesian optimisation of a global scale and
-//! rotation (issue 6) build on them.
+//! A new user performs seven poses ([`PoseSet`]: four pinches, open hand without and with
+//! abduction, closed hand), each a ground-truth joint configuration of the robot hand that the
+//! station shows on the hand. About a second of glove keypoints per pose is checked and
+//! averaged ([`capture_pose`]); a global scale and a rotation
+//! ([`retarget::CalibrationTransform`], applied to the human key vectors in the palm frame) are
+//! then fitted by Bayesian optimisation ([`calibrate`]) so that the real retargeter's output
+//! for the captures lands as close as possible to the ground truth ([`Objective`]). The result
+//! is stored per user as a [`CalibrationProfile`].
+//!
+//! | file | what |
+//! |---|---|
+//! | `poses.rs` | the seven poses as data |
+//! | `schedule.rs` | [`CaptureSchedule`]: slot per pose, capture window |
+//! | `capture.rs` | [`capture_pose`]: validity and stability checks, palm-frame average |
+//! | `objective.rs` | [`Objective`]: joint error (plus pinch gap) of the retargeter's output |
+//! | `search_space.rs` | parameters ↔ transform, bounds, seeded Latin hypercube |
+//! | `optimiser.rs` | [`bayesian_optimise`] (egobox: GP, Matérn 5/2, EI) and [`random_search`] |
+//! | `fit.rs` | [`calibrate`]: before, optimise, after |
+//! | `profile.rs` | [`CalibrationProfile`]: the per-user TOML file |
+//! | `settings.rs` | [`CalibrationSettings`]: bounds, budget, thresholds |
+//! | `human_copy.rs` | [`human_copies`]: the human hand model copying each robot pose |
+//! | `synthetic_user.rs` | [`SyntheticUser`]: test users with known hand size and misalignment |
 
+mod capture;
 mod error;
+mod fit;
+mod human_copy;
+mod objective;
+mod optimiser;
 mod poses;
+mod profile;
+mod schedule;
+mod search_space;
+mod settings;
+mod synthetic_user;
 
+pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;
+pub use fit::{Calibration, FitInputs, FitProgress, calibrate};
+pub use human_copy::{human_copies, human_copy};
+pub use objective::{Evaluation, Objective, PoseError, cold_solve_config};
+pub use optimiser::{ObjectiveFn, Trace, bayesian_optimise, polish, random_search};
 pub use poses::{CalibrationPose, ORCA_V1_POSES_TOML, POSE_NAMES, PoseSet};
+pub use profile::{CalibrationProfile, ObjectiveSummary, PoseReport, ProfileHeader};
+pub use schedule::CaptureSchedule;
+pub use search_space::{Parameters, box_bounds, initial_design, parameters, transform};
+pub use settings::{CalibrationSettings, CaptureThresholds, OptimiserSettings, ParameterBounds};
+pub use synthetic_user::{
+    POPULATION_ANGLE_DEG, POPULATION_NOISE_M, POPULATION_SCALE, SyntheticUser,
+};

@@ -54,11 +54,13 @@ mod shape;
 mod sim_glove;
 
 pub use hand_kinematics::{DigitChains, place_points};
-pub use motion::{KeyPose, MIN_PERIOD_S, Motion, MotionKind, MotionPhase, PINCH_GAP_M};
+pub use motion::{
+    CALIBRATION_MOVE_SHARE, KeyPose, MIN_PERIOD_S, Motion, MotionKind, MotionPhase, PINCH_GAP_M,
+};
 pub use noise::SplitMix64;
 pub use pinch::{DIP_PER_PIP, MAX_PINCH_GAP_M, PinchPose, pinch_pose};
 pub use pose::{
     ANGLE_NAMES, FingerAngles, HumanHandPose, JOINT_RANGES_RAD, POSE_ANGLES, ThumbAngles,
 };
 pub use shape::{DigitGeometry, Handedness, HumanHandShape, REALISTIC_SCALE};
-pub use sim_glove::{MAX_JITTER_SD_M, SimGlove, WristSway};
+pub use sim_glove::{MAX_JITTER_SD_M, SimGlove, WristSway, misalign};

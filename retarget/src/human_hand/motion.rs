@@ -20,6 +20,7 @@
 //! | [`Motion::Abduction`] | `period_s` | open → spread 0.4, hold 0.1, → open 0.4, hold 0.1 |
 //! | [`Motion::Pinches`] | `4 · period_s` | per finger (index, middle, ring, little), in quarters: open → pinch 0.35, hold 0.3, → open 0.35 |
 //! | [`Motion::TaskLike`] | `period_s` | grasp a cylinder and hold, release, index pinch and hold, release with the fingers spread, middle pinch and hold, release |
+//! | [`Motion::CalibrationPoses`] | `7 · period_s` | the seven calibration poses in capture order (pinch index, middle, ring, little; open; open spread; fist), per pose: move 0.35, hold 0.65 |
 //!
 //! Pinch poses depend on the hand's proportions (not its scale), so the motions that use them
 //! carry them, solved once by [`pinch_pose`] with a [`PINCH_GAP_M`] gap.
@@ -51,20 +52,25 @@ pub enum MotionKind {
     Abduction,
     /// Grasp, release, pinches: a task-like sequence.
     TaskLike,
+    /// The seven calibration poses in turn, each moved to and held.
+    CalibrationPoses,
 }
 
 impl MotionKind {
     /// All kinds.
-    pub const ALL: [MotionKind; 4] = [
+    pub const ALL: [MotionKind; 5] = [
         MotionKind::OpenClose,
         MotionKind::Pinches,
         MotionKind::Abduction,
         MotionKind::TaskLike,
+        MotionKind::CalibrationPoses,
     ];
 
-    /// A comfortable default period, seconds (for [`MotionKind::Pinches`]: per pinch).
+    /// A comfortable default period, seconds (for [`MotionKind::Pinches`]: per pinch; for
+    /// [`MotionKind::CalibrationPoses`]: per pose).
     pub const fn default_period_s(self) -> f64 {
         match self {
+            MotionKind::CalibrationPoses => 2.5,
             MotionKind::OpenClose => 4.0,
             MotionKind::Pinches => 2.5,
             MotionKind::Abduction => 3.0,
@@ -126,6 +132,13 @@ pub enum Motion {
         /// The pinch poses for index, middle, ring, little.
         pinches: [HumanHandPose; 4],
     },
+    /// The seven calibration poses in capture order, each moved to and held.
+    CalibrationPoses {
+        /// Time per pose, seconds (the cycle is seven times longer).
+        period_s: f64,
+        /// The poses: pinch index, middle, ring, little; open; open spread; closed.
+        poses: Box<[HumanHandPose; 7]>,
+    },
 }
 
 use KeyPose::{CylinderGrasp, Fist, Open, OpenSpread, Pinch};
@@ -165,6 +178,29 @@ const TASK_LIKE: [(f64, KeyPose); 11] = [
     (0.07, Open),
     (0.05, Open),
 ];
+
+/// Share of each calibration pose's slot spent moving to it (the rest is the hold).
+pub const CALIBRATION_MOVE_SHARE: f64 = 0.35;
+
+const CALIBRATION_POSES: [(f64, KeyPose); 14] = {
+    let keys = [
+        Pinch(Finger::Index),
+        Pinch(Finger::Middle),
+        Pinch(Finger::Ring),
+        Pinch(Finger::Little),
+        Open,
+        OpenSpread,
+        Fist,
+    ];
+    let mut out = [(0.0, Open); 14];
+    let mut k = 0;
+    while k < 7 {
+        out[2 * k] = (CALIBRATION_MOVE_SHARE / 7.0, keys[k]);
+        out[2 * k + 1] = ((1.0 - CALIBRATION_MOVE_SHARE) / 7.0, keys[k]);
+        k += 1;
+    }
+    out
+};
 
 /// The smoothstep `3v² − 2v³`: 0 → 1 with zero slope at both ends.
 fn smoothstep(v: f64) -> f64 {
@@ -223,6 +259,45 @@ impl Motion {
                 period_s,
                 pinches: pinches()?,
             },
+            MotionKind::CalibrationPoses => {
+                let p = pinches()?;
+                Motion::CalibrationPoses {
+                    period_s,
+                    poses: Box::new([
+                        p[0],
+                        p[1],
+                        p[2],
+                        p[3],
+                        HumanHandPose::open(),
+                        HumanHandPose::open_spread(),
+                        HumanHandPose::fist(),
+                    ]),
+                }
+            }
+        })
+    }
+
+    /// The calibration poses motion with the user's own version of each pose (pinch index,
+    /// middle, ring, little; open; open spread; closed), `period_s` per pose. `Err` for a
+    /// period below [`MIN_PERIOD_S`] or a pose outside the joint ranges.
+    pub fn calibration_poses(poses: [HumanHandPose; 7], period_s: f64) -> Result<Motion, Error> {
+        if !(period_s.is_finite() && period_s >= MIN_PERIOD_S) {
+            return Err(Error::ConfigRange {
+                key: "motion.period_s".into(),
+                value: period_s.to_string(),
+                allowed: format!("must be at least {MIN_PERIOD_S} s"),
+            });
+        }
+        if let Some(k) = poses.iter().position(|p| !p.within_ranges()) {
+            return Err(Error::ConfigRange {
+                key: format!("motion.poses[{k}]"),
+                value: "out of range".into(),
+                allowed: "every angle within JOINT_RANGES_RAD".into(),
+            });
+        }
+        Ok(Motion::CalibrationPoses {
+            period_s,
+            poses: Box::new(poses),
         })
     }
 
@@ -233,6 +308,7 @@ impl Motion {
             Motion::Pinches { .. } => MotionKind::Pinches,
             Motion::Abduction { .. } => MotionKind::Abduction,
             Motion::TaskLike { .. } => MotionKind::TaskLike,
+            Motion::CalibrationPoses { .. } => MotionKind::CalibrationPoses,
         }
     }
 
@@ -240,6 +316,7 @@ impl Motion {
     pub fn cycle_s(&self) -> f64 {
         match self {
             Motion::Pinches { period_s, .. } => 4.0 * period_s,
+            Motion::CalibrationPoses { period_s, .. } => 7.0 * period_s,
             Motion::OpenClose { period_s }
             | Motion::Abduction { period_s }
             | Motion::TaskLike { period_s, .. } => *period_s,
@@ -252,6 +329,7 @@ impl Motion {
             Motion::Pinches { .. } => &PINCHES,
             Motion::Abduction { .. } => &ABDUCTION,
             Motion::TaskLike { .. } => &TASK_LIKE,
+            Motion::CalibrationPoses { .. } => &CALIBRATION_POSES,
         }
     }
 
@@ -262,12 +340,24 @@ impl Motion {
 
     /// The angles of a key pose in this motion.
     pub fn key_pose(&self, key: KeyPose) -> HumanHandPose {
+        if let Motion::CalibrationPoses { poses, .. } = self {
+            match key {
+                Open => return poses[4],
+                OpenSpread => return poses[5],
+                Fist => return poses[6],
+                _ => {}
+            }
+        }
         match key {
             Open => HumanHandPose::open(),
             OpenSpread => HumanHandPose::open_spread(),
             Fist => HumanHandPose::fist(),
             CylinderGrasp => HumanHandPose::cylinder_grasp(),
             Pinch(finger) => match self {
+                Motion::CalibrationPoses { poses, .. } => finger
+                    .index()
+                    .checked_sub(1)
+                    .map_or_else(HumanHandPose::open, |i| poses[i]),
                 Motion::Pinches { poses, .. } | Motion::TaskLike { pinches: poses, .. } => finger
                     .index()
                     .checked_sub(1)
@@ -294,12 +384,45 @@ mod tests {
 
     #[test]
     fn tables_cover_the_cycle_and_close_it() {
-        for table in [&OPEN_CLOSE[..], &ABDUCTION, &PINCHES, &TASK_LIKE] {
+        for table in [
+            &OPEN_CLOSE[..],
+            &ABDUCTION,
+            &PINCHES,
+            &TASK_LIKE,
+            &CALIBRATION_POSES,
+        ] {
             let total: f64 = table.iter().map(|(w, _)| w).sum();
             assert!((total - 1.0).abs() < 1e-12, "{total}");
             assert!(table.iter().all(|&(w, _)| w > 0.0));
             let phase = phase_in(table, 0.0);
-            assert_eq!(phase.from, Open, "every cycle starts from the open hand");
+            let first = if std::ptr::eq(table, &CALIBRATION_POSES[..]) {
+                Fist
+            } else {
+                Open
+            };
+            assert_eq!(phase.from, first, "each cycle starts where it ends");
+        }
+    }
+
+    #[test]
+    fn calibration_poses_hold_each_pose_in_capture_order() {
+        let shape = HumanHandShape::average();
+        let motion = Motion::new(MotionKind::CalibrationPoses, 2.0, &shape).unwrap();
+        assert_eq!(motion.cycle_s(), 14.0);
+        let expected = [
+            Pinch(Finger::Index),
+            Pinch(Finger::Middle),
+            Pinch(Finger::Ring),
+            Pinch(Finger::Little),
+            Open,
+            OpenSpread,
+            Fist,
+        ];
+        for (k, key) in expected.into_iter().enumerate() {
+            let hold = motion.phase(2.0 * k as f64 + 1.5);
+            assert_eq!((hold.from, hold.to), (key, key), "pose {k}");
+            let pose = motion.sample(2.0 * k as f64 + 1.9);
+            assert!(pose.max_difference_rad(&motion.key_pose(key)) < 1e-12);
         }
     }
 

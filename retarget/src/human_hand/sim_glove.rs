@@ -22,7 +22,7 @@
 
 use std::f64::consts::TAU;
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 use super::hand_kinematics::place_points;
 use super::motion::Motion;
@@ -30,7 +30,9 @@ use super::noise::SplitMix64;
 use super::pose::HumanHandPose;
 use super::shape::HumanHandShape;
 use crate::error::Error;
+use crate::finger::Finger;
 use crate::keypoint_layout::KeypointLayout;
+use crate::palm_frame::PalmFrame;
 
 /// Largest jitter accepted, metres (per-axis standard deviation).
 pub const MAX_JITTER_SD_M: f64 = 0.05;
@@ -93,6 +95,7 @@ pub struct SimGlove {
     layout: KeypointLayout,
     hand_in_glove: Isometry3<f64>,
     wrist_sway: Option<WristSway>,
+    misalignment: Rotation3<f64>,
     jitter_sd_m: f64,
     seed: u64,
 }
@@ -112,6 +115,7 @@ impl SimGlove {
             layout,
             hand_in_glove: Isometry3::identity(),
             wrist_sway: None,
+            misalignment: Rotation3::identity(),
             jitter_sd_m: 0.0,
             seed: 0,
         })
@@ -123,6 +127,23 @@ impl SimGlove {
             hand_in_glove,
             ..self
         }
+    }
+
+    /// Misalign the glove's finger sensors with its palm: every keypoint that is not a palm
+    /// landmark (wrist, forearm, digit bases) is reported rotated by `rotation` about the palm
+    /// frame's origin, in palm-frame axes. The palm frame the station builds is unchanged and
+    /// every fingertip and mid-point vector it reads in that frame is `rotation · v`: the
+    /// rotation a user's calibration must undo.
+    pub fn with_misalignment(self, rotation: Rotation3<f64>) -> SimGlove {
+        SimGlove {
+            misalignment: rotation,
+            ..self
+        }
+    }
+
+    /// The glove's finger-to-palm misalignment.
+    pub fn misalignment(&self) -> &Rotation3<f64> {
+        &self.misalignment
     }
 
     /// Let the wrist sway about its placement. `Err` for a non-finite amplitude or a period
@@ -195,7 +216,11 @@ impl SimGlove {
     pub fn frame(&self, t_s: f64) -> (Vec<Point3<f64>>, Isometry3<f64>) {
         let wrist = self.wrist_pose(t_s);
         let pose = self.pose_at(t_s);
-        let mut points = place_points(&self.shape.keypoints(&pose, self.layout), &wrist);
+        let mut hand = self.shape.keypoints(&pose, self.layout);
+        if self.misalignment != Rotation3::identity() {
+            misalign(&mut hand, self.layout, &self.misalignment);
+        }
+        let mut points = place_points(&hand, &wrist);
         if self.jitter_sd_m > 0.0 {
             let mut noise = SplitMix64::keyed(self.seed, t_s.to_bits());
             for p in &mut points {
@@ -208,6 +233,25 @@ impl SimGlove {
             }
         }
         (points, wrist)
+    }
+}
+
+/// Rotate the non-landmark keypoints about the palm origin by `rotation` in palm axes (see
+/// [`SimGlove::with_misalignment`]). A frame whose palm cannot be built is left as it is.
+pub fn misalign(points: &mut [Point3<f64>], layout: KeypointLayout, rotation: &Rotation3<f64>) {
+    let Ok(palm) = PalmFrame::from_landmarks(&layout.palm_landmarks(points)) else {
+        return;
+    };
+    let about_origin = palm.rotation * rotation * palm.rotation.inverse();
+    let landmark = |i: usize| {
+        i == layout.wrist()
+            || Some(i) == layout.forearm()
+            || Finger::ALL.iter().any(|&f| layout.chain(f)[0] == i)
+    };
+    for (i, p) in points.iter_mut().enumerate() {
+        if !landmark(i) {
+            *p = palm.origin + about_origin * (*p - palm.origin);
+        }
     }
 }
 
@@ -247,6 +291,25 @@ mod tests {
             (points[KeypointLayout::Lab22.wrist()] - Point3::from(wrist.translation.vector)).norm()
                 < 1e-15
         );
+    }
+
+    #[test]
+    fn misalignment_rotates_every_key_vector_in_the_palm_frame() {
+        let rotation = Rotation3::from_euler_angles(0.2, -0.3, 0.25);
+        let plain = glove();
+        let turned = glove().with_misalignment(rotation);
+        let layout = plain.layout();
+        let (a, _) = plain.frame(0.7);
+        let (b, _) = turned.frame(0.7);
+        let palm_a = PalmFrame::from_landmarks(&layout.palm_landmarks(&a)).unwrap();
+        let palm_b = PalmFrame::from_landmarks(&layout.palm_landmarks(&b)).unwrap();
+        assert_eq!(palm_a, palm_b, "the palm frame is unchanged");
+        for finger in Finger::ALL {
+            for &i in &layout.chain(finger)[1..] {
+                let expected = rotation * palm_a.point_to_palm(&a[i]);
+                assert!((palm_b.point_to_palm(&b[i]) - expected).norm() < 1e-12);
+            }
+        }
     }
 
     #[test]
