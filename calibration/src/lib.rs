@@ -24,6 +24,7 @@
 //! | `settings.rs` | [`CalibrationSettings`]: bounds, budget, thresholds |
 //! | `human_copy.rs` | [`human_copies`]: the human hand model copying each robot pose |
 //! | `synthetic_user.rs` | [`SyntheticUser`]: test users with known hand size and misalignment |
+//! | `synthetic_study.rs` | [`Study`]: recovery and held-out error over synthetic users |
 
 mod capture;
 mod error;
@@ -36,6 +37,7 @@ mod profile;
 mod schedule;
 mod search_space;
 mod settings;
+mod synthetic_study;
 mod synthetic_user;
 
 pub use capture::{CapturedPose, capture_pose};
@@ -49,6 +51,7 @@ pub use profile::{CalibrationProfile, ObjectiveSummary, PoseReport, ProfileHeade
 pub use schedule::CaptureSchedule;
 pub use search_space::{Parameters, box_bounds, initial_design, parameters, transform};
 pub use settings::{CalibrationSettings, CaptureThresholds, OptimiserSettings, ParameterBounds};
+pub use synthetic_study::{CAPTURE_RATE_HZ, HELD_OUT_POSES, Study, UserOutcome};
 pub use synthetic_user::{
     POPULATION_ANGLE_DEG, POPULATION_NOISE_M, POPULATION_SCALE, SyntheticUser,
 };
