@@ -203,7 +203,7 @@ impl<'a> Study<'a> {
         let shape = HumanHandShape::average().scaled(user.hand_scale);
         let mut retargeter = self.retargeter()?;
         retargeter.set_calibration(*calibration)?;
-        let mut noise = SplitMix64::keyed(user.seed, 0x4E1D_0u64);
+        let mut noise = SplitMix64::keyed(user.seed, 0x0004_E1D0_u64);
         let (mut sum_sq, mut count) = (0.0, 0usize);
         for (pose, truth) in &self.held_out {
             let mut points: Vec<Point3<f64>> = shape.keypoints(pose, layout);
