@@ -42,6 +42,11 @@ pub struct DemoArgs {
     /// Record the run to an MCAP log in this directory (demo-<time>.mcap).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
+    /// configuration's `calibration_profile`. Default: the configuration's, else none
+    /// (identity: scale 1, no rotation).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
 }
 
 /// The glove's scripted motions.
@@ -104,6 +109,11 @@ pub struct StationArgs {
     /// Record the run (inputs, outputs, status, events) to this MCAP file.
     #[arg(long, value_name = "FILE.mcap")]
     pub record: Option<PathBuf>,
+    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
+    /// configuration's `calibration_profile`. Default: the configuration's, else none
+    /// (identity: scale 1, no rotation).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -155,7 +165,7 @@ pub struct MockFrankaArgs {
 }
 
 /// Run an async command on a two-worker runtime.
-pub fn run_async(future: impl Future<Output = anyhow::Result<()>>) -> anyhow::Result<()> {
+pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::Result<T> {
     tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -177,10 +187,13 @@ fn ctrl_c_shutdown() -> watch::Receiver<bool> {
 
 /// `pomdar demo`.
 pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
-    let station = match &args.config {
+    let mut station = match &args.config {
         Some(path) => StationConfig::from_file(path)?,
         None => StationConfig::default(),
     };
+    if args.profile.is_some() {
+        station.calibration_profile = args.profile.clone();
+    }
     let glove = SimGloveConfig {
         motion: args.motion.into(),
         period_s: MotionKind::from(args.motion).default_period_s(),
@@ -258,6 +271,9 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
 pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     let mut config = StationConfig::from_file(&args.config)?;
     config.network = args.node.network(&config.network);
+    if args.profile.is_some() {
+        config.calibration_profile = args.profile.clone();
+    }
     config.control.auto_engage |= args.engage;
     let shutdown = ctrl_c_shutdown();
     let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
@@ -272,10 +288,16 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
         .record
         .map(|path| crate::station::recorder::RecordingOptions {
             path,
-            metadata: std::collections::BTreeMap::from([(
-                "source".to_string(),
-                "pomdar station".to_string(),
-            )]),
+            metadata: std::collections::BTreeMap::from([
+                ("source".to_string(), "pomdar station".to_string()),
+                (
+                    "calibration_profile".to_string(),
+                    config
+                        .calibration_profile
+                        .as_ref()
+                        .map_or("none".to_string(), |p| p.display().to_string()),
+                ),
+            ]),
         });
     let summary = run_station(
         config,
@@ -389,15 +411,23 @@ pub struct ResimArgs {
     /// Replace an existing output file.
     #[arg(long)]
     pub overwrite: bool,
+    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
+    /// configuration's `calibration_profile`. Default: the configuration's, else none
+    /// (identity: scale 1, no rotation).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
 }
 
 /// `pomdar resim`.
 pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
     use crate::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
-    let config = match &args.config {
+    let mut config = match &args.config {
         Some(path) => StationConfig::from_file(path)?,
         None => StationConfig::default(),
     };
+    if args.profile.is_some() {
+        config.calibration_profile = args.profile.clone();
+    }
     let reader = TrialReader::open(&args.input)?;
     let options = TrialWriterOptions {
         overwrite: args.overwrite,

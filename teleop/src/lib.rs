@@ -5,6 +5,7 @@
 //! `scoring`, `msgs`) compute; this crate reads, writes and talks.
 
 pub mod arm;
+pub mod calibrate;
 pub mod cli;
 pub mod clock;
 pub mod demo;

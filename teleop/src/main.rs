@@ -13,8 +13,8 @@ use teleop::model_report;
 ///
 /// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
 /// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
-/// glove, mock robot nodes, the all-in-one demo, and hand model inspection. Calibration,
-/// scoring and the operator console arrive in later issues.
+/// glove, mock robot nodes, the all-in-one demo, hand model inspection, and the per-user glove
+/// calibration. Scoring and the operator console arrive in later issues.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -44,10 +44,11 @@ enum Command {
     /// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
     /// (launch_configs/station/*.toml). --engage engages once glove input is fresh (the
     /// operator console, issue 8, will engage explicitly); --record
-    /// logs the run (inputs, outputs, status, events) to an MCAP file.
+    /// logs the run (inputs, outputs, status, events) to an MCAP file; --profile applies a
+    /// user's calibration (from `pomdar calibrate`).
     ///
     /// Example:
-    ///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap
+    ///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap --profile profiles/alice.toml
     #[command(verbatim_doc_comment)]
     Station(cli::StationArgs),
     /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
@@ -77,6 +78,28 @@ enum Command {
     ///   pomdar replay rokoko_orca_2024-11-20.mcap --topics /ingress/mano,/ingress/wrist --rate 1
     #[command(verbatim_doc_comment)]
     Replay(cli::ReplayArgs),
+    /// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
+    ///
+    /// Three ways to run it:
+    ///   live       the hand shows each of the seven poses (2.5 s each; the last 1 s is
+    ///              captured), the user copies it with the glove; the session is recorded to
+    ///              an MCAP, then fitted. Stop the station first: both would drive the hand.
+    ///   --from     fit a recorded session again (e.g. with other --settings).
+    ///   --simulate the whole session on loopback DDS with a synthetic user (hand size,
+    ///              glove misalignment, 2 mm noise); prints the recovered and true parameters.
+    ///
+    /// The fit (Bayesian optimisation, then a Nelder–Mead polish) shows its progress on
+    /// stderr, prints each pose's error before and after, and writes the profile TOML
+    /// atomically (nothing is written if a capture is refused or the fit fails). Load the
+    /// profile with `pomdar station --profile FILE` or `calibration_profile = "FILE"` in the
+    /// station configuration.
+    ///
+    /// Examples:
+    ///   pomdar calibrate --user alice --glove "rokoko #12" --config launch_configs/station/eth_lab.toml
+    ///   pomdar calibrate --from profiles/alice-session-20261121T103205Z.mcap --user alice
+    ///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
+    #[command(verbatim_doc_comment)]
+    Calibrate(teleop::calibrate::calibrate_command::CalibrateArgs),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -125,6 +148,7 @@ fn main() -> ExitCode {
             model_report::run(&source, &pose, json)
         }
         Command::Demo(args) => cli::run_async(cli::demo(args)),
+        Command::Calibrate(args) => teleop::calibrate::calibrate_command::calibrate(args),
         Command::Resim(args) => cli::resim(args),
         Command::Recover(args) => cli::recover(args),
         Command::Replay(args) => cli::run_async(cli::replay(args)),

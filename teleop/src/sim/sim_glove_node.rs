@@ -70,14 +70,45 @@ impl SimGloveConfig {
     }
 }
 
+/// Where a published glove's motion time starts.
+#[derive(Debug, Clone)]
+pub enum GloveOrigin {
+    /// When the first subscriber matched (or after a bounded wait).
+    FirstSubscriber,
+    /// A time origin (station-clock ns) shared with another node, e.g. a calibration
+    /// session's start; until it is known the glove holds the motion's first posture.
+    Shared(watch::Receiver<Option<i64>>),
+}
+
 /// Publish until `shutdown`; returns the number of frames published.
 pub async fn run_sim_glove(
     config: SimGloveConfig,
     network: NetworkConfig,
     clock: StationClock,
-    mut shutdown: watch::Receiver<bool>,
+    shutdown: watch::Receiver<bool>,
 ) -> anyhow::Result<u64> {
     let glove = config.glove()?;
+    publish_glove(
+        glove,
+        &config,
+        network,
+        clock,
+        GloveOrigin::FirstSubscriber,
+        shutdown,
+    )
+    .await
+}
+
+/// Publish `glove`'s frames on `config`'s topics at its rate until `shutdown`, its motion time
+/// starting at `origin`; returns the number of frames published.
+pub async fn publish_glove(
+    glove: SimGlove,
+    config: &SimGloveConfig,
+    network: NetworkConfig,
+    clock: StationClock,
+    origin: GloveOrigin,
+    mut shutdown: watch::Receiver<bool>,
+) -> anyhow::Result<u64> {
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_sim_glove")?;
     let qos = QosConfig::best_effort(400);
@@ -93,7 +124,11 @@ pub async fn run_sim_glove(
             _ = tokio::time::sleep(Duration::from_millis(10)) => {}
         }
     }
-    let start_ns = clock.now_ns();
+    let first_subscriber_ns = clock.now_ns();
+    let start_ns = || match &origin {
+        GloveOrigin::FirstSubscriber => Some(first_subscriber_ns),
+        GloveOrigin::Shared(rx) => *rx.borrow(),
+    };
     let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / config.rate_hz));
     interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let mut frames = 0;
@@ -102,7 +137,8 @@ pub async fn run_sim_glove(
             _ = shutdown.changed() => if *shutdown.borrow() { break },
             _ = interval.tick() => {
                 let now = clock.now_ns();
-                let (points, wrist) = glove.frame((now - start_ns) as f64 * 1e-9);
+                let t_s = start_ns().map_or(0.0, |start| (now - start) as f64 * 1e-9);
+                let (points, wrist) = glove.frame(t_s);
                 let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
                 let array = Float32MultiArray::from_points(&rows)?;
                 keypoints_pub.async_publish(array).await.ok();

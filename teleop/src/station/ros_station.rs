@@ -16,6 +16,7 @@ use retarget::{EmbodimentCatalog, HandModel, Retargeter};
 use serde_json::json;
 use tokio::sync::{mpsc, watch};
 
+use crate::calibrate::profile_file::{describe, load_profile};
 use crate::clock::StationClock;
 use crate::ros::convert::{KeypointMessage, pose_to_isometry};
 use crate::ros::{QosConfig, RosNode};
@@ -66,14 +67,26 @@ pub struct StationSummary {
     pub recorded: Vec<std::path::PathBuf>,
 }
 
-/// Build the core for a configuration.
+/// Build the core for a configuration. With a `calibration_profile`, the profile is loaded
+/// (errors name the file and the key), checked against the model and the layout, applied, and
+/// described in one line on stderr.
 pub fn station_core(config: &StationConfig, model: HandModel) -> anyhow::Result<StationCore> {
-    let retargeter = Retargeter::new(
+    let profile = match &config.calibration_profile {
+        Some(path) => Some(load_profile(path, &model, config.retarget.layout)?),
+        None => None,
+    };
+    let mut retargeter = Retargeter::new(
         model,
         config.retarget.clone(),
         &EmbodimentCatalog::builtin(),
     )
     .context("retargeter")?;
+    if let Some(profile) = profile {
+        retargeter
+            .set_calibration(profile.parameters)
+            .context("calibration profile")?;
+        eprintln!("{}", describe(&profile));
+    }
     Ok(StationCore::new(
         retargeter,
         FrameGate::new(config.retarget.layout, config.gate.clone()),
@@ -90,11 +103,12 @@ pub async fn run_station(
     mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
     recording: Option<RecordingOptions>,
 ) -> anyhow::Result<StationSummary> {
+    // The core first: a bad profile or configuration fails before any log is created.
+    let mut core = station_core(&config, model.clone())?;
     let mut recorder = match &recording {
         Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
         None => None,
     };
-    let mut core = station_core(&config, model.clone())?;
     let mut stage = OutputStage::new(&config, &model)?;
 
     let context = config.network.context()?;

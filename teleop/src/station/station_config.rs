@@ -2,7 +2,7 @@
 //! Every table is optional and defaults to the ETH lab's topics; unknown keys are rejected;
 //! errors name the file and the key.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use retarget::RetargetConfig;
@@ -36,6 +36,10 @@ pub struct StationConfig {
     pub retarget: RetargetConfig,
     /// Arm target mapping (task constraint, workspace, step caps).
     pub arm: ArmConfig,
+    /// The user's calibration profile (`pomdar calibrate` writes it). In a file, a relative
+    /// path is relative to the configuration file's directory; unset: no calibration
+    /// (identity transform).
+    pub calibration_profile: Option<PathBuf>,
 }
 
 /// How keypoints arrive.
@@ -119,6 +123,7 @@ impl Default for StationConfig {
             },
             retarget: RetargetConfig::default(),
             arm: ArmConfig::default(),
+            calibration_profile: None,
         }
     }
 }
@@ -167,11 +172,20 @@ impl StationConfig {
         Ok(config)
     }
 
-    /// Read, parse and validate a file; errors name it.
+    /// Read, parse and validate a file; errors name it. A relative `calibration_profile` is
+    /// resolved against the file's directory.
     pub fn from_file(path: &Path) -> anyhow::Result<StationConfig> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("cannot read {}", path.display()))?;
-        StationConfig::from_toml_str(&text).with_context(|| format!("{}", path.display()))
+        let mut config =
+            StationConfig::from_toml_str(&text).with_context(|| format!("{}", path.display()))?;
+        if let Some(profile) = &config.calibration_profile
+            && profile.is_relative()
+        {
+            let dir = path.parent().unwrap_or(Path::new(""));
+            config.calibration_profile = Some(dir.join(profile));
+        }
+        Ok(config)
     }
 
     /// Check every value.
@@ -235,5 +249,19 @@ mod tests {
         assert!(err.to_string().contains("output.status_topic"), "{err}");
         let err = StationConfig::from_toml_str("[input]\ntopic = \"/x\"\n").unwrap_err();
         assert!(err.to_string().contains("topic"), "{err}");
+    }
+
+    #[test]
+    fn a_relative_profile_is_relative_to_the_config_file() {
+        let dir = std::env::temp_dir().join(format!("pomdar-station-cfg-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("station.toml");
+        std::fs::write(&path, "calibration_profile = \"profiles/alice.toml\"\n").unwrap();
+        let config = StationConfig::from_file(&path).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(
+            config.calibration_profile,
+            Some(dir.join("profiles/alice.toml"))
+        );
     }
 }

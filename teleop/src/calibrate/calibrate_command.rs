@@ -1,0 +1,269 @@
+//! `pomdar calibrate`: its flags and the three ways it runs — a live session with the glove
+//! and the hand, a recorded session (`--from`), or a simulated user on loopback
+//! (`--simulate`).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use anyhow::{Context as _, bail};
+use calibration::{CalibrationSettings, CaptureSchedule};
+use clap::Args;
+use retarget::HandModel;
+use tokio::sync::watch;
+
+use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
+use crate::calibrate::session_node::{SessionOptions, run_session};
+use crate::calibrate::simulated_user::{
+    SIMULATED_NOISE_M, record_simulated_session, synthetic_user, true_transform,
+};
+use crate::calibrate::utc_date::{compact_utc, now_unix_s};
+use crate::clock::StationClock;
+use crate::station::station_config::StationConfig;
+
+/// `pomdar calibrate` options.
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    /// The user's name: written into the profile, and names the default profile file
+    /// (profiles/<NAME>.toml).
+    #[arg(long, value_name = "NAME")]
+    pub user: String,
+    /// Fit a recorded session (an MCAP written by an earlier `pomdar calibrate`) instead of
+    /// running one.
+    #[arg(long, value_name = "SESSION.mcap", conflicts_with_all = ["simulate", "session_out", "domain_id"])]
+    pub from: Option<PathBuf>,
+    /// Run the whole session with a simulated glove on loopback DDS (no robot or glove needed).
+    #[arg(long)]
+    pub simulate: bool,
+    /// --simulate: the user's hand size relative to the average hand (0.5–2; default 1).
+    #[arg(long, value_name = "S", default_value_t = 1.0, requires = "simulate")]
+    pub hand_scale: f64,
+    /// --simulate: the glove's misalignment with the palm as roll,pitch,yaw about the palm
+    /// axes, degrees, each within ±45 (default 0,0,0).
+    #[arg(long, value_name = "R,P,Y", allow_hyphen_values = true, value_parser = parse_rpy, requires = "simulate")]
+    pub glove_rpy: Option<[f64; 3]>,
+    /// --simulate: seed of the simulated keypoint noise (2 mm per axis) (default 1).
+    #[arg(long, value_name = "N", default_value_t = 1, requires = "simulate")]
+    pub seed: u64,
+    /// The glove, free text for the profile (e.g. its model and serial; default
+    /// "unspecified", or "simulated" with --simulate).
+    #[arg(long, value_name = "TEXT")]
+    pub glove: Option<String>,
+    /// Where to write the profile (default profiles/<NAME>.toml). Written atomically; an
+    /// existing profile is replaced only when the fit succeeds.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Where to record the session (default: beside the profile,
+    /// <profile name>-session-<UTC time>.mcap). Not with --from.
+    #[arg(long, value_name = "FILE.mcap")]
+    pub session_out: Option<PathBuf>,
+    /// The station configuration the profile is for: topics, keypoint layout, retargeting,
+    /// network (default: the built-in ETH lab preset).
+    #[arg(long, value_name = "STATION.toml")]
+    pub config: Option<PathBuf>,
+    /// Calibration settings (TOML: [bounds], [optimiser], [capture], pinch_weight_rad_per_m;
+    /// default: 60 Bayesian-optimisation evaluations + 40 polish, seed 42).
+    #[arg(long, value_name = "CALIBRATION.toml")]
+    pub settings: Option<PathBuf>,
+    /// ROS domain id of the session (live: default the config's, else ROS_DOMAIN_ID, else 0;
+    /// --simulate: default 150–229 from the process id, on loopback only).
+    #[arg(long)]
+    pub domain_id: Option<u16>,
+    /// Live session: how long to wait for the glove's first keypoints, seconds.
+    #[arg(long, value_name = "S", default_value_t = 10.0)]
+    pub glove_wait_s: f64,
+}
+
+fn parse_rpy(text: &str) -> Result<[f64; 3], String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("'{text}': {e} (expected R,P,Y in degrees, e.g. 10,-5,3)"))?;
+    <[f64; 3]>::try_from(values)
+        .map_err(|_| format!("'{text}': expected three angles R,P,Y in degrees, e.g. 10,-5,3"))
+}
+
+fn read_text(path: &Path, what: &str) -> anyhow::Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))
+}
+
+fn session_path(out: &Path) -> PathBuf {
+    let stem = out.file_stem().map_or_else(
+        || "calibration".into(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    out.with_file_name(format!("{stem}-session-{}.mcap", compact_utc(now_unix_s())))
+}
+
+/// A shutdown signal that turns true on Ctrl-C.
+fn ctrl_c_shutdown() -> watch::Receiver<bool> {
+    let (tx, rx) = watch::channel(false);
+    tokio::spawn(async move {
+        if tokio::signal::ctrl_c().await.is_ok() {
+            tx.send(true).ok();
+        }
+    });
+    rx
+}
+
+/// `pomdar calibrate`.
+pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
+    if args.user.trim().is_empty() {
+        bail!("--user must name the user");
+    }
+    let station = match &args.config {
+        Some(path) => StationConfig::from_file(path)?,
+        None => StationConfig::default(),
+    };
+    let settings = match &args.settings {
+        Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
+            .map_err(|e| anyhow::anyhow!("calibration settings {}: {e}", path.display()))?,
+        None => CalibrationSettings::default(),
+    };
+    let out = match &args.out {
+        Some(path) => path.clone(),
+        None => default_profile_path(&args.user)?,
+    };
+    let mut fit = FitOptions {
+        session: PathBuf::new(),
+        user: args.user.clone(),
+        glove: args.glove.clone().unwrap_or_else(|| {
+            if args.simulate {
+                "simulated"
+            } else {
+                "unspecified"
+            }
+            .to_string()
+        }),
+        out: out.clone(),
+        station: station.clone(),
+        settings,
+        source: None,
+        verbose: true,
+    };
+    if let Some(session) = &args.from {
+        fit.session = session.clone();
+        let profile = fit_session(&fit)?;
+        println!("wrote {} (user {})", out.display(), profile.user);
+        return Ok(());
+    }
+    let session_out = args
+        .session_out
+        .clone()
+        .unwrap_or_else(|| session_path(&out));
+    if let Some(dir) = session_out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    if !(args.glove_wait_s > 0.0 && args.glove_wait_s <= 600.0) {
+        bail!(
+            "--glove-wait-s {} must be in (0, 600] seconds",
+            args.glove_wait_s
+        );
+    }
+    let session = SessionOptions {
+        station: station.clone(),
+        schedule: CaptureSchedule::default(),
+        out: session_out.clone(),
+        glove_wait: Duration::from_secs_f64(args.glove_wait_s),
+        metadata: BTreeMap::from([
+            ("user".to_string(), args.user.clone()),
+            ("glove".to_string(), fit.glove.clone()),
+        ]),
+        verbose: true,
+    };
+    let user = if args.simulate {
+        Some(synthetic_user(
+            args.hand_scale,
+            args.glove_rpy.unwrap_or([0.0; 3]),
+            args.seed,
+        )?)
+    } else {
+        None
+    };
+    let report = crate::cli::run_async(async {
+        let shutdown = ctrl_c_shutdown();
+        match user {
+            Some(user) => {
+                let domain = args
+                    .domain_id
+                    .unwrap_or_else(crate::demo::default_domain_id);
+                eprintln!(
+                    "simulated user: hand scale {}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}; loopback DDS, domain {domain}",
+                    user.hand_scale,
+                    args.glove_rpy.unwrap_or([0.0; 3]),
+                    SIMULATED_NOISE_M,
+                    user.seed
+                );
+                record_simulated_session(user, session, domain, shutdown).await
+            }
+            None => {
+                let mut session = session;
+                if args.domain_id.is_some() {
+                    session.station.network.domain_id = args.domain_id;
+                }
+                eprintln!(
+                    "calibration session: stop the station first (both would drive the hand); recording to {}",
+                    session.out.display()
+                );
+                run_session(
+                    session,
+                    &HandModel::orca_v1_right(),
+                    StationClock::new(),
+                    None,
+                    shutdown,
+                )
+                .await
+            }
+        }
+    })?;
+    eprintln!(
+        "session recorded: {} ({} keypoint frames; per pose {:?})",
+        report.path.display(),
+        report.frames,
+        report.frames_per_pose
+    );
+    fit.session = report.path.clone();
+    if let Some(user) = &user {
+        let [r, p, y] = args.glove_rpy.unwrap_or([0.0; 3]);
+        fit.source = Some(format!(
+            "simulated user (hand scale {}, glove rpy {r},{p},{y} deg, noise {} m, seed {}), session {}",
+            user.hand_scale,
+            SIMULATED_NOISE_M,
+            user.seed,
+            report.path.display()
+        ));
+    }
+    let profile = fit_session(&fit).with_context(|| {
+        format!(
+            "the session is kept in {}: fit it again with --from once the problem is fixed",
+            report.path.display()
+        )
+    })?;
+    println!("wrote {} (user {})", out.display(), profile.user);
+    if let Some(user) = &user {
+        let truth = true_transform(user);
+        let got = profile.parameters;
+        println!(
+            "recovered vs true (truth relative to the average hand's calibration, which is the identity to first order):"
+        );
+        println!("  {:<10} {:>10} {:>10}", "", "recovered", "true");
+        println!(
+            "  {:<10} {:>10.4} {:>10.4}",
+            "scale", got.scale, truth.scale
+        );
+        for (name, a, b) in [
+            ("roll", got.roll_rad, truth.roll_rad),
+            ("pitch", got.pitch_rad, truth.pitch_rad),
+            ("yaw", got.yaw_rad, truth.yaw_rad),
+        ] {
+            println!(
+                "  {:<10} {:>9.2}° {:>9.2}°",
+                name,
+                a.to_degrees(),
+                b.to_degrees()
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,158 @@
+//! `pomdar calibrate --from SESSION.mcap`: a recorded session to a profile. Each pose's frames
+//! are checked and averaged ([`calibration::capture_pose`]; a refused capture stops here with
+//! its message, which says what to do), the transform is fitted with a progress bar, a table
+//! of the per-pose errors before and after is printed, and the profile is written atomically.
+//! Nothing is written on any failure.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::bail;
+use calibration::{
+    CalibrationProfile, CalibrationSettings, FitInputs, PoseSet, ProfileHeader, calibrate,
+    capture_pose,
+};
+use retarget::{EmbodimentCatalog, HandModel};
+
+use crate::calibrate::profile_file::write_atomically;
+use crate::calibrate::progress_bar::ProgressBar;
+use crate::calibrate::session_frames::read_session;
+use crate::calibrate::utc_date::{iso8601_utc, now_unix_s};
+use crate::mcap_log::TrialReader;
+use crate::station::station_config::StationConfig;
+
+/// What a fit needs.
+#[derive(Debug, Clone)]
+pub struct FitOptions {
+    /// The session log.
+    pub session: PathBuf,
+    /// The user's name (written into the profile).
+    pub user: String,
+    /// The glove (free text).
+    pub glove: String,
+    /// Where the profile goes.
+    pub out: PathBuf,
+    /// The station's configuration (retargeting, layout) the profile is for.
+    pub station: StationConfig,
+    /// Bounds, budget, capture thresholds.
+    pub settings: CalibrationSettings,
+    /// The profile's `source` (default: the session file's path).
+    pub source: Option<String>,
+    /// Show the progress bar and the table.
+    pub verbose: bool,
+}
+
+/// Read the session, fit, report, write the profile; returns the profile written.
+pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
+    let model = HandModel::orca_v1_right();
+    let layout = options.station.retarget.layout;
+    let reader = TrialReader::open(&options.session)?;
+    let file = options.session.display();
+    let (info, poses) = read_session(&reader)?;
+    if info.layout != layout {
+        bail!(
+            "{file}: recorded with keypoint layout '{}', but the station configuration uses '{}': pass the station's --config",
+            info.layout.name(),
+            layout.name()
+        );
+    }
+    if info.model != model.name() {
+        bail!(
+            "{file}: recorded for model '{}', the station runs '{}'",
+            info.model,
+            model.name()
+        );
+    }
+    let mut captures = Vec::with_capacity(poses.len());
+    for pose in &poses {
+        let capture = capture_pose(
+            &pose.pose,
+            layout,
+            pose.frames.iter().map(Vec::as_slice),
+            &options.settings.capture,
+        )
+        .map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
+        captures.push(capture);
+    }
+    let pose_set = PoseSet::orca_v1();
+    let catalog = EmbodimentCatalog::builtin();
+    let inputs = FitInputs {
+        model: &model,
+        config: &options.station.retarget,
+        catalog: &catalog,
+        poses: &pose_set,
+        settings: &options.settings,
+    };
+    let mut bar = options.verbose.then(ProgressBar::new);
+    let fitted = calibrate(inputs, &captures, &mut |p| {
+        if let Some(bar) = bar.as_mut() {
+            bar.update(p);
+        }
+    });
+    if let Some(bar) = bar.as_mut() {
+        bar.finish();
+    }
+    let fitted = fitted.map_err(|e| anyhow::anyhow!("{file}: calibration failed: {e}"))?;
+    let header = ProfileHeader {
+        user: options.user.clone(),
+        date: iso8601_utc(now_unix_s()),
+        glove: options.glove.clone(),
+        source: options
+            .source
+            .clone()
+            .unwrap_or_else(|| options.session.display().to_string()),
+    };
+    let profile = CalibrationProfile::new(header, &model, layout, &fitted);
+    profile
+        .validate()
+        .map_err(|e| anyhow::anyhow!("the fitted profile is invalid: {e}"))?;
+    let text = profile
+        .to_toml_string()
+        .map_err(|e| anyhow::anyhow!("cannot write the profile as TOML: {e}"))?;
+    if options.verbose {
+        print_table(&profile, &captures);
+    }
+    write_atomically(&options.out, &text)?;
+    Ok(profile)
+}
+
+fn print_table(profile: &CalibrationProfile, captures: &[calibration::CapturedPose]) {
+    let mm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
+    println!(
+        "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
+        "pose", "frames", "joint RMS", "joint RMS", "pinch gap err", "pinch gap err"
+    );
+    println!(
+        "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
+        "", "", "before (rad)", "after (rad)", "before (mm)", "after (mm)"
+    );
+    for (p, c) in profile.poses.iter().zip(captures) {
+        println!(
+            "{:<14} {:>7} {:>13.3} {:>13.3} {:>14} {:>14}",
+            p.name,
+            c.frames_used,
+            p.joint_rms_before_rad,
+            p.joint_rms_after_rad,
+            mm(p.pinch_gap_before_mm),
+            mm(p.pinch_gap_after_mm)
+        );
+    }
+    println!(
+        "objective: {:.3} rad before, {:.3} rad after ({} evaluations)",
+        profile.objective.before_rad, profile.objective.after_rad, profile.objective.evaluations
+    );
+}
+
+/// `profiles/<user>.toml`, refusing user names that are not a plain file name.
+pub fn default_profile_path(user: &str) -> anyhow::Result<PathBuf> {
+    let plain = !user.is_empty()
+        && !user.starts_with('.')
+        && user
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    if !plain {
+        bail!(
+            "--user '{user}' cannot name a file (use letters, digits, '_', '-', '.'): give --out"
+        );
+    }
+    Ok(Path::new("profiles").join(format!("{user}.toml")))
+}
