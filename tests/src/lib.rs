@@ -2,6 +2,7 @@
 
 pub mod dependency_rule;
 pub mod interop;
+pub mod pomdar_binary;
 pub mod station_harness;
 
 use std::path::{Path, PathBuf};

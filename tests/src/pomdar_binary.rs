@@ -1,0 +1,61 @@
+//! The `pomdar` binary for tests that run it as the operator does. It lives in the `teleop`
+//! package, so Cargo does not build it for this crate's tests: the helper builds it (a no-op
+//! when it is up to date) with the same profile and target directory as the running test, so
+//! a test never runs a stale binary.
+
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::OnceLock;
+
+static BINARY: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+
+fn build() -> Result<PathBuf, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("current_exe: {e}"))?;
+    // target/<profile>/deps/<test binary>
+    let profile_dir = exe
+        .parent()
+        .and_then(|deps| deps.parent())
+        .ok_or_else(|| format!("unexpected test binary location {}", exe.display()))?;
+    let target_dir = profile_dir
+        .parent()
+        .ok_or_else(|| format!("unexpected profile directory {}", profile_dir.display()))?;
+    let profile = match profile_dir.file_name().and_then(|n| n.to_str()) {
+        Some("debug") => "dev".to_string(),
+        Some(name) => name.to_string(),
+        None => return Err(format!("no profile in {}", profile_dir.display())),
+    };
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let output = Command::new(cargo)
+        .args([
+            "build",
+            "--quiet",
+            "-p",
+            "teleop",
+            "--bin",
+            "pomdar",
+            "--profile",
+        ])
+        .arg(&profile)
+        .arg("--target-dir")
+        .arg(target_dir)
+        .current_dir(crate::workspace_root())
+        .output()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !output.status.success() {
+        return Err(format!(
+            "cargo build of pomdar failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        ));
+    }
+    let binary = profile_dir.join(format!("pomdar{}", std::env::consts::EXE_SUFFIX));
+    if binary.exists() {
+        Ok(binary)
+    } else {
+        Err(format!("{} missing after the build", binary.display()))
+    }
+}
+
+/// The freshly built `pomdar` binary (built once per test process).
+pub fn pomdar_binary() -> Result<PathBuf, String> {
+    BINARY.get_or_init(build).clone()
+}
