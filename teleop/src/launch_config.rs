@@ -19,6 +19,8 @@ pub enum LaunchConfigKind {
     Retarget,
     /// `station/*.toml`: station presets.
     Station,
+    /// `calibration/*.toml`: calibration settings (`pomdar calibrate --settings`).
+    CalibrationSettings,
 }
 
 impl LaunchConfigKind {
@@ -29,6 +31,7 @@ impl LaunchConfigKind {
             "hands" => Some(LaunchConfigKind::HandImport),
             "retarget" => Some(LaunchConfigKind::Retarget),
             "station" => Some(LaunchConfigKind::Station),
+            "calibration" => Some(LaunchConfigKind::CalibrationSettings),
             _ => None,
         }
     }
@@ -38,7 +41,7 @@ impl LaunchConfigKind {
 pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     let Some(kind) = LaunchConfigKind::of(path) else {
         bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/ or station/)",
+            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/ or calibration/)",
             path.display()
         );
     };
@@ -53,6 +56,10 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
         }
         LaunchConfigKind::Station => {
             StationConfig::from_toml_str(&text).with_context(|| path.display().to_string())?;
+        }
+        LaunchConfigKind::CalibrationSettings => {
+            calibration::CalibrationSettings::from_toml_str(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         }
     }
     Ok(kind)

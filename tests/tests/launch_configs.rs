@@ -38,3 +38,11 @@ fn the_shipped_retarget_config_spells_out_the_defaults() {
     let config = retarget::RetargetConfig::from_toml_str(&text).unwrap();
     assert_eq!(config, retarget::RetargetConfig::default());
 }
+
+#[test]
+fn the_shipped_calibration_settings_spell_out_the_defaults() {
+    let path = workspace_root().join("launch_configs/calibration/default_settings.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let settings = calibration::CalibrationSettings::from_toml_str(&text).unwrap();
+    assert_eq!(settings, calibration::CalibrationSettings::default());
+}

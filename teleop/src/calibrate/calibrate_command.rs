@@ -35,14 +35,14 @@ pub struct CalibrateArgs {
     /// Run the whole session with a simulated glove on loopback DDS (no robot or glove needed).
     #[arg(long)]
     pub simulate: bool,
-    /// --simulate: the user's hand size relative to the average hand (0.5–2; default 1).
+    /// --simulate: the user's hand size relative to the average hand (0.5–2).
     #[arg(long, value_name = "S", default_value_t = 1.0, requires = "simulate")]
     pub hand_scale: f64,
     /// --simulate: the glove's misalignment with the palm as roll,pitch,yaw about the palm
     /// axes, degrees, each within ±45 (default 0,0,0).
     #[arg(long, value_name = "R,P,Y", allow_hyphen_values = true, value_parser = parse_rpy, requires = "simulate")]
     pub glove_rpy: Option<[f64; 3]>,
-    /// --simulate: seed of the simulated keypoint noise (2 mm per axis) (default 1).
+    /// --simulate: seed of the simulated keypoint noise (2 mm per axis).
     #[arg(long, value_name = "N", default_value_t = 1, requires = "simulate")]
     pub seed: u64,
     /// The glove, free text for the profile (e.g. its model and serial; default
