@@ -1,0 +1,89 @@
+//! Benchmark: the calibration on the 50 seeded synthetic users of the acceptance test.
+//!
+//! `cargo bench -p calibration --bench calibration` prints, one JSON line each:
+//! - the wall time of one calibration (seven captures already taken: objective, 60 Bayesian
+//!   + 40 polish evaluations), p50 and max over the users;
+//! - recovery: the share of users whose scale is within 3 % and rotation within 3° of the
+//!   truth, and the held-out joint RMS error without and with calibration (see
+//!   `calibration::Study`);
+//! - Bayesian optimisation against random search with the same 60 evaluations: the median
+//!   over users of the best objective each found, and how many users each won.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
+
+use std::time::Instant;
+
+use calibration::{CalibrationSettings, FitInputs, PoseSet, Study, SyntheticUser, calibrate};
+use retarget::{EmbodimentCatalog, HandModel, RetargetConfig};
+
+const USERS: u64 = 50;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let model = HandModel::orca_v1_right();
+    let config = RetargetConfig::default();
+    let catalog = EmbodimentCatalog::builtin();
+    let poses = PoseSet::orca_v1();
+    let settings = CalibrationSettings::default();
+    let inputs = FitInputs {
+        model: &model,
+        config: &config,
+        catalog: &catalog,
+        poses: &poses,
+        settings: &settings,
+    };
+    let study = Study::new(inputs).unwrap();
+
+    let mut times = Vec::new();
+    let (mut recovered, mut before, mut after) = (0usize, 0.0, 0.0);
+    let (mut bayes, mut random, mut bayes_wins) = (Vec::new(), Vec::new(), 0usize);
+    for seed in 0..USERS {
+        let user = SyntheticUser::random(seed);
+        let captures = study.captures(&user).unwrap();
+        let start = Instant::now();
+        std::hint::black_box(calibrate(inputs, &captures, &mut |_| {}).unwrap());
+        times.push(start.elapsed().as_secs_f64());
+        let outcome = study.run_user(&user).unwrap();
+        if outcome.scale_error.abs() <= 0.03 && outcome.rotation_error_deg <= 3.0 {
+            recovered += 1;
+        }
+        before += outcome.held_out_before_rad.powi(2);
+        after += outcome.held_out_after_rad.powi(2);
+        let (b, r) = study.bayes_vs_random(&user).unwrap();
+        bayes_wins += usize::from(b < r);
+        bayes.push(b);
+        random.push(r);
+        eprint!("\ruser {}/{USERS}", seed + 1);
+    }
+    eprintln!();
+    let n = USERS as f64;
+    let max = times.iter().copied().fold(0.0, f64::max);
+    println!(
+        "{{\"bench\":\"calibration_time\",\"users\":{USERS},\"evaluations\":{},\"p50_s\":{:.3},\"max_s\":{:.3}}}",
+        settings.optimiser.evaluations + settings.optimiser.polish_evaluations,
+        median(times),
+        max
+    );
+    println!(
+        "{{\"bench\":\"calibration_recovery\",\"users\":{USERS},\"within_3pct_3deg\":{:.2},\"held_out_before_rad\":{:.3},\"held_out_after_rad\":{:.3},\"cut\":{:.2}}}",
+        recovered as f64 / n,
+        (before / n).sqrt(),
+        (after / n).sqrt(),
+        1.0 - (after / before).sqrt()
+    );
+    println!(
+        "{{\"bench\":\"bayes_vs_random\",\"users\":{USERS},\"evaluations\":{},\"median_best_bayes_rad\":{:.4},\"median_best_random_rad\":{:.4},\"bayes_wins\":{bayes_wins}}}",
+        settings.optimiser.evaluations,
+        median(bayes),
+        median(random)
+    );
+}
