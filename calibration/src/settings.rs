@@ -40,7 +40,7 @@ pub struct ParameterBounds {
 pub struct OptimiserSettings {
     /// Objective evaluations of the Bayesian optimisation, the initial design included.
     pub evaluations: usize,
-    /// Further evaluations of a Nelder–Mead polish from the Bayesian optimum (0: none).
+    /// Evaluations of each of the two Nelder–Mead polishes after the Bayesian search (0: none).
     pub polish_evaluations: usize,
     /// Points of the space-filling (Latin hypercube) initial design.
     pub initial_design: usize,
