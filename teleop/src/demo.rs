@@ -106,6 +106,10 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     }
     station.validate()?;
     let model = HandModel::orca_v1_right();
+    // A bad calibration profile stops the demo before any node starts.
+    if let Some(path) = &station.calibration_profile {
+        crate::calibrate::profile_file::load_profile(path, &model, station.retarget.layout)?;
+    }
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (_operator_tx, operator_rx) = mpsc::unbounded_channel();
 
