@@ -88,7 +88,7 @@ enum Command {
     ///   --simulate the whole session on loopback DDS with a synthetic user (hand size,
     ///              glove misalignment, 2 mm noise); prints the recovered and true parameters.
     ///
-    /// The fit (Bayesian optimisation, then a Nelder–Mead polish) shows its progress on
+    /// The fit (Bayesian optimisation, then two Nelder–Mead polishes) shows its progress on
     /// stderr, prints each pose's error before and after, and writes the profile TOML
     /// atomically (nothing is written if a capture is refused or the fit fails). Load the
     /// profile with `pomdar station --profile FILE` or `calibration_profile = "FILE"` in the

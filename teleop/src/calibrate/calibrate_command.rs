@@ -62,7 +62,7 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "STATION.toml")]
     pub config: Option<PathBuf>,
     /// Calibration settings (TOML: [bounds], [optimiser], [capture], pinch_weight_rad_per_m;
-    /// default: 60 Bayesian-optimisation evaluations + 40 polish, seed 42).
+    /// default: 60 Bayesian-optimisation evaluations + 2 × 40 polish, seed 42).
     #[arg(long, value_name = "CALIBRATION.toml")]
     pub settings: Option<PathBuf>,
     /// ROS domain id of the session (live: default the config's, else ROS_DOMAIN_ID, else 0;
