@@ -13,8 +13,7 @@
 
 use std::time::Instant;
 
-use calibration::{CalibrationSettings, FitInputs, PoseSet, Study, SyntheticUser, calibrate};
-use retarget::{EmbodimentCatalog, HandModel, RetargetConfig};
+use calibration::{BuiltinInputs, Study, SyntheticUser, calibrate};
 
 const USERS: u64 = 50;
 
@@ -29,18 +28,8 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
-    let model = HandModel::orca_v1_right();
-    let config = RetargetConfig::default();
-    let catalog = EmbodimentCatalog::builtin();
-    let poses = PoseSet::orca_v1();
-    let settings = CalibrationSettings::default();
-    let inputs = FitInputs {
-        model: &model,
-        config: &config,
-        catalog: &catalog,
-        poses: &poses,
-        settings: &settings,
-    };
+    let builtin = BuiltinInputs::orca_v1();
+    let (inputs, settings) = (builtin.inputs(), &builtin.settings);
     let study = Study::new(inputs).unwrap();
 
     let mut times = Vec::new();

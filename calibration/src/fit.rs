@@ -7,7 +7,7 @@ use crate::error::Error;
 use crate::objective::{Evaluation, Objective};
 use crate::optimiser::{Trace, bayesian_optimise, polish};
 use crate::poses::PoseSet;
-use crate::search_space::{Parameters, transform};
+use crate::search_space::{Parameters, to_unit, transform};
 use crate::settings::CalibrationSettings;
 
 /// What the fit reports after each evaluation (for a progress bar).
@@ -47,6 +47,46 @@ pub struct FitInputs<'a> {
     pub poses: &'a PoseSet,
     /// Bounds, budget, weights.
     pub settings: &'a CalibrationSettings,
+}
+
+/// Owned fit inputs for the built-in setup: the ORCA v1 right hand, the default retargeting
+/// configuration, the built-in embodiments, the ORCA v1 poses, the default settings.
+#[derive(Debug, Clone)]
+pub struct BuiltinInputs {
+    /// The ORCA v1 right hand.
+    pub model: HandModel,
+    /// The default retargeting configuration.
+    pub config: RetargetConfig,
+    /// The built-in embodiment catalog.
+    pub catalog: EmbodimentCatalog,
+    /// The ORCA v1 poses.
+    pub poses: PoseSet,
+    /// The default settings.
+    pub settings: CalibrationSettings,
+}
+
+impl BuiltinInputs {
+    /// The built-in setup.
+    pub fn orca_v1() -> BuiltinInputs {
+        BuiltinInputs {
+            model: HandModel::orca_v1_right(),
+            config: RetargetConfig::default(),
+            catalog: EmbodimentCatalog::builtin(),
+            poses: PoseSet::orca_v1(),
+            settings: CalibrationSettings::default(),
+        }
+    }
+
+    /// Borrowed as fit inputs.
+    pub fn inputs(&self) -> FitInputs<'_> {
+        FitInputs {
+            model: &self.model,
+            config: &self.config,
+            catalog: &self.catalog,
+            poses: &self.poses,
+            settings: &self.settings,
+        }
+    }
 }
 
 /// Fit the calibration transform to `captures` by Bayesian optimisation and Nelder–Mead
@@ -107,10 +147,7 @@ fn second_basin(
     bounds: &crate::settings::ParameterBounds,
     best: &Parameters,
 ) -> Option<Parameters> {
-    let b = crate::search_space::box_bounds(bounds);
-    let unit = |x: &Parameters| -> [f64; 4] {
-        std::array::from_fn(|i| (x[i] - b[i].0) / (b[i].1 - b[i].0))
-    };
+    let unit = |x: &Parameters| to_unit(bounds, x);
     let ub = unit(best);
     trace
         .evaluations

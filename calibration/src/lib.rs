@@ -42,7 +42,7 @@ mod synthetic_user;
 
 pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;
-pub use fit::{Calibration, FitInputs, FitProgress, calibrate};
+pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
 pub use human_copy::{human_copies, human_copy};
 pub use objective::{Evaluation, Objective, PoseError, cold_solve_config};
 pub use optimiser::{ObjectiveFn, Trace, bayesian_optimise, polish, random_search};

@@ -10,7 +10,7 @@ use egobox_ego::{CorrelationSpec, EgorBuilder, InfillStrategy, RegressionSpec};
 use ndarray::{Array2, ArrayView2};
 
 use crate::error::Error;
-use crate::search_space::{Parameters, box_bounds, initial_design, uniform_points};
+use crate::search_space::{Parameters, box_bounds, initial_design, to_unit, uniform_points};
 use crate::settings::{OptimiserSettings, ParameterBounds};
 
 /// Every evaluation an optimiser made, in order.
@@ -142,7 +142,7 @@ pub fn polish(
     let to_x = |u: &[f64; 4]| -> Parameters {
         std::array::from_fn(|i| b[i].0 + u[i].clamp(0.0, 1.0) * (b[i].1 - b[i].0))
     };
-    let u0: [f64; 4] = std::array::from_fn(|i| (start[i] - b[i].0) / (b[i].1 - b[i].0));
+    let u0 = to_unit(bounds, &start);
     let mut trace = Trace::default();
     let mut eval = |u: &[f64; 4], trace: &mut Trace| -> Result<Option<f64>, Error> {
         if trace.evaluations.len() >= evaluations {

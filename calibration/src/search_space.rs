@@ -20,6 +20,12 @@ pub fn box_bounds(bounds: &ParameterBounds) -> [(f64, f64); 4] {
     ]
 }
 
+/// A point mapped into the unit cube of the bounds (each parameter divided by its range).
+pub fn to_unit(bounds: &ParameterBounds, x: &Parameters) -> [f64; 4] {
+    let b = box_bounds(bounds);
+    std::array::from_fn(|i| (x[i] - b[i].0) / (b[i].1 - b[i].0))
+}
+
 /// The transform a point stands for.
 pub fn transform(x: &Parameters) -> CalibrationTransform {
     CalibrationTransform {

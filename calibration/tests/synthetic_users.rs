@@ -4,25 +4,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use calibration::{CalibrationSettings, FitInputs, PoseSet, Study, SyntheticUser, UserOutcome};
-use retarget::{EmbodimentCatalog, HandModel, RetargetConfig};
+use calibration::{BuiltinInputs, Study, SyntheticUser, UserOutcome};
 
 const USERS: u64 = 50;
 
 fn outcomes(seeds: std::ops::Range<u64>) -> Vec<UserOutcome> {
-    let model = HandModel::orca_v1_right();
-    let config = RetargetConfig::default();
-    let catalog = EmbodimentCatalog::builtin();
-    let poses = PoseSet::orca_v1();
-    let settings = CalibrationSettings::default();
-    let inputs = FitInputs {
-        model: &model,
-        config: &config,
-        catalog: &catalog,
-        poses: &poses,
-        settings: &settings,
-    };
-    let study = Study::new(inputs).unwrap();
+    let builtin = BuiltinInputs::orca_v1();
+    let study = Study::new(builtin.inputs()).unwrap();
     seeds
         .map(|seed| {
             let outcome = study.run_user(&SyntheticUser::random(seed)).unwrap();

@@ -182,16 +182,19 @@ const TASK_LIKE: [(f64, KeyPose); 11] = [
 /// Share of each calibration pose's slot spent moving to it (the rest is the hold).
 pub const CALIBRATION_MOVE_SHARE: f64 = 0.35;
 
+/// The key poses of [`Motion::CalibrationPoses`], in capture order.
+const CALIBRATION_KEYS: [KeyPose; 7] = [
+    Pinch(Finger::Index),
+    Pinch(Finger::Middle),
+    Pinch(Finger::Ring),
+    Pinch(Finger::Little),
+    Open,
+    OpenSpread,
+    Fist,
+];
+
 const CALIBRATION_POSES: [(f64, KeyPose); 14] = {
-    let keys = [
-        Pinch(Finger::Index),
-        Pinch(Finger::Middle),
-        Pinch(Finger::Ring),
-        Pinch(Finger::Little),
-        Open,
-        OpenSpread,
-        Fist,
-    ];
+    let keys = CALIBRATION_KEYS;
     let mut out = [(0.0, Open); 14];
     let mut k = 0;
     while k < 7 {
@@ -201,6 +204,19 @@ const CALIBRATION_POSES: [(f64, KeyPose); 14] = {
     }
     out
 };
+
+/// `Err` for a period below [`MIN_PERIOD_S`] or not finite.
+fn check_period(period_s: f64) -> Result<(), Error> {
+    if period_s.is_finite() && period_s >= MIN_PERIOD_S {
+        Ok(())
+    } else {
+        Err(Error::ConfigRange {
+            key: "motion.period_s".into(),
+            value: period_s.to_string(),
+            allowed: format!("must be at least {MIN_PERIOD_S} s"),
+        })
+    }
+}
 
 /// The smoothstep `3v² − 2v³`: 0 → 1 with zero slope at both ends.
 fn smoothstep(v: f64) -> f64 {
@@ -234,13 +250,7 @@ impl Motion {
     /// time per pinch); pinch poses are solved for `shape`. `Err` for a period below
     /// [`MIN_PERIOD_S`] or not finite, or an invalid shape.
     pub fn new(kind: MotionKind, period_s: f64, shape: &HumanHandShape) -> Result<Motion, Error> {
-        if !(period_s.is_finite() && period_s >= MIN_PERIOD_S) {
-            return Err(Error::ConfigRange {
-                key: "motion.period_s".into(),
-                value: period_s.to_string(),
-                allowed: format!("must be at least {MIN_PERIOD_S} s"),
-            });
-        }
+        check_period(period_s)?;
         let pinches = || -> Result<[HumanHandPose; 4], Error> {
             let mut poses = [HumanHandPose::open(); 4];
             for (pose, finger) in poses.iter_mut().zip(Finger::OPPOSING) {
@@ -281,13 +291,7 @@ impl Motion {
     /// middle, ring, little; open; open spread; closed), `period_s` per pose. `Err` for a
     /// period below [`MIN_PERIOD_S`] or a pose outside the joint ranges.
     pub fn calibration_poses(poses: [HumanHandPose; 7], period_s: f64) -> Result<Motion, Error> {
-        if !(period_s.is_finite() && period_s >= MIN_PERIOD_S) {
-            return Err(Error::ConfigRange {
-                key: "motion.period_s".into(),
-                value: period_s.to_string(),
-                allowed: format!("must be at least {MIN_PERIOD_S} s"),
-            });
-        }
+        check_period(period_s)?;
         if let Some(k) = poses.iter().position(|p| !p.within_ranges()) {
             return Err(Error::ConfigRange {
                 key: format!("motion.poses[{k}]"),
@@ -341,12 +345,10 @@ impl Motion {
     /// The angles of a key pose in this motion.
     pub fn key_pose(&self, key: KeyPose) -> HumanHandPose {
         if let Motion::CalibrationPoses { poses, .. } = self {
-            match key {
-                Open => return poses[4],
-                OpenSpread => return poses[5],
-                Fist => return poses[6],
-                _ => {}
-            }
+            return CALIBRATION_KEYS
+                .iter()
+                .position(|&k| k == key)
+                .map_or_else(HumanHandPose::open, |i| poses[i]);
         }
         match key {
             Open => HumanHandPose::open(),
@@ -354,10 +356,6 @@ impl Motion {
             Fist => HumanHandPose::fist(),
             CylinderGrasp => HumanHandPose::cylinder_grasp(),
             Pinch(finger) => match self {
-                Motion::CalibrationPoses { poses, .. } => finger
-                    .index()
-                    .checked_sub(1)
-                    .map_or_else(HumanHandPose::open, |i| poses[i]),
                 Motion::Pinches { poses, .. } | Motion::TaskLike { pinches: poses, .. } => finger
                     .index()
                     .checked_sub(1)
@@ -409,16 +407,7 @@ mod tests {
         let shape = HumanHandShape::average();
         let motion = Motion::new(MotionKind::CalibrationPoses, 2.0, &shape).unwrap();
         assert_eq!(motion.cycle_s(), 14.0);
-        let expected = [
-            Pinch(Finger::Index),
-            Pinch(Finger::Middle),
-            Pinch(Finger::Ring),
-            Pinch(Finger::Little),
-            Open,
-            OpenSpread,
-            Fist,
-        ];
-        for (k, key) in expected.into_iter().enumerate() {
+        for (k, key) in CALIBRATION_KEYS.into_iter().enumerate() {
             let hold = motion.phase(2.0 * k as f64 + 1.5);
             assert_eq!((hold.from, hold.to), (key, key), "pose {k}");
             let pose = motion.sample(2.0 * k as f64 + 1.9);
