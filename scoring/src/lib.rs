@@ -1,7 +1,87 @@
 //! # scoring: POMDAR scores from trial logs
 //!
-//! Being written for issue 7: the task catalog, baselines, trial scoring
-//! (`0.8 · correctness + 0.2 · speed`), aggregation, reports and plots. Pure and synchronous:
-//! no I/O, no clocks (checked by `tests/tests/dependency_rule.rs`).
+//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/dependency_rule.rs`).
+//! `teleop` reads the MCAP files and the configuration files and hands this crate text and
+//! [`TrialLog`]s; this crate checks, scores, aggregates and renders.
+//!
+//! ## The score (POMDAR paper, arXiv 2604.09294)
+//!
+//! Per trial *i* of task *t*:
+//!
+//! ```text
+//! time_i        = t(stop) − t(start)                       seconds, from the trial events
+//! correctness_i ∈ [0, 1]                                   from the progress events:
+//!     notches, curves:  min(Σ progress, N) / N             N = the task's count
+//!     rotation:         clamp(Σ degrees / 360°, 0, 1)
+//!     distance (H4, H5): clamp(Σ mm / 200 mm, 0, 1)        (rule unverified: catalog data)
+//!     grasp:            last level ∈ {0, 0.5, 1}; a drop means 0.5
+//! speed_i       = baseline_t / time_i                      unbounded above (> 1: superhuman)
+//! score_i       = 0.8 · correctness_i + 0.2 · speed_i      (weights configurable)
+//! ```
+//!
+//! `baseline_t` is the mean completion time of human trials of task *t*
+//! ([`compute_baseline`]). Without a baseline for *t* there is no score, only correctness,
+//! and every report says so: this crate never makes up a time.
+//!
+//! Aborted and timed-out trials follow [`UnfinishedRule`] (default `partial`: correctness
+//! reached, speed term 0; the paper does not say, so this is configuration). Practice
+//! trials are scored but never enter a mean.
+//!
+//! ## Aggregation
+//!
+//! ```text
+//! s_{t,e}          = mean ± sample std of score_i over recorded trials of task t, embodiment e
+//! overall_e        = Σ_{t ∈ A_e} s_{t,e} / |A_e|        A_e = tasks e attempted
+//! overall_e (all)  = Σ_{t ∈ A_e} s_{t,e} / 18           tasks not attempted count 0
+//! ```
+//!
+//! ## Files
+//!
+//! | file | what |
+//! |---|---|
+//! | `catalog.rs` | [`TaskCatalog`]: the 18 tasks as data (`data/tasks_pomdar.toml`), validated |
+//! | `rules.rs` | [`ScoringRules`]: weights, time limits, unfinished trials |
+//! | `baseline.rs` | [`BaselineTable`] and [`compute_baseline`] from human trials |
+//! | `trial_log.rs` | [`TrialLog`] and its checks ([`TrialRecord`]) |
+//! | `correctness.rs` | [`correctness`] per kind |
+//! | `trial_score.rs` | [`score_trial`]: outcome, time, speed, score |
+//! | `stats.rs` | [`MeanStd`] |
+//! | `aggregate.rs` | [`aggregate`]: per task × embodiment and per embodiment |
+//! | `report.rs` | [`ScoreReport`]: all of the above with its warnings |
+//! | `report_terminal.rs`, `report_markdown.rs`, `report_csv.rs` | the renderers (JSON is serde) |
+//! | `plot/` | the figures' drawing (radar, overall vs DoF) as SVG and PNG |
 
 pub mod plot;
+
+mod aggregate;
+mod baseline;
+mod catalog;
+mod correctness;
+mod error;
+mod report;
+mod report_csv;
+mod report_markdown;
+mod report_terminal;
+mod rules;
+mod stats;
+mod trial_log;
+mod trial_score;
+
+pub use aggregate::{Aggregate, EmbodimentResult, TaskResult, aggregate, overall_means};
+pub use baseline::{
+    BaselineComputation, BaselineHeader, BaselineTable, LeftOut, TaskBaseline, compute_baseline,
+};
+pub use catalog::{
+    ArmConstraint, BUILTIN_CATALOG_ORIGIN, CatalogHeader, Configuration, CorrectnessKind,
+    POMDAR_TASKS_TOML, TaskCatalog, TaskSpec,
+};
+pub use correctness::{Correctness, GRASP_LEVELS, correctness};
+pub use error::ScoringError;
+pub use report::{BaselineInfo, FileProblem, ReportInputs, RulesInfo, ScoreReport, TaskInfo};
+pub use report_csv::{render_overall_csv, render_scores_csv, render_trials_csv};
+pub use report_markdown::render_markdown;
+pub use report_terminal::{TERMINAL_WIDTH, render_terminal};
+pub use rules::{DEFAULT_RULES_ORIGIN, ScoringRules, UnfinishedRule};
+pub use stats::MeanStd;
+pub use trial_log::{Ending, HUMAN_EMBODIMENT, Mark, TRIAL_METADATA_NAME, TrialLog, TrialRecord};
+pub use trial_score::{Outcome, TrialScore, score_record, score_trial};

@@ -1,0 +1,256 @@
+//! The report as aligned text for a terminal, at most 100 columns wide.
+
+use std::fmt::Write as _;
+
+use crate::aggregate::TaskResult;
+use crate::report::{ScoreReport, opt};
+
+/// Widest line the terminal report writes (except unbreakable file names).
+pub const TERMINAL_WIDTH: usize = 100;
+
+/// Trials listed one per line when there are at most this many.
+const TRIAL_LINES_MAX: usize = 30;
+
+/// Width of a task × embodiment cell.
+const CELL: usize = 16;
+/// Width of the task ID and name columns, with their separating spaces.
+const TASK_COLUMNS: usize = 4 + 1 + 16;
+
+/// Words of `text` wrapped to `width` columns, continuation lines indented by `indent`.
+pub(crate) fn wrap(text: &str, width: usize, indent: &str) -> String {
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            out.push_str(&line);
+            out.push('\n');
+            line = indent.to_string();
+        } else if !line.is_empty() && !line.ends_with(' ') {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    out.push_str(&line);
+    out
+}
+
+/// A task × embodiment cell: `0.74±0.05 (20)`, correctness with `*` when the task has no
+/// baseline, `practice` or `excluded` when no trial counts.
+pub(crate) fn cell(result: Option<&TaskResult>) -> String {
+    let Some(r) = result else {
+        return String::new();
+    };
+    let stats = if r.has_baseline {
+        r.score
+    } else {
+        r.correctness
+    };
+    match stats {
+        Some(s) => format!(
+            "{:.2}±{} ({}){}",
+            s.mean,
+            s.std.map_or("–   ".to_string(), |v| format!("{v:.2}")),
+            s.n,
+            if r.has_baseline { "" } else { "*" }
+        ),
+        None if r.excluded > 0 => format!("excluded ({})", r.excluded),
+        None => format!("practice ({})", r.practice),
+    }
+}
+
+fn pad(text: &str, width: usize) -> String {
+    let n = text.chars().count();
+    if n >= width {
+        text.chars().take(width).collect()
+    } else {
+        format!("{text}{}", " ".repeat(width - n))
+    }
+}
+
+fn pad_left(text: &str, width: usize) -> String {
+    let n = text.chars().count();
+    format!("{}{text}", " ".repeat(width.saturating_sub(n)))
+}
+
+/// Renders `report` for a terminal.
+pub fn render_terminal(report: &ScoreReport) -> String {
+    let mut out = String::new();
+    let w = TERMINAL_WIDTH;
+    let practice = report.trials.iter().filter(|t| t.practice).count();
+    let _ = writeln!(out, "POMDAR scores");
+    let _ = writeln!(
+        out,
+        "{}",
+        wrap(
+            &format!("  catalog   {}", report.catalog),
+            w,
+            "            "
+        )
+    );
+    let _ = writeln!(
+        out,
+        "{}",
+        wrap(
+            &format!(
+                "  rules     {} ({})",
+                report.rules.description, report.rules.origin
+            ),
+            w,
+            "            "
+        )
+    );
+    let baseline = match &report.baseline {
+        Some(b) => format!(
+            "  baseline  {}{} ({} tasks): {}",
+            if b.example { "EXAMPLE " } else { "" },
+            b.origin,
+            b.tasks.len(),
+            b.source
+        ),
+        None => "  baseline  none (correctness only)".to_string(),
+    };
+    let _ = writeln!(out, "{}", wrap(&baseline, w, "            "));
+    let _ = writeln!(
+        out,
+        "  trials    {} scored ({} counted, {} practice), {} rejected, {} skipped",
+        report.trials.len(),
+        report.counted_trials(),
+        practice,
+        report.rejected.len(),
+        report.skipped.len()
+    );
+    for warning in &report.warnings {
+        let _ = writeln!(
+            out,
+            "\n{}",
+            wrap(&format!("WARNING: {warning}"), w, "         ")
+        );
+    }
+    for note in &report.notes {
+        let _ = writeln!(out, "{}", wrap(&format!("note: {note}"), w, "      "));
+    }
+
+    if !report.embodiments.is_empty() {
+        let total = report.catalog_tasks.len();
+        let _ = writeln!(
+            out,
+            "\nOverall per embodiment (mean of the task means; ± spread across tasks)"
+        );
+        let all = format!("overall (all {total})");
+        let _ = writeln!(
+            out,
+            "{} {} {} {}  {} {}  {}",
+            pad("embodiment", 15),
+            pad_left("DoF", 4),
+            pad_left("tasks", 6),
+            pad_left("trials", 7),
+            pad("overall (attempted)", 19),
+            pad_left(&all, 17),
+            pad_left("correctness att./all", 20)
+        );
+        for e in &report.embodiments {
+            let attempted = match (e.overall_attempted, e.overall_spread) {
+                (Some(m), Some(s)) => format!("{m:.2} ± {s:.2}"),
+                (Some(m), None) => format!("{m:.2}"),
+                (None, _) => "– (no baseline)".to_string(),
+            };
+            let _ = writeln!(
+                out,
+                "{} {} {} {}  {} {}  {}",
+                pad(&e.embodiment, 15),
+                pad_left(&e.dof.map_or("?".to_string(), |d| d.to_string()), 4),
+                pad_left(&format!("{}/{}", e.tasks_attempted, e.tasks_total), 6),
+                pad_left(&e.trials.to_string(), 7),
+                pad(&attempted, 19),
+                pad_left(&opt(e.overall_all, 2), 17),
+                pad_left(
+                    &format!(
+                        "{} / {}",
+                        opt(e.correctness_attempted, 2),
+                        opt(e.correctness_all, 2)
+                    ),
+                    20
+                )
+            );
+        }
+
+        let per_block = ((w - TASK_COLUMNS) / (CELL + 1)).max(1);
+        for block in report.embodiments.chunks(per_block) {
+            let _ = writeln!(
+                out,
+                "\nPer task: mean score ± std (trials); * = correctness only (no baseline)"
+            );
+            let mut header = format!("{} {}", pad("task", 4), pad("name", 16));
+            for e in block {
+                header.push(' ');
+                header.push_str(&pad(&e.embodiment, CELL));
+            }
+            let _ = writeln!(out, "{}", header.trim_end());
+            for t in &report.catalog_tasks {
+                let mut line = format!("{} {}", pad(&t.id, 4), pad(&t.name, 16));
+                for e in block {
+                    line.push(' ');
+                    line.push_str(&pad(&cell(report.task_result(&t.id, &e.embodiment)), CELL));
+                }
+                let _ = writeln!(out, "{}", line.trim_end());
+            }
+        }
+    }
+
+    if !report.trials.is_empty() && report.trials.len() <= TRIAL_LINES_MAX {
+        let _ = writeln!(out, "\nTrials");
+        let _ = writeln!(
+            out,
+            "{} {} {} {} {} {} {} file",
+            pad("task", 4),
+            pad("embodiment", 11),
+            pad("outcome", 9),
+            pad_left("time s", 8),
+            pad_left("correct", 7),
+            pad_left("speed", 6),
+            pad_left("score", 6),
+        );
+        for t in &report.trials {
+            let _ = writeln!(
+                out,
+                "{} {} {} {} {} {} {} {}{}",
+                pad(&t.task, 4),
+                pad(&t.embodiment, 11),
+                pad(t.outcome.name(), 9),
+                pad_left(&format!("{:.2}", t.time_s), 8),
+                pad_left(&format!("{:.2}", t.correctness), 7),
+                pad_left(&opt(t.speed, 2), 6),
+                pad_left(&opt(t.score, 2), 6),
+                t.file,
+                if t.practice { " (practice)" } else { "" }
+            );
+        }
+    } else if !report.trials.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nPer-trial scores: trials.csv and scores.json (written with --out), or --json."
+        );
+    }
+
+    if !report.rejected.is_empty() {
+        let _ = writeln!(out, "\nRejected files ({})", report.rejected.len());
+        for r in &report.rejected {
+            let _ = writeln!(
+                out,
+                "{}",
+                wrap(&format!("  {}: {}", r.file, r.reason), w, "      ")
+            );
+        }
+    }
+    if !report.skipped.is_empty() {
+        let _ = writeln!(out, "\nSkipped files ({})", report.skipped.len());
+        for r in &report.skipped {
+            let _ = writeln!(
+                out,
+                "{}",
+                wrap(&format!("  {}: {}", r.file, r.reason), w, "      ")
+            );
+        }
+    }
+    out
+}
