@@ -1,2 +1,59 @@
-//! Figures in the style of the POMDAR paper: radar plots per embodiment set and overall score
-//! against degrees of freedom, as SVG text and PNG bytes (being written for issue 7).
+//! Figures in the style of the POMDAR paper, returned as data (SVG text and PNG bytes).
+//!
+//! - [`radar`]: one axis per task, clockwise from the top, grid rings every 0.2 up to 1.0 and
+//!   on past the largest score when scores exceed 1 (speed is unbounded, so "superhuman"
+//!   scores are drawn, not clipped); one translucent polygon with an outline and markers
+//!   per embodiment, colours from a fixed colour-blind-safe palette, a legend, and hollow
+//!   markers at 0 for tasks not attempted, listed under the legend.
+//! - [`dof_scatter`]: overall score against degrees of freedom, one labelled point per
+//!   embodiment, ± one standard deviation as error bars when given.
+//!
+//! Both charts build one drawing description (polylines, polygons, circles, text;
+//! `primitives`) which two backends render: an SVG writer (`<text>` in a sans-serif family,
+//! escaped) and a tiny-skia rasteriser for the PNG, which draws text with this crate's own
+//! stroke font (`glyphs`, `stroke_font`) because tiny-skia has none. Everything is
+//! deterministic: the same chart gives the same bytes.
+
+mod dof_chart;
+mod error;
+mod glyphs;
+mod label_placement;
+mod legend;
+mod palette;
+mod png_backend;
+mod primitives;
+mod radar;
+mod scale;
+mod stroke_font;
+mod svg_backend;
+
+pub use dof_chart::{DofChart, DofPoint, dof_scatter};
+pub use error::{PlotError, ValueProblem};
+pub use palette::SERIES_COLORS;
+pub use primitives::Rgba;
+pub use radar::{RadarChart, RadarSeries, radar};
+pub use scale::MAX_SCORE;
+
+/// A rendered figure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Standalone SVG document.
+    pub svg: String,
+    /// PNG file bytes (8-bit RGBA).
+    pub png: Vec<u8>,
+    /// Canvas width in pixels (both formats).
+    pub width_px: u32,
+    /// Canvas height in pixels (both formats).
+    pub height_px: u32,
+}
+
+impl Figure {
+    fn render(drawing: &primitives::Drawing) -> Result<Self, PlotError> {
+        Ok(Self {
+            svg: svg_backend::render(drawing),
+            png: png_backend::render(drawing)?,
+            width_px: drawing.width_px,
+            height_px: drawing.height_px,
+        })
+    }
+}

@@ -1,0 +1,103 @@
+//! What can be wrong with a chart's input.
+
+use std::fmt;
+
+/// Why a number cannot be drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValueProblem {
+    /// NaN or infinite.
+    NotFinite,
+    /// Below zero: scores and standard deviations are never negative.
+    Negative,
+    /// Above [`MAX_SCORE`](super::MAX_SCORE): taken as a units or parsing mistake.
+    TooLarge,
+}
+
+impl fmt::Display for ValueProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotFinite => write!(f, "not a finite number"),
+            Self::Negative => write!(f, "negative"),
+            Self::TooLarge => write!(
+                f,
+                "above {}, the largest score a figure draws",
+                super::MAX_SCORE
+            ),
+        }
+    }
+}
+
+/// A chart that cannot be drawn, and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlotError {
+    /// A radar chart without series.
+    #[error("radar chart '{title}' has no series to draw")]
+    NoSeries {
+        /// The chart's title.
+        title: String,
+    },
+    /// A radar chart with fewer than three axes (no polygon to draw).
+    #[error("radar chart '{title}' has {count} axes; a radar chart needs at least 3")]
+    TooFewAxes {
+        /// The chart's title.
+        title: String,
+        /// How many axes it has.
+        count: usize,
+    },
+    /// More radar series than the palette has distinct colours.
+    #[error("radar chart '{title}' has {count} series; at most {max} can be told apart by colour")]
+    TooManySeries {
+        /// The chart's title.
+        title: String,
+        /// How many series it has.
+        count: usize,
+        /// The palette's size.
+        max: usize,
+    },
+    /// A series with a different number of values than the chart has axes.
+    #[error("series '{series}' has {values} values but the chart has {axes} axes")]
+    LengthMismatch {
+        /// The series' label.
+        series: String,
+        /// How many values it has.
+        values: usize,
+        /// How many axes the chart has.
+        axes: usize,
+    },
+    /// A radar value that cannot be drawn.
+    #[error("series '{series}', axis '{axis}': value {value} is {problem}")]
+    BadRadarValue {
+        /// The series' label.
+        series: String,
+        /// The axis' label.
+        axis: String,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        problem: ValueProblem,
+    },
+    /// A DoF chart without points.
+    #[error("DoF chart '{title}' has no points to draw")]
+    NoPoints {
+        /// The chart's title.
+        title: String,
+    },
+    /// A DoF point's score or standard deviation that cannot be drawn.
+    #[error("point '{label}', {field}: value {value} is {problem}")]
+    BadDofValue {
+        /// The point's label.
+        label: String,
+        /// `overall` or `std`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        problem: ValueProblem,
+    },
+    /// The rasteriser could not make the canvas or encode the PNG.
+    #[error("could not rasterise the figure: {reason}")]
+    Raster {
+        /// What failed.
+        reason: String,
+    },
+}
