@@ -7,7 +7,7 @@ use super::label_placement::{Rect, place_label};
 use super::palette::series_color;
 use super::primitives::{Anchor, Drawing, Point, Rgba, Style, Text};
 use super::scale::{ScoreAxis, check_score, integer_axis, score_axis};
-use super::stroke_font::{cap_height, text_width};
+use super::stroke_font::{FONT_SLACK, cap_height, text_width};
 use super::{Figure, PlotError};
 
 /// One embodiment's result.
@@ -114,7 +114,7 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
     let (min_dof, max_dof) = (dofs.clone().min().unwrap_or(0), dofs.max().unwrap_or(0));
     let geometry = DofGeometry {
         area: Rect {
-            left: y_title_x + 14.0 + 1.15 * tick_w + 8.0 + TICK_LEN_PX,
+            left: y_title_x + 14.0 + FONT_SLACK * tick_w + 8.0 + TICK_LEN_PX,
             right: WIDTH_PX - 30.0,
             top: 84.0,
             bottom: HEIGHT_PX - 82.0,
@@ -271,5 +271,104 @@ fn draw_points(d: &mut Drawing, geometry: &DofGeometry, chart: &DofChart) {
         );
         obstacles.push(used);
         d.text(text);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::ValueProblem;
+    use crate::plot::primitives::Primitive;
+
+    fn chart(points: &[(u32, f64, Option<f64>)]) -> DofChart {
+        DofChart {
+            title: "DoF".into(),
+            y_label: "Overall score".into(),
+            points: (points.iter().enumerate())
+                .map(|(i, &(dof, overall, std))| DofPoint {
+                    label: format!("Orca_{i}"),
+                    dof,
+                    overall,
+                    std,
+                })
+                .collect(),
+        }
+    }
+
+    fn shapes<'a>(d: &'a Drawing, class: &str) -> Vec<&'a Primitive> {
+        (d.items.iter())
+            .filter(|item| match item {
+                Primitive::Path { class: c, .. } | Primitive::Circle { class: c, .. } => {
+                    *c == Some(class)
+                }
+                Primitive::Text(_) => false,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn points_land_on_their_dof_and_score() {
+        let (d, g) = dof_drawing(&chart(&[(5, 0.53, None), (16, 0.71, None)])).unwrap();
+        assert_eq!(g.dof_range, (4, 18, 2));
+        assert_eq!(g.scale.top(), 1.0);
+        assert!((g.x(4.0) - g.area.left).abs() < 1e-9 && (g.x(18.0) - g.area.right).abs() < 1e-9);
+        assert!((g.y(0.0) - g.area.bottom).abs() < 1e-9 && (g.y(1.0) - g.area.top).abs() < 1e-9);
+        let centres: Vec<Point> = (shapes(&d, "point").into_iter())
+            .filter_map(|p| match p {
+                Primitive::Circle { center, .. } => Some(*center),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            centres,
+            [
+                Point::new(g.x(5.0), g.y(0.53)),
+                Point::new(g.x(16.0), g.y(0.71))
+            ]
+        );
+        assert!(shapes(&d, "error-bar").is_empty());
+    }
+
+    #[test]
+    fn error_bars_span_one_std_and_stop_at_zero() {
+        let (d, g) = dof_drawing(&chart(&[(8, 0.62, Some(0.05)), (11, 0.03, Some(0.1))])).unwrap();
+        let bars: Vec<(f64, f64)> = (shapes(&d, "error-bar").into_iter())
+            .filter_map(|p| match p {
+                Primitive::Path { points, .. } => Some((points[0].y, points[1].y)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(bars.len(), 2);
+        assert!((bars[0].0 - g.y(0.67)).abs() < 1e-9 && (bars[0].1 - g.y(0.57)).abs() < 1e-9);
+        assert!((bars[1].1 - g.area.bottom).abs() < 1e-9, "clamped at 0");
+    }
+
+    #[test]
+    fn the_score_axis_grows_past_one_for_superhuman_results() {
+        let (_, g) = dof_drawing(&chart(&[(16, 1.1, Some(0.15))])).unwrap();
+        assert!((g.scale.top() - 1.4).abs() < 1e-9, "{}", g.scale.top());
+    }
+
+    #[test]
+    fn bad_points_are_named() {
+        let err = dof_scatter(&chart(&[(5, f64::NAN, None)])).unwrap_err();
+        assert!(matches!(
+            &err,
+            PlotError::BadDofValue { label, field: "overall", problem: ValueProblem::NotFinite, .. }
+                if label == "Orca_0"
+        ));
+        assert!(
+            err.to_string()
+                .starts_with("point 'Orca_0', overall: value NaN"),
+            "{err}"
+        );
+        let err = dof_scatter(&chart(&[(5, 0.5, Some(f64::INFINITY))])).unwrap_err();
+        assert!(matches!(err, PlotError::BadDofValue { field: "std", .. }));
+        assert_eq!(
+            dof_scatter(&chart(&[])),
+            Err(PlotError::NoPoints {
+                title: "DoF".into()
+            })
+        );
     }
 }

@@ -2,7 +2,7 @@
 //! take the first whose box stays inside the plot and clear of everything already placed.
 
 use super::primitives::{Anchor, Point, Text};
-use super::stroke_font::{cap_height, text_width};
+use super::stroke_font::{FONT_SLACK, cap_height, text_width};
 
 /// An axis-aligned box in pixels (y down).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,8 +46,6 @@ impl Rect {
     }
 }
 
-/// Room left for a viewer's font being wider than the stroke font's metrics.
-const FONT_SLACK: f64 = 1.15;
 /// Distance from the point to the label's near edge.
 const GAP_PX: f64 = 11.0;
 

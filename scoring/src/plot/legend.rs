@@ -2,7 +2,7 @@
 //! centred rows; under it, the key to hollow markers and which tasks were not attempted.
 
 use super::primitives::{Anchor, Drawing, Point, Rgba, Style, Text};
-use super::stroke_font::{cap_height, text_width, wrap};
+use super::stroke_font::{FONT_SLACK, cap_height, text_width, wrap};
 
 /// One legend line's content.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,8 +23,6 @@ const INNER_GAP_PX: f64 = 8.0;
 /// Between entries on one row.
 const ENTRY_GAP_PX: f64 = 32.0;
 const ROW_PX: f64 = 26.0;
-/// Room left for a viewer's font being wider than the stroke font's metrics.
-const FONT_SLACK: f64 = 1.15;
 
 fn entry_width(entry: &LegendEntry) -> f64 {
     SWATCH_W_PX + INNER_GAP_PX + FONT_SLACK * text_width(&entry.label, LABEL_PX)

@@ -23,6 +23,7 @@ mod palette;
 mod png_backend;
 mod primitives;
 mod radar;
+mod radar_layout;
 mod scale;
 mod stroke_font;
 mod svg_backend;

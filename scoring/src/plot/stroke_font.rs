@@ -12,6 +12,9 @@ use super::primitives::{Anchor, Point, Text};
 pub const CAP_HEIGHT_EM: f64 = 0.72;
 /// Grid units from the baseline to the top of a capital.
 const CAP_UNITS: f64 = 12.0;
+/// How much wider than the stroke font's metrics a viewer's sans-serif face may set text:
+/// layouts multiply measured widths by this so SVG text does not collide or clip.
+pub const FONT_SLACK: f64 = 1.15;
 /// Gap between letters in grid units.
 const LETTER_GAP_UNITS: f64 = 3.0;
 
