@@ -69,8 +69,9 @@ pub enum CorrectnessKind {
         full_deg: f64,
     },
     /// Grasp level: progress values are levels, 0 not lifted, 0.5 lifted then dropped,
-    /// 1 relocated; a `drop` event sets 0.5.
-    Grasp,
+    /// 1 relocated; a `drop` event sets 0.5. (A struct variant so that unknown keys are
+    /// refused, as for the other kinds.)
+    Grasp {},
     /// Distance slid (progress values are millimetres) out of `full_mm`.
     Distance {
         /// The slide that counts as complete, mm.
@@ -85,7 +86,7 @@ impl CorrectnessKind {
             CorrectnessKind::Notches { count } => format!("{count} notches"),
             CorrectnessKind::Curves { count } => format!("{count} curves"),
             CorrectnessKind::Rotation { full_deg } => format!("rotation / {full_deg}°"),
-            CorrectnessKind::Grasp => "grasp level 0 / 0.5 / 1".to_string(),
+            CorrectnessKind::Grasp {} => "grasp level 0 / 0.5 / 1".to_string(),
             CorrectnessKind::Distance { full_mm } => format!("distance / {full_mm} mm"),
         }
     }
@@ -96,7 +97,7 @@ impl CorrectnessKind {
             CorrectnessKind::Notches { .. } => "notches",
             CorrectnessKind::Curves { .. } => "curves",
             CorrectnessKind::Rotation { .. } => "deg",
-            CorrectnessKind::Grasp => "level",
+            CorrectnessKind::Grasp {} => "level",
             CorrectnessKind::Distance { .. } => "mm",
         }
     }

@@ -116,7 +116,7 @@ pub fn correctness(
                 notes,
             })
         }
-        CorrectnessKind::Grasp => {
+        CorrectnessKind::Grasp {} => {
             let mut level = 0.0;
             for (i, (t, mark)) in marks.iter().enumerate() {
                 let next = match *mark {
@@ -183,11 +183,11 @@ mod tests {
             (1, Mark::Drop),
             (2, Mark::Progress(1.0)),
         ];
-        let c = correctness(&CorrectnessKind::Grasp, &marks, None);
+        let c = correctness(&CorrectnessKind::Grasp {}, &marks, None);
         assert_eq!(c.map(|c| c.value), Ok(1.0));
-        let c = correctness(&CorrectnessKind::Grasp, &marks[..2], None);
+        let c = correctness(&CorrectnessKind::Grasp {}, &marks[..2], None);
         assert_eq!(c.map(|c| c.value), Ok(0.5));
-        let bad = correctness(&CorrectnessKind::Grasp, &progress(&[0.7]), None);
+        let bad = correctness(&CorrectnessKind::Grasp {}, &progress(&[0.7]), None);
         assert!(bad.is_err_and(|e| e.contains("0.7")));
     }
 }

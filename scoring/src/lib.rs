@@ -49,6 +49,7 @@
 //! | `aggregate.rs` | [`aggregate`]: per task × embodiment and per embodiment |
 //! | `report.rs` | [`ScoreReport`]: all of the above with its warnings |
 //! | `report_terminal.rs`, `report_markdown.rs`, `report_csv.rs` | the renderers (JSON is serde) |
+//! | `figures.rs` | [`render_figures`]: the report's radars and overall-vs-DoF charts |
 //! | `plot/` | the figures' drawing (radar, overall vs DoF) as SVG and PNG |
 
 pub mod plot;
@@ -58,6 +59,7 @@ mod baseline;
 mod catalog;
 mod correctness;
 mod error;
+mod figures;
 mod report;
 mod report_csv;
 mod report_markdown;
@@ -77,6 +79,7 @@ pub use catalog::{
 };
 pub use correctness::{Correctness, GRASP_LEVELS, correctness};
 pub use error::ScoringError;
+pub use figures::{NamedFigure, render_figures};
 pub use report::{BaselineInfo, FileProblem, ReportInputs, RulesInfo, ScoreReport, TaskInfo};
 pub use report_csv::{render_overall_csv, render_scores_csv, render_trials_csv};
 pub use report_markdown::render_markdown;

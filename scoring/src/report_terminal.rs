@@ -16,19 +16,24 @@ const CELL: usize = 16;
 /// Width of the task ID and name columns, with their separating spaces.
 const TASK_COLUMNS: usize = 4 + 1 + 16;
 
-/// Words of `text` wrapped to `width` columns, continuation lines indented by `indent`.
+/// `text` wrapped at spaces to `width` columns, continuation lines indented by `indent`;
+/// runs of spaces inside a line (alignment) are kept.
 pub(crate) fn wrap(text: &str, width: usize, indent: &str) -> String {
     let mut out = String::new();
     let mut line = String::new();
-    for word in text.split_whitespace() {
-        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
-            out.push_str(&line);
+    let mut has_word = false;
+    for (i, word) in text.split(' ').enumerate() {
+        let sep = if i == 0 { "" } else { " " };
+        let too_long = line.chars().count() + sep.len() + word.chars().count() > width;
+        if has_word && !word.is_empty() && too_long {
+            out.push_str(line.trim_end());
             out.push('\n');
-            line = indent.to_string();
-        } else if !line.is_empty() && !line.ends_with(' ') {
-            line.push(' ');
+            line = format!("{indent}{word}");
+        } else {
+            line.push_str(sep);
+            line.push_str(word);
         }
-        line.push_str(word);
+        has_word |= !word.is_empty();
     }
     out.push_str(&line);
     out
@@ -253,4 +258,15 @@ pub fn render_terminal(report: &ScoreReport) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrapping_keeps_alignment_and_indents_continuations() {
+        assert_eq!(wrap("  a  b", 80, "    "), "  a  b");
+        assert_eq!(wrap("one two three", 8, "  "), "one two\n  three");
+    }
 }
