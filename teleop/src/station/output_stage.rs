@@ -37,6 +37,8 @@ pub struct OutputStage {
     joint_names: Vec<String>,
     mode: ControlMode,
     previous_state: DriveState,
+    /// Engaged, but the arm clutch still waits for the first glove wrist pose.
+    arm_engage_pending: bool,
     last_published_frame_ns: i64,
 }
 
@@ -58,6 +60,7 @@ impl OutputStage {
             joint_names: model.dof_names().map(str::to_string).collect(),
             mode: config.control.mode,
             previous_state: DriveState::Disengaged,
+            arm_engage_pending: false,
             last_published_frame_ns: i64::MIN,
         })
     }
@@ -121,7 +124,9 @@ impl OutputStage {
         outputs
     }
 
-    /// Engage the arm clutch when the station becomes engaged, release it on disengage.
+    /// Engage the arm clutch when the station becomes engaged (at the first tick with a glove
+    /// wrist pose: the wrist topic may deliver after the keypoints that engaged the station),
+    /// release it on disengage.
     fn follow_state(
         &mut self,
         state: DriveState,
@@ -131,19 +136,24 @@ impl OutputStage {
         let was = self.previous_state;
         self.previous_state = state;
         match (was, state) {
-            (DriveState::Disengaged, DriveState::Engaged) => {
-                if let Some(wrist) = glove_wrist {
-                    let engaged = match robot_pose {
-                        Some(robot) => self.arm.engage(wrist, robot),
-                        None => self.arm.engage_at_start_pose(wrist),
-                    };
-                    if let Err(e) = engaged {
-                        eprintln!("warning: arm not engaged: {e}");
-                    }
-                }
+            (DriveState::Disengaged, DriveState::Engaged) => self.arm_engage_pending = true,
+            (_, DriveState::Disengaged) => {
+                self.arm_engage_pending = false;
+                self.arm.disengage();
             }
-            (_, DriveState::Disengaged) => self.arm.disengage(),
             _ => {}
+        }
+        if let (true, DriveState::Engaged, Some(wrist)) =
+            (self.arm_engage_pending, state, glove_wrist)
+        {
+            self.arm_engage_pending = false;
+            let engaged = match robot_pose {
+                Some(robot) => self.arm.engage(wrist, robot),
+                None => self.arm.engage_at_start_pose(wrist),
+            };
+            if let Err(e) = engaged {
+                eprintln!("warning: arm not engaged: {e}");
+            }
         }
     }
 }
@@ -159,5 +169,53 @@ fn policy_array(values: Vec<f32>) -> Float32MultiArray {
             data_offset: 0,
         },
         data: values,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use nalgebra::{Translation3, UnitQuaternion};
+
+    use super::*;
+
+    fn tick(state: DriveState) -> Tick {
+        Tick { state, hand: None }
+    }
+
+    fn wrist(z: f64) -> Option<Isometry3<f64>> {
+        Some(Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, z),
+            UnitQuaternion::identity(),
+        ))
+    }
+
+    #[test]
+    fn the_arm_engages_at_the_first_wrist_pose_after_engage_even_when_it_comes_late() {
+        let config = StationConfig::default();
+        let mut stage = OutputStage::new(&config, &HandModel::orca_v1_right()).unwrap();
+        let mut outputs = |state, wrist| stage.outputs(&tick(state), 0, 0, wrist, None, false);
+        // Engaged by the first keypoints, before any wrist pose arrived.
+        assert!(outputs(DriveState::Engaged, None).arm.is_none());
+        assert!(outputs(DriveState::Engaged, wrist(0.0)).arm.is_some());
+        assert!(outputs(DriveState::Engaged, wrist(0.001)).arm.is_some());
+        // Disengage releases the clutch; engaging again latches afresh.
+        assert!(outputs(DriveState::Disengaged, wrist(0.001)).arm.is_none());
+        assert!(outputs(DriveState::Disengaged, wrist(0.001)).arm.is_none());
+        assert!(outputs(DriveState::Engaged, wrist(0.002)).arm.is_some());
+        assert!(stage.arm().is_engaged());
+    }
+
+    #[test]
+    fn held_input_waits_for_engaged_before_latching_a_late_wrist() {
+        let config = StationConfig::default();
+        let mut stage = OutputStage::new(&config, &HandModel::orca_v1_right()).unwrap();
+        let mut outputs = |state, wrist| stage.outputs(&tick(state), 0, 0, wrist, None, false);
+        assert!(outputs(DriveState::Engaged, None).arm.is_none());
+        assert!(outputs(DriveState::Held, wrist(0.0)).arm.is_none());
+        assert!(!stage.arm().is_engaged());
+        let mut outputs = |state, wrist| stage.outputs(&tick(state), 0, 0, wrist, None, false);
+        assert!(outputs(DriveState::Engaged, wrist(0.0)).arm.is_some());
     }
 }
