@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the independent MCAP readers the interop tests use into a project-local virtual
-# environment (target/interop-venv), from PyPI. Idempotent; prints the interpreter path.
+# Installs the interop tests' independent tools (MCAP readers and writers, Eclipse Cyclone DDS)
+# into a project-local virtual environment (target/interop-venv), from PyPI. Idempotent; prints
+# the interpreter path.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 venv="$root/target/interop-venv"

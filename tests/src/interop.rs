@@ -2,6 +2,12 @@
 
 use std::path::{Path, PathBuf};
 
+use msgs::{
+    Float32MultiArray, Float64MultiArray, JointState, PoseArray, PoseStamped, RosMessage, StringMsg,
+};
+use serde_json::Value;
+use teleop::mcap_log::{LoggedMessage, TrialReader};
+
 use crate::workspace_root;
 
 /// `../shared/reference/NAME` beside the checkout, or `None` (with a printed skip notice)
@@ -16,41 +22,81 @@ pub fn reference_file(name: &str) -> Option<PathBuf> {
     }
 }
 
-/// The independent readers' JSON report on `path` (`tests/interop/read_mcap.py`: Python
-/// `mcap` + `mcap-ros2-support`, and `rosbags`): per reader, message counts per topic.
-/// Panics when a reader fails. `None`, with a notice, where the interop Python is not
-/// installed — never in CI, where `.ci/run` installs it first.
-pub fn independent_readers(path: &Path) -> Option<serde_json::Value> {
+/// The interop tools' Python (`target/interop-venv`, installed from PyPI by
+/// `tests/interop/setup_python.sh`), or `None` with a printed skip notice where it is not
+/// installed. Panics instead when the `CI` environment variable is set: `.ci/run` installs it
+/// first, so there a missing tool is a failure, never a silent skip.
+pub fn interop_python() -> Option<PathBuf> {
     let python = workspace_root().join("target/interop-venv/bin/python");
-    if !python.is_file() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must run tests/interop/setup_python.sh first"
-        );
-        eprintln!(
-            "SKIPPED: independent readers ({} not found; run tests/interop/setup_python.sh)",
-            python.display()
-        );
-        return None;
+    if python.is_file() {
+        return Some(python);
     }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "CI must run tests/interop/setup_python.sh first ({} not found)",
+        python.display()
+    );
+    eprintln!(
+        "SKIPPED: interop tools ({} not found; run tests/interop/setup_python.sh)",
+        python.display()
+    );
+    None
+}
+
+/// The path of `tests/interop/NAME`.
+pub fn interop_script(name: &str) -> PathBuf {
+    workspace_root().join("tests/interop").join(name)
+}
+
+/// Run `tests/interop/SCRIPT ARGS...` with the interop Python and parse the JSON it prints.
+/// Panics, with its output, when it fails or prints something else.
+pub fn run_interop_script(python: &Path, script: &str, args: &[&std::ffi::OsStr]) -> Value {
     let output = std::process::Command::new(python)
-        .arg(workspace_root().join("tests/interop/read_mcap.py"))
-        .arg(path)
+        .arg(interop_script(script))
+        .args(args)
         .output()
-        .unwrap_or_else(|e| panic!("cannot run the interop readers: {e}"));
-    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap_or_else(|_| {
+        .unwrap_or_else(|e| panic!("cannot run {script}: {e}"));
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap_or_else(|_| {
         panic!(
-            "reader output: {} {}",
+            "{script} output: {} {}",
             String::from_utf8_lossy(&output.stdout),
             String::from_utf8_lossy(&output.stderr)
         )
     });
-    assert!(output.status.success(), "{report}");
-    Some(report)
+    assert!(
+        output.status.success(),
+        "{script} failed: {report} {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    report
+}
+
+/// The independent readers' JSON report on `path` (`tests/interop/read_mcap.py`: Python
+/// `mcap` + `mcap-ros2-support`, and `rosbags`): per reader, message counts per topic.
+/// Panics when a reader fails. `None` where the interop Python is not installed (see
+/// [`interop_python`]).
+pub fn independent_readers(path: &Path) -> Option<Value> {
+    let python = interop_python()?;
+    Some(run_interop_script(
+        &python,
+        "read_mcap.py",
+        &[path.as_os_str()],
+    ))
+}
+
+/// As [`independent_readers`], with every decoded message per topic (`values`) as well; see
+/// [`assert_readers_decode_as_we_do`].
+pub fn independent_readers_with_values(path: &Path) -> Option<Value> {
+    let python = interop_python()?;
+    Some(run_interop_script(
+        &python,
+        "read_mcap.py",
+        &["--values".as_ref(), path.as_os_str()],
+    ))
 }
 
 /// Assert that both independent readers counted, on every topic, what our reader counts.
-pub fn assert_readers_agree(report: &serde_json::Value, ours: &teleop::mcap_log::TrialReader) {
+pub fn assert_readers_agree(report: &Value, ours: &TrialReader) {
     for reader in ["mcap_ros2", "rosbags"] {
         for topic in ours.topics() {
             assert_eq!(
@@ -59,6 +105,91 @@ pub fn assert_readers_agree(report: &serde_json::Value, ours: &teleop::mcap_log:
                 "{reader} on {}",
                 topic.topic
             );
+        }
+    }
+}
+
+/// A logged message decoded by this project's `msgs` types, as JSON keyed by the ROS field
+/// names; an error for a type `msgs` does not have or a payload it cannot decode.
+pub fn decoded_as_json(message: &LoggedMessage) -> Result<Value, String> {
+    fn as_json<M: RosMessage + serde::Serialize>(message: &LoggedMessage) -> Result<Value, String> {
+        let decoded: M = message.decode().map_err(|e| e.to_string())?;
+        serde_json::to_value(decoded).map_err(|e| e.to_string())
+    }
+    if message.is::<Float32MultiArray>() {
+        as_json::<Float32MultiArray>(message)
+    } else if message.is::<Float64MultiArray>() {
+        as_json::<Float64MultiArray>(message)
+    } else if message.is::<JointState>() {
+        as_json::<JointState>(message)
+    } else if message.is::<PoseStamped>() {
+        as_json::<PoseStamped>(message)
+    } else if message.is::<PoseArray>() {
+        as_json::<PoseArray>(message)
+    } else if message.is::<StringMsg>() {
+        as_json::<StringMsg>(message)
+    } else {
+        Err(format!(
+            "no msgs type for {} on {}",
+            message.type_name, message.topic
+        ))
+    }
+}
+
+/// The first difference between two decoded messages (numbers compare as `f64`, exactly), as
+/// "at PATH: A != B"; `None` when they are equal.
+pub fn json_difference(path: &str, ours: &Value, theirs: &Value) -> Option<String> {
+    match (ours, theirs) {
+        (Value::Number(a), Value::Number(b)) if a.as_f64() == b.as_f64() => None,
+        (Value::Object(a), Value::Object(b)) => {
+            let keys: std::collections::BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+            keys.into_iter().find_map(|k| {
+                json_difference(
+                    &format!("{path}.{k}"),
+                    a.get(k).unwrap_or(&Value::Null),
+                    b.get(k).unwrap_or(&Value::Null),
+                )
+            })
+        }
+        (Value::Array(a), Value::Array(b)) if a.len() == b.len() => a
+            .iter()
+            .zip(b)
+            .enumerate()
+            .find_map(|(i, (x, y))| json_difference(&format!("{path}[{i}]"), x, y)),
+        (a, b) if a == b => None,
+        (a, b) => Some(format!("at {path}: ours {a} != theirs {b}")),
+    }
+}
+
+/// Assert that both independent readers (a report with `values`) decoded every message of
+/// `ours`, topic by topic in log-time order, to exactly the values this project's `msgs` types
+/// decode: same field names, same numbers, same strings. Panics naming the reader, the topic,
+/// the message and the first differing field.
+pub fn assert_readers_decode_as_we_do(report: &Value, ours: &TrialReader) {
+    for reader in ["mcap_ros2", "rosbags"] {
+        for topic in ours.topics() {
+            let theirs = report[reader]["values"][&topic.topic]
+                .as_array()
+                .map_or(&[][..], Vec::as_slice);
+            let mine: Vec<&LoggedMessage> = ours.messages_on(&topic.topic).collect();
+            assert_eq!(
+                theirs.len(),
+                mine.len(),
+                "{reader} decoded {} messages on {}, we read {}",
+                theirs.len(),
+                topic.topic,
+                mine.len()
+            );
+            for (i, (message, their_value)) in mine.iter().zip(theirs).enumerate() {
+                let our_value = decoded_as_json(message)
+                    .unwrap_or_else(|e| panic!("{} message {i}: {e}", topic.topic));
+                if let Some(difference) = json_difference("", &our_value, their_value) {
+                    panic!(
+                        "{reader} decodes {} message {i} ({}) differently: {difference}",
+                        topic.topic, topic.type_name
+                    );
+                }
+            }
         }
     }
 }

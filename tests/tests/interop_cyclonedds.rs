@@ -1,0 +1,378 @@
+//! The station with a ROS 2 peer nobody on this team wrote: Eclipse Cyclone DDS (PyPI
+//! `cyclonedds`, its own C DDS stack and CDR), run as `tests/interop/cyclone_peer.py` on
+//! loopback. The peer plays the glove (`/ingress/mano` Float32MultiArray 22 × 3 and
+//! `/ingress/wrist` PoseStamped, ROS 2 naming and the QoS of the station's configuration) and
+//! listens to the station's JointState, arm PoseStamped and `/hand/policy_output`.
+//!
+//! Values are checked both ways against the station's own recording of the run:
+//! - inputs: every message the station decoded (its log) equals what Cyclone sent, frame for
+//!   frame, including the wrist header and the DDS source timestamp;
+//! - outputs: what Cyclone decoded equals, message for message, what the station sent (its log);
+//! - the joint targets equal, bit for bit, what the station's control step (retargeter and all)
+//!   computes in process for the same frames at the receive times of the station's log, and
+//!   each names its frame by the frame's source time;
+//! - the arm targets keep the vertical-axis constraint and follow the wrist's vertical motion.
+//!
+//! The recording itself is then decoded by the independent MCAP readers to the same values.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::io::{BufRead as _, BufReader, Write as _};
+use std::path::PathBuf;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::time::Duration;
+
+use msgs::{Float32MultiArray, JointState, PoseStamped, Time};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
+use pomdar_tests::interop::{
+    assert_readers_decode_as_we_do, independent_readers_with_values, interop_python, interop_script,
+};
+use pomdar_tests::station_harness::{check_arm_targets, loopback, test_domain};
+use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use retarget::{HandModel, KeypointLayout};
+use serde_json::{Value, json};
+use teleop::arm::Constraint;
+use teleop::clock::StationClock;
+use teleop::mcap_log::TrialReader;
+use teleop::ros::QosConfig;
+use teleop::station::frame_gate::Verdict;
+use teleop::station::recorder::RecordingOptions;
+use teleop::station::ros_station::{run_station, station_core};
+use teleop::station::station_config::{ControlMode, StationConfig};
+use tokio::sync::{mpsc, watch};
+
+const FRAMES: usize = 60;
+const PERIOD_S: f64 = 0.02;
+
+/// Every-frame control; reliable glove input so no frame is lost;
+/// watchdog timeouts well above any scheduling stall of a loaded 2-core machine, so every
+/// frame gets a fresh target (the watchdog is not this test's subject).
+fn config(domain: u16) -> StationConfig {
+    let mut config = StationConfig {
+        network: loopback(domain),
+        ..StationConfig::default()
+    };
+    config.control.mode = ControlMode::EveryFrame;
+    config.control.auto_engage = true;
+    config.input.qos = QosConfig::reliable(1000);
+    config.output.qos = QosConfig::reliable(1000);
+    config.output.status_rate_hz = 20.0;
+    config.arm.constraint = Constraint::VerticalAxis;
+    config.watchdog.hold_timeout_ms = 2000;
+    config.watchdog.disengage_timeout_ms = 5000;
+    config
+}
+
+/// The glove wrist at `t`: a circle in the horizontal plane plus a vertical bob.
+fn wrist(t: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(0.03 * t.sin(), 0.03 * t.cos(), 0.02 * (4.0 * t).sin()),
+        UnitQuaternion::from_euler_angles(0.1 * t.sin(), 0.0, 0.0),
+    )
+}
+
+/// The glove frames as the station will receive them (f32 keypoints), and the wrist poses.
+fn frames() -> (Vec<Vec<[f32; 3]>>, Vec<Isometry3<f64>>) {
+    let shape = HumanHandShape::average();
+    let motion = Motion::new(MotionKind::OpenClose, 4.0, &shape).unwrap();
+    let glove = SimGlove::new(shape, motion, KeypointLayout::Lab22).unwrap();
+    (0..FRAMES)
+        .map(|i| {
+            let t = i as f64 * PERIOD_S;
+            let rows = glove
+                .frame(t)
+                .0
+                .iter()
+                .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+                .collect();
+            (rows, wrist(t))
+        })
+        .unzip()
+}
+
+fn qos_json(qos: QosConfig) -> Value {
+    serde_json::to_value(qos).unwrap()
+}
+
+/// The peer's plan: domain, topics, the station's QoS, the frames.
+fn plan(config: &StationConfig, rows: &[Vec<[f32; 3]>], wrists: &[Isometry3<f64>]) -> Value {
+    let frames: Vec<Value> = rows
+        .iter()
+        .zip(wrists)
+        .map(|(rows, w)| {
+            let q = w.rotation.quaternion();
+            let p = w.translation.vector;
+            json!({
+                "points": rows.iter().map(|r| r.map(f64::from)).collect::<Vec<_>>(),
+                "wrist": {"position": [p.x, p.y, p.z], "orientation": [q.i, q.j, q.k, q.w]},
+            })
+        })
+        .collect();
+    json!({
+        "domain_id": config.network.domain_id,
+        "topics": {
+            "keypoints": config.input.keypoints_topic,
+            "wrist": config.input.wrist_topic,
+            "joint_targets": config.output.joint_targets_topic,
+            "arm_target": config.output.arm_target_topic,
+            "policy_output": config.policy_output.topic,
+            "status": config.output.status_topic,
+        },
+        "input_qos": qos_json(config.input.qos),
+        "output_qos": qos_json(config.output.qos),
+        "status_qos": qos_json(QosConfig::reliable(10)),
+        "wrist_frame_id": "coil",
+        "period_s": PERIOD_S,
+        "frames": frames,
+    })
+}
+
+/// The running peer: its stdin (closing it ends the peer) and its stdout lines.
+struct Peer {
+    child: Child,
+    stdin: Option<ChildStdin>,
+    lines: mpsc::UnboundedReceiver<String>,
+}
+
+impl Peer {
+    fn start(python: &std::path::Path, plan_path: &std::path::Path) -> Peer {
+        let mut child = Command::new(python)
+            .arg(interop_script("cyclone_peer.py"))
+            .arg(plan_path)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("cannot start cyclone_peer.py");
+        let stdout = child.stdout.take().unwrap();
+        let (tx, lines) = mpsc::unbounded_channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        let stdin = child.stdin.take();
+        Peer {
+            child,
+            stdin,
+            lines,
+        }
+    }
+
+    /// The peer's next JSON line of `kind`; panics on its error line, its exit or a timeout.
+    async fn next(&mut self, kind: &str, timeout: Duration) -> Value {
+        let line = tokio::time::timeout(timeout, self.lines.recv())
+            .await
+            .unwrap_or_else(|_| panic!("no '{kind}' from the Cyclone peer within {timeout:?}"))
+            .unwrap_or_else(|| {
+                let status = self.child.wait().unwrap();
+                panic!("the Cyclone peer exited ({status}) before '{kind}'")
+            });
+        let value: Value =
+            serde_json::from_str(&line).unwrap_or_else(|_| panic!("Cyclone peer printed {line}"));
+        assert_eq!(
+            value["kind"],
+            kind,
+            "Cyclone peer: {}",
+            value["message"].as_str().unwrap_or(&line)
+        );
+        value
+    }
+
+    fn close_stdin(&mut self) {
+        if let Some(mut stdin) = self.stdin.take() {
+            stdin.flush().ok();
+        }
+    }
+}
+
+/// The peer's messages of one kind, as `msgs` values.
+#[track_caller]
+fn decode<T: serde::de::DeserializeOwned>(report: &Value, pointer: &str) -> Vec<T> {
+    let value = report.pointer(pointer).unwrap_or(&Value::Null);
+    serde_json::from_value(value.clone()).unwrap_or_else(|e| {
+        let text: String = value.to_string().chars().take(300).collect();
+        panic!("the peer's {pointer} ({text}...): {e}")
+    })
+}
+
+/// `received` is, message for message, the first `received.len()` messages the station sent.
+fn assert_prefix_of<T: PartialEq + std::fmt::Debug>(what: &str, received: &[T], sent: &[T]) {
+    assert!(
+        received.len() <= sent.len(),
+        "{what}: Cyclone received {} messages, the station sent {}",
+        received.len(),
+        sent.len()
+    );
+    for (i, (r, s)) in received.iter().zip(sent).enumerate() {
+        assert_eq!(
+            r, s,
+            "{what} {i}: as Cyclone decoded it vs as the station sent it"
+        );
+    }
+}
+
+fn nanos(t: &Time) -> i64 {
+    i64::from(t.sec) * 1_000_000_000 + i64::from(t.nanosec)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
+    let Some(python) = interop_python() else {
+        return;
+    };
+    let config = config(test_domain(7));
+    let (rows, wrists) = frames();
+    let dir = std::env::temp_dir().join(format!("pomdar-interop-cyclone-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let plan_path = dir.join("plan.json");
+    std::fs::write(&plan_path, plan(&config, &rows, &wrists).to_string()).unwrap();
+    let log_path: PathBuf = dir.join("station.mcap");
+
+    // The station, recording its run, then the peer.
+    let (shutdown, shutdown_rx) = watch::channel(false);
+    let (_operator, operator_rx) = mpsc::unbounded_channel();
+    let station = tokio::spawn(run_station(
+        config.clone(),
+        HandModel::orca_v1_right(),
+        StationClock::new(),
+        shutdown_rx,
+        operator_rx,
+        Some(RecordingOptions {
+            path: log_path.clone(),
+            metadata: Default::default(),
+        }),
+    ));
+    let mut peer = Peer::start(&python, &plan_path);
+    let done = peer.next("done", Duration::from_secs(40)).await;
+    println!("Cyclone peer: {done}");
+    shutdown.send(true).unwrap();
+    let summary = station.await.unwrap().unwrap();
+    peer.close_stdin();
+    let report = peer.next("report", Duration::from_secs(10)).await;
+    assert!(peer.child.wait().unwrap().success());
+    assert_eq!(summary.recorded, vec![log_path.clone()]);
+    let log = TrialReader::open(&log_path).unwrap();
+    assert_eq!(
+        summary.counters.frames_new, FRAMES as u64,
+        "every frame new (no repeats in this motion, none rejected): {:?}",
+        summary.counters
+    );
+
+    // Inputs: the station decoded exactly what Cyclone sent.
+    let sent_keypoints: Vec<Float32MultiArray> = decode(&report, "/sent/keypoints");
+    let sent_wrists: Vec<PoseStamped> = decode(&report, "/sent/wrist");
+    let source_ns: Vec<i64> = decode(&report, "/sent/source_ns");
+    assert_eq!(sent_keypoints.len(), FRAMES);
+    for (i, (message, frame)) in sent_keypoints.iter().zip(&rows).enumerate() {
+        assert_eq!(
+            &message.points().unwrap(),
+            frame,
+            "frame {i} as Cyclone built it"
+        );
+    }
+    let logged_keypoints: Vec<_> = log.messages_on(&config.input.keypoints_topic).collect();
+    assert_eq!(
+        logged_keypoints.len(),
+        FRAMES,
+        "keypoint frames the station received"
+    );
+    for (i, (logged, sent)) in logged_keypoints.iter().zip(&sent_keypoints).enumerate() {
+        let decoded: Float32MultiArray = logged.decode().unwrap();
+        assert_eq!(
+            &decoded, sent,
+            "keypoints {i}: as the station decoded them vs as sent"
+        );
+        assert_eq!(
+            logged.publish_time_ns, source_ns[i],
+            "keypoints {i}: the DDS source timestamp Cyclone wrote"
+        );
+    }
+    let logged_wrists = log
+        .decode_topic::<PoseStamped>(&config.input.wrist_topic)
+        .unwrap();
+    assert_eq!(logged_wrists, sent_wrists, "wrist poses: decoded vs sent");
+
+    // Outputs: Cyclone decoded exactly what the station sent.
+    let logged_targets = log
+        .decode_topic::<JointState>(&config.output.joint_targets_topic)
+        .unwrap();
+    let received_targets: Vec<JointState> = decode(&report, "/received/joint_targets");
+    assert_prefix_of("joint target", &received_targets, &logged_targets);
+    let logged_arm = log
+        .decode_topic::<PoseStamped>(&config.output.arm_target_topic)
+        .unwrap();
+    let received_arm: Vec<PoseStamped> = decode(&report, "/received/arm_target");
+    assert_prefix_of("arm target", &received_arm, &logged_arm);
+    let logged_policy = log
+        .decode_topic::<Float32MultiArray>(&config.policy_output.topic)
+        .unwrap();
+    let received_policy: Vec<Float32MultiArray> = decode(&report, "/received/policy_output");
+    assert_prefix_of("policy output", &received_policy, &logged_policy);
+    // The arm engages at the first tick that has a wrist pose: the first frame's keypoints can
+    // be handled before its wrist pose (two topics).
+    assert!(
+        received_policy.len() >= FRAMES && received_arm.len() >= FRAMES - 1,
+        "{} policy outputs, {} arm targets for {FRAMES} frames",
+        received_policy.len(),
+        received_arm.len()
+    );
+
+    // The joint targets are what the station's control step computes in process for those
+    // frames at the times the station received them (its log), bit for bit, and each is stamped
+    // with its frame's source time.
+    let mut core = station_core(&config, HandModel::orca_v1_right()).unwrap();
+    for (i, (frame, logged)) in rows.iter().zip(&logged_keypoints).enumerate() {
+        let points: Vec<Point3<f64>> = frame
+            .iter()
+            .map(|r| Point3::new(r[0].into(), r[1].into(), r[2].into()))
+            .collect();
+        let received_ns = logged.log_time_ns;
+        assert_eq!(core.on_keypoints(&points, received_ns), Verdict::New);
+        if i == 0 {
+            assert!(core.engage(received_ns), "auto-engage at the first frame");
+        }
+        let expected = core.tick(received_ns).hand.unwrap();
+        let target = received_targets
+            .iter()
+            .find(|m| nanos(&m.header.stamp) == source_ns[i])
+            .unwrap_or_else(|| panic!("no joint target stamped with frame {i}'s source time"));
+        assert_eq!(
+            target.position, expected.q,
+            "frame {i}: the target Cyclone received vs the in-process control step"
+        );
+    }
+
+    // The arm follows the wrist along the vertical axis only.
+    let arm_poses: Vec<_> = received_arm
+        .iter()
+        .map(|m| teleop::ros::convert::pose_to_isometry(&m.pose).unwrap())
+        .collect();
+    check_arm_targets(&arm_poses, &config.arm, Some(config.arm.vertical_axis));
+    let first_z = arm_poses[0].translation.vector.z;
+    let moved = arm_poses
+        .iter()
+        .map(|p| (p.translation.vector.z - first_z).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 0.005,
+        "the arm should follow the vertical bob ({moved} m)"
+    );
+    println!(
+        "Cyclone → station: {FRAMES} frames; station → Cyclone: {} joint targets, {} arm targets, {} policy outputs (matched in {:.2} s)",
+        received_targets.len(),
+        received_arm.len(),
+        received_policy.len(),
+        report["matched_s"].as_f64().unwrap_or(f64::NAN)
+    );
+
+    // The station's recording of this run: the independent readers decode every message to
+    // the same values.
+    if let Some(readers) = independent_readers_with_values(&log_path) {
+        assert_readers_decode_as_we_do(&readers, &log);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
