@@ -4,7 +4,7 @@
 //!
 //! The top-level framing (opcode `u8`, length `u64` LE, body) is walked here so that every
 //! stop has an exact byte offset; records are parsed by `mcap::parse_record` and chunks
-//! decompressed and CRC-checked by `mcap::read::ChunkReader`. Checks beyond parsing: the
+//! decompressed and CRC-checked by [`chunk_records`]. Checks beyond parsing: the
 //! first record is the header; schema ids are not 0; a schema or channel id redefined must
 //! have the same content; a channel's schema and a message's channel must already be known.
 //! An opcode of 0 (a zero-filled tail after a power cut) is damage.
@@ -15,6 +15,7 @@
 use std::collections::HashMap;
 
 use mcap::records::{self, AttachmentHeader, MessageHeader, Record, op};
+use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
 /// One record of the data section that the log readers care about.
 #[derive(Debug, Clone, PartialEq)]
@@ -132,7 +133,7 @@ pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
                 offset = next;
                 break ScanEnd::DataEnd;
             }
-            op::CHUNK => state.take_chunk(body),
+            op::CHUNK => state.take_chunk(&bytes[offset..next]),
             op::SCHEMA | op::CHANNEL | op::MESSAGE | op::METADATA => {
                 parse(opcode, body).and_then(|record| state.take(record))
             }
@@ -185,6 +186,62 @@ fn next_frame(bytes: &[u8], offset: usize) -> Result<(u8, &[u8], usize), String>
     Ok((opcode, &rest[RECORD_PREFIX..end], offset + end))
 }
 
+/// The records inside one chunk record (`record`: opcode, length and body, as framed in the
+/// file), decompressed and CRC-checked.
+///
+/// Not `mcap::read::ChunkReader`, which trusts the length of each record inside a chunk:
+/// fuzzing found a compressed chunk whose record claimed 144 PB making it reserve that much
+/// memory, and the process aborted. Here the mcap crate's sans-I/O reader runs with a record
+/// length limit of the chunk's own uncompressed size (itself at most
+/// [`MAX_CHUNK_UNCOMPRESSED_BYTES`]). Fed the whole chunk record, that reader would read an
+/// uncompressed chunk's record on into the padding after it and then subtract with overflow
+/// (a panic, also found by fuzzing), so an uncompressed chunk's framing is walked first.
+pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, String> {
+    let body = record.get(RECORD_PREFIX..).unwrap_or_default();
+    let Record::Chunk { header, data } = parse(op::CHUNK, body)? else {
+        return Err("chunk record does not parse as a chunk".to_string());
+    };
+    let uncompressed_size = header.uncompressed_size;
+    let too_large = || format!("chunk claims {uncompressed_size} uncompressed bytes");
+    if uncompressed_size > MAX_CHUNK_UNCOMPRESSED_BYTES {
+        return Err(too_large());
+    }
+    let limit = usize::try_from(uncompressed_size).map_err(|_| too_large())?;
+    if header.compression.is_empty() {
+        let mut offset = 0;
+        while offset < data.len() {
+            let (_, _, next) =
+                next_frame(&data, offset).map_err(|reason| format!("in chunk: {reason}"))?;
+            offset = next;
+        }
+    }
+    let mut reader = LinearReader::new_with_options(
+        LinearReaderOptions::default()
+            .with_skip_start_magic(true)
+            .with_skip_end_magic(true)
+            .with_validate_chunk_crcs(true)
+            .with_record_length_limit(limit),
+    );
+    let mut rest = record;
+    let mut records = Vec::new();
+    while let Some(event) = reader.next_event() {
+        match event.map_err(|e| format!("chunk: {e}"))? {
+            LinearReadEvent::ReadRequest(wanted) => {
+                let n = wanted.min(rest.len());
+                reader.insert(n).copy_from_slice(&rest[..n]);
+                reader.notify_read(n);
+                rest = &rest[n..];
+            }
+            LinearReadEvent::Record { data, opcode } => records.push(
+                mcap::parse_record(opcode, data)
+                    .map_err(|e| format!("chunk: record {opcode:#04x}: {e}"))?
+                    .into_owned(),
+            ),
+        }
+    }
+    Ok(records)
+}
+
 fn parse(opcode: u8, body: &[u8]) -> Result<Record<'_>, String> {
     mcap::parse_record(opcode, body).map_err(|e| format!("record {opcode:#04x}: {e}"))
 }
@@ -217,20 +274,10 @@ struct ScanState {
 }
 
 impl ScanState {
-    /// Decompresses a whole chunk, then takes its records; on any failure, none of them.
-    fn take_chunk(&mut self, body: &[u8]) -> Result<(), String> {
-        let Record::Chunk { header, data } = parse(op::CHUNK, body)? else {
-            return Err("chunk record does not parse as a chunk".to_string());
-        };
-        if header.uncompressed_size > MAX_CHUNK_UNCOMPRESSED_BYTES {
-            return Err(format!(
-                "chunk claims {} uncompressed bytes",
-                header.uncompressed_size
-            ));
-        }
-        let inner: Vec<Record<'_>> = mcap::read::ChunkReader::new(header, &data)
-            .and_then(|reader| reader.collect::<Result<Vec<_>, _>>())
-            .map_err(|e| format!("chunk: {e}"))?;
+    /// Decompresses a whole chunk (`record`, as framed in the file), then takes its records;
+    /// on any failure, none of them.
+    fn take_chunk(&mut self, record: &[u8]) -> Result<(), String> {
+        let inner = chunk_records(record)?;
         let (record_count, schema_ids, channel_ids) = (
             self.records.len(),
             self.schemas.keys().copied().collect::<Vec<_>>(),
