@@ -11,7 +11,7 @@ use crate::error::ScoringError;
 pub const POMDAR_TASKS_TOML: &str = include_str!("../data/tasks_pomdar.toml");
 
 /// Origin string of the built-in catalog in errors and reports.
-pub const BUILTIN_CATALOG_ORIGIN: &str = "built-in task catalog (scoring/data/tasks_pomdar.toml)";
+pub const BUILTIN_CATALOG_ORIGIN: &str = "built-in task catalog, scoring/data/tasks_pomdar.toml";
 
 /// The benchmark configuration a task belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -204,7 +204,7 @@ impl ScoreReport {
         ScoreReport {
             warnings,
             notes,
-            catalog: format!("{} ({})", catalog.header.name, catalog.origin),
+            catalog: format!("{}; {}", catalog.header.name, catalog.origin),
             catalog_tasks: catalog
                 .tasks
                 .iter()

@@ -123,7 +123,7 @@ impl TrialRecord {
         let task = required("task")?;
         if catalog.get(&task).is_none() {
             return Err(fail(format!(
-                "unknown task {task:?} (the catalog, {}, has {})",
+                "unknown task {task:?}: not in the {} ({})",
                 catalog.origin,
                 catalog.ids()
             )));
@@ -161,6 +161,15 @@ impl TrialRecord {
             }
         }
 
+        if !events.iter().any(|(_, e)| *e == Event::Start) {
+            let first = events
+                .iter()
+                .position(|(_, e)| !matches!(e, Event::Note(_)))
+                .map_or(String::new(), |i| {
+                    format!(" (the first event is {})", at(i))
+                });
+            return Err(fail(format!("missing start event{first}")));
+        }
         let mut start = None;
         let mut abort = None;
         let mut stop = None;

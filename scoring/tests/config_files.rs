@@ -7,10 +7,7 @@
 mod common;
 
 use common::*;
-use scoring::{
-    BaselineTable, Ending, POMDAR_TASKS_TOML, ScoringRules, TaskCatalog, TrialRecord,
-    compute_baseline,
-};
+use scoring::{BaselineTable, Ending, ScoringRules, TaskCatalog, TrialRecord, compute_baseline};
 use serde_json::json;
 
 fn catalog_error(text: &str) -> String {
@@ -98,22 +95,6 @@ fn catalog_syntax_errors_name_the_file_and_the_key() {
     );
     let message = catalog_error(&one_task("{ kind = \"grasp\", levels = 3 }", ""));
     assert!(message.contains("levels"), "{message}");
-}
-
-#[test]
-fn the_shipped_catalog_is_the_builtin_one() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../launch_configs/tasks/pomdar_tasks.toml"
-    );
-    let shipped = include_str!(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../launch_configs/tasks/pomdar_tasks.toml"
-    ));
-    assert_eq!(
-        shipped, POMDAR_TASKS_TOML,
-        "{path} differs from scoring/data/tasks_pomdar.toml"
-    );
 }
 
 #[test]
@@ -244,15 +225,4 @@ fn the_baseline_is_the_mean_time_of_recorded_human_trials() {
             .iter()
             .any(|l| l.file == "c.mcap" && l.reason.starts_with("timed out"))
     );
-}
-
-#[test]
-fn the_shipped_default_rules_are_the_defaults() {
-    let text = include_str!(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../launch_configs/scoring/default_rules.toml"
-    ));
-    let rules =
-        ScoringRules::from_toml_str(text, "default_rules.toml", &TaskCatalog::builtin()).unwrap();
-    assert_eq!(rules, ScoringRules::default());
 }

@@ -310,7 +310,17 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
                 false,
                 &[(1.0, progress(1.0)), (5.0, stop())],
             ),
-            "no_start.mcap: event 1 (progress, +0.000 s) comes before the start event",
+            "no_start.mcap: missing start event (the first event is event 1 (progress, +0.000 s))",
+        ),
+        (
+            trial(
+                "late_start.mcap",
+                "V1",
+                "orca_full",
+                false,
+                &[(1.0, progress(1.0)), (2.0, start()), (5.0, stop())],
+            ),
+            "late_start.mcap: event 1 (progress, +0.000 s) comes before the start event",
         ),
         (
             trial(

@@ -21,6 +21,14 @@ pub enum LaunchConfigKind {
     Station,
     /// `calibration/*.toml`: calibration settings (`pomdar calibrate --settings`).
     CalibrationSettings,
+    /// `tasks/*.toml`: task catalogs (`pomdar score --catalog`).
+    TaskCatalog,
+    /// `scoring/*.toml`: scoring rules (`pomdar score --rules`), checked against the built-in
+    /// task catalog.
+    ScoringRules,
+    /// `baselines/*.toml`: human baseline tables (`pomdar score --baseline`), checked against
+    /// the built-in task catalog.
+    Baseline,
 }
 
 impl LaunchConfigKind {
@@ -32,6 +40,9 @@ impl LaunchConfigKind {
             "retarget" => Some(LaunchConfigKind::Retarget),
             "station" => Some(LaunchConfigKind::Station),
             "calibration" => Some(LaunchConfigKind::CalibrationSettings),
+            "tasks" => Some(LaunchConfigKind::TaskCatalog),
+            "scoring" => Some(LaunchConfigKind::ScoringRules),
+            "baselines" => Some(LaunchConfigKind::Baseline),
             _ => None,
         }
     }
@@ -41,7 +52,7 @@ impl LaunchConfigKind {
 pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     let Some(kind) = LaunchConfigKind::of(path) else {
         bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/ or calibration/)",
+            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/ or baselines/)",
             path.display()
         );
     };
@@ -60,6 +71,23 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
         LaunchConfigKind::CalibrationSettings => {
             calibration::CalibrationSettings::from_toml_str(&text)
                 .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        }
+        LaunchConfigKind::TaskCatalog => {
+            scoring::TaskCatalog::from_toml_str(&text, &path.display().to_string())?;
+        }
+        LaunchConfigKind::ScoringRules => {
+            scoring::ScoringRules::from_toml_str(
+                &text,
+                &path.display().to_string(),
+                &scoring::TaskCatalog::builtin(),
+            )?;
+        }
+        LaunchConfigKind::Baseline => {
+            scoring::BaselineTable::from_toml_str(
+                &text,
+                &path.display().to_string(),
+                &scoring::TaskCatalog::builtin(),
+            )?;
         }
     }
     Ok(kind)

@@ -2,9 +2,11 @@
 //!
 //! The one crate that does I/O: files, ROS 2 (ros2-client + tokio) and MCAP logs; the
 //! operator console arrives with issue 8. The pure crates (`retarget`, `calibration`,
-//! `scoring`, `msgs`) compute; this crate reads, writes and talks.
+//! `scoring`, `msgs`) compute; this crate reads, writes and talks (`score`: the trial files
+//! and reports of `pomdar score` and `pomdar baseline`).
 
 pub mod arm;
+pub mod atomic_file;
 pub mod calibrate;
 pub mod cli;
 pub mod clock;
@@ -13,8 +15,10 @@ pub mod hand_source;
 pub mod launch_config;
 pub mod mcap_log;
 pub mod model_report;
+pub mod progress_bar;
 pub mod replay;
 pub mod resim;
 pub mod ros;
+pub mod score;
 pub mod sim;
 pub mod station;

@@ -13,8 +13,9 @@ use teleop::model_report;
 ///
 /// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
 /// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
-/// glove, mock robot nodes, the all-in-one demo, hand model inspection, and the per-user glove
-/// calibration. Scoring and the operator console arrive in later issues.
+/// glove, mock robot nodes, the all-in-one demo, hand model inspection, the per-user glove
+/// calibration, and scoring trial logs against a human baseline. The operator console arrives
+/// in a later issue.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -100,6 +101,53 @@ enum Command {
     ///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
     #[command(verbatim_doc_comment)]
     Calibrate(teleop::calibrate::calibrate_command::CalibrateArgs),
+    /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
+    /// embodiment.
+    ///
+    /// Reads each trial's pomdar_trial metadata (task, embodiment, practice, user, ...) and its
+    /// events on /pomdar/trial_events, through the MCAP summary (only the chunks holding events
+    /// are decompressed). Per trial: time = stop − start (aborted: abort − start); correctness
+    /// from the progress events per the task's kind (notches or curves passed / total,
+    /// degrees / 360, millimetres / 200 for H4 and H5, grasp level 0 / 0.5 / 1, a drop = 0.5);
+    /// speed = baseline time / trial time (unbounded above). Aborted or timed-out trials follow
+    /// the rules file (default: correctness reached, speed term 0). Practice trials are shown
+    /// but never averaged. Per task × embodiment: mean ± sample std over recorded trials; per
+    /// embodiment: the overall score as the mean over attempted tasks and as the mean over all
+    /// 18 with missing tasks = 0, with the embodiment's DoF.
+    ///
+    /// Without --baseline, or for a task the baseline lacks, there is no score, only
+    /// correctness, and every report says so; a baseline marked example = true is flagged in
+    /// every report. A file that cannot be scored (not MCAP, truncated, no pomdar_trial record,
+    /// missing start or stop, events out of order, unknown task, a progress value the task does
+    /// not allow, ...) is named with its reason on stderr and in the reports; the other files
+    /// are still scored. Interrupted recordings (*.mcap.part) are skipped with a note.
+    ///
+    /// Prints the table on stdout (or the JSON report with --json); progress on stderr for
+    /// large sets. Exit status: 0 every file scored; 3 some files rejected (reports still
+    /// written); 1 the run failed (bad catalog, rules or baseline file, no trial files, a
+    /// report or figure could not be written).
+    ///
+    /// Examples:
+    ///   pomdar score trials/ --baseline baselines/eth_2026.toml
+    ///   pomdar score trials/orca_full trials/orca_5 --baseline baselines/eth_2026.toml --out report/
+    ///   pomdar score trials/ --rules launch_configs/scoring/default_rules.toml --json > scores.json
+    #[command(verbatim_doc_comment)]
+    Score(teleop::score::score_command::ScoreArgs),
+    /// Compute the human baseline table from recorded human trials (embodiment "human").
+    ///
+    /// Per task: the mean and sample standard deviation of the trial time (start → stop) over
+    /// recorded trials that were stopped, not aborted, and within the rules' time limit;
+    /// practice, aborted and timed-out trials are listed and left out. Trials of another
+    /// embodiment are refused by name. Writes the table atomically as TOML (example = false,
+    /// a source note with --source, the trial count and the users), for `pomdar score
+    /// --baseline`. Exit status: 0 every file used or left out for a stated reason; 3 some
+    /// files were rejected or refused (the table is still written from the rest); 1 nothing
+    /// usable, or a file could not be read or written.
+    ///
+    /// Example:
+    ///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
+    #[command(verbatim_doc_comment)]
+    Baseline(teleop::score::baseline_command::BaselineArgs),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -147,6 +195,10 @@ fn main() -> ExitCode {
             };
             model_report::run(&source, &pose, json)
         }
+        Command::Score(args) => return exit_code(teleop::score::score_command::score(args)),
+        Command::Baseline(args) => {
+            return exit_code(teleop::score::baseline_command::baseline(args));
+        }
         Command::Demo(args) => cli::run_async(cli::demo(args)),
         Command::Calibrate(args) => teleop::calibrate::calibrate_command::calibrate(args),
         Command::Resim(args) => cli::resim(args),
@@ -157,8 +209,13 @@ fn main() -> ExitCode {
         Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),
         Command::MockFranka(args) => cli::run_async(cli::mock_franka(args)),
     };
+    exit_code(result.map(|()| ExitCode::SUCCESS))
+}
+
+/// The process's exit status: the command's, or 1 after printing the error.
+fn exit_code(result: anyhow::Result<ExitCode>) -> ExitCode {
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         Err(error) => {
             eprintln!("error: {error:#}");
             ExitCode::FAILURE

@@ -46,3 +46,48 @@ fn the_shipped_calibration_settings_spell_out_the_defaults() {
     let settings = calibration::CalibrationSettings::from_toml_str(&text).unwrap();
     assert_eq!(settings, calibration::CalibrationSettings::default());
 }
+
+#[test]
+fn the_shipped_task_catalog_is_the_builtin_one() {
+    let path = workspace_root().join("launch_configs/tasks/pomdar_tasks.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        text,
+        scoring::POMDAR_TASKS_TOML,
+        "{} differs from scoring/data/tasks_pomdar.toml",
+        path.display()
+    );
+    let catalog = scoring::TaskCatalog::from_toml_str(&text, "pomdar_tasks.toml").unwrap();
+    assert_eq!(catalog.len(), 18);
+}
+
+#[test]
+fn the_shipped_scoring_rules_spell_out_the_defaults() {
+    let path = workspace_root().join("launch_configs/scoring/default_rules.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let rules = scoring::ScoringRules::from_toml_str(
+        &text,
+        "default_rules.toml",
+        &scoring::TaskCatalog::builtin(),
+    )
+    .unwrap();
+    assert_eq!(rules, scoring::ScoringRules::default());
+}
+
+#[test]
+fn a_broken_baseline_is_reported_with_file_and_task() {
+    let dir = std::env::temp_dir().join(format!("pomdar-launch-baseline-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("baselines")).unwrap();
+    let path = dir.join("baselines/lab.toml");
+    std::fs::write(
+        &path,
+        "[baseline]\nexample = false\nsource = \"lab\"\n[[task]]\nid = \"V1\"\nmean_s = -2.0\nn = 3\n",
+    )
+    .unwrap();
+    let err = format!("{:#}", check_file(&path).unwrap_err());
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        err.contains("lab.toml") && err.contains("task V1: mean_s"),
+        "{err}"
+    );
+}

@@ -23,6 +23,8 @@
 //!   the last flush, and says what was lost ([`RecoveryReport`]).
 //! - [`TrialReader`]: reads a complete file from any tool into memory; messages in log-time
 //!   order as [`LoggedMessage`]s, decoded with the `msgs` types.
+//! - [`read_trial_events`]: only the metadata and the trial events, through the summary's
+//!   indexes (decompresses only the chunks that hold events): what scoring reads.
 //!
 //! ```no_run
 //! use std::collections::BTreeMap;
@@ -50,6 +52,7 @@
 //! This module reads no clock: every time is a parameter.
 
 mod error;
+mod event_reader;
 mod logged_message;
 mod part_file;
 pub mod qos_profile;
@@ -61,6 +64,8 @@ mod trial_writer;
 mod writer_options;
 
 #[cfg(test)]
+mod event_reader_tests;
+#[cfg(test)]
 mod qos_profile_tests;
 #[cfg(test)]
 mod record_scan_tests;
@@ -70,6 +75,7 @@ mod test_dir;
 mod trial_writer_tests;
 
 pub use error::LogError;
+pub use event_reader::{TrialEvents, read_trial_events};
 pub use logged_message::{LoggedMessage, decode};
 pub use part_file::part_path_for;
 pub use qos_profile::{

@@ -1,0 +1,118 @@
+//! The summary-indexed event reader against the whole-file reader, on the station's own logs,
+//! and its refusals (truncated, not MCAP).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use msgs::{Float32MultiArray, StringMsg};
+use serde_json::json;
+
+use super::test_dir::TestDir;
+use super::*;
+
+const T0: i64 = 1_732_100_000_000_000_000;
+const MS: i64 = 1_000_000;
+
+/// 10 s of keypoints at 100 Hz with events at 0, 2.5, 5, 7.5 s and stop at 10 s.
+fn write_trial(path: &Path) -> Vec<(i64, String)> {
+    let options = TrialWriterOptions {
+        sync_on_flush: false,
+        ..TrialWriterOptions::default()
+    };
+    let mut w = TrialWriter::create(path, options).unwrap();
+    w.write_metadata(
+        "pomdar_trial",
+        BTreeMap::from([("task".to_string(), "V1".to_string())]),
+    )
+    .unwrap();
+    let mut events = Vec::new();
+    let keypoints = Float32MultiArray {
+        data: (0..66).map(|i| i as f32 * 0.01).collect(),
+        ..Float32MultiArray::default()
+    };
+    for i in 0..=1000 {
+        let t = T0 + i * 10 * MS;
+        if i % 250 == 0 {
+            let event = if i == 0 {
+                json!({"event": "start"})
+            } else if i == 1000 {
+                json!({"event": "stop", "summary": {"frames": i}})
+            } else {
+                json!({"event": "progress", "value": 1})
+            };
+            w.write_event(t, &event).unwrap();
+            events.push((t, event.to_string()));
+        }
+        w.write("/ingress/mano", t, t, &keypoints).unwrap();
+    }
+    w.write_metadata("other", BTreeMap::new()).unwrap();
+    w.finish().unwrap();
+    events
+}
+
+#[test]
+fn reads_metadata_and_events_from_the_event_chunks_only() {
+    let dir = TestDir::new("event_reader");
+    let path = dir.path().join("t.mcap");
+    let written = write_trial(&path);
+    let read = read_trial_events(&path).unwrap();
+    assert!(!read.read_whole_file);
+    assert_eq!(read.events, written);
+    assert_eq!(read.metadata.len(), 2);
+    assert_eq!(
+        read.metadata_named("pomdar_trial").unwrap()["task"],
+        "V1".to_string()
+    );
+    // 5 event chunks out of (at least) one per second of keypoints.
+    assert_eq!(read.chunks_read, 5);
+    assert!(read.chunks_total >= 11, "{}", read.chunks_total);
+
+    // The whole-file reader agrees.
+    let whole = TrialReader::open(&path).unwrap();
+    let via_whole: Vec<(i64, String)> = whole
+        .messages_on(TRIAL_EVENTS_TOPIC)
+        .map(|m| (m.log_time_ns, m.decode::<StringMsg>().unwrap().data))
+        .collect();
+    assert_eq!(via_whole, read.events);
+}
+
+fn copy_prefix(from: &Path, to: PathBuf, len: usize) -> PathBuf {
+    let bytes = std::fs::read(from).unwrap();
+    std::fs::write(&to, &bytes[..len]).unwrap();
+    to
+}
+
+#[test]
+fn a_cut_file_is_a_truncated_file_to_recover() {
+    let dir = TestDir::new("event_reader_cut");
+    let path = dir.path().join("t.mcap");
+    write_trial(&path);
+    let size = std::fs::metadata(&path).unwrap().len() as usize;
+    for len in [size - 1, size / 2, 20] {
+        let cut = copy_prefix(&path, dir.path().join(format!("cut{len}.mcap")), len);
+        let err = read_trial_events(&cut).unwrap_err().to_string();
+        assert!(
+            err.contains("truncated file") && err.contains("pomdar recover"),
+            "{len}: {err}"
+        );
+        assert!(err.contains(&format!("cut{len}.mcap")), "{err}");
+    }
+}
+
+#[test]
+fn other_files_are_not_mcap() {
+    let dir = TestDir::new("event_reader_other");
+    let path = dir.path().join("notes.mcap");
+    std::fs::write(&path, b"just some text, long enough").unwrap();
+    let err = read_trial_events(&path).unwrap_err().to_string();
+    assert!(err.contains("notes.mcap: not an MCAP file"), "{err}");
+    std::fs::write(&path, b"tiny").unwrap();
+    let err = read_trial_events(&path).unwrap_err().to_string();
+    assert!(err.contains("shorter than the MCAP magic"), "{err}");
+    let err = read_trial_events(&dir.path().join("missing.mcap"))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("missing.mcap: cannot open"), "{err}");
+}

@@ -1,0 +1,149 @@
+//! `pomdar score`: score trial logs, print the table, write the reports.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::Args;
+use scoring::{FileProblem, ReportInputs, ScoreReport, ScoringError, TrialScore, score_trial};
+
+use super::load_trial::load_trial_log;
+use super::parallel_files::{process_files, progress_style};
+use super::report_files::write_report_files;
+use super::score_inputs::ScoringInputs;
+use super::trial_files::collect_trial_files;
+
+/// Exit status when the run finished but some trial files were rejected.
+pub const EXIT_SOME_REJECTED: u8 = 3;
+
+/// `pomdar score` options.
+#[derive(Debug, Args)]
+pub struct ScoreArgs {
+    /// Trial logs (.mcap), or directories searched recursively for them.
+    #[arg(required = true, value_name = "PATHS")]
+    pub paths: Vec<PathBuf>,
+    /// Human baseline table (TOML, from `pomdar baseline`). Without it, or for tasks it does
+    /// not list, trials show correctness only (with a warning), never an invented time.
+    #[arg(long, value_name = "FILE")]
+    pub baseline: Option<PathBuf>,
+    /// Task catalog (TOML; default: the built-in 18 POMDAR tasks, also shipped as
+    /// launch_configs/tasks/pomdar_tasks.toml).
+    #[arg(long, value_name = "FILE")]
+    pub catalog: Option<PathBuf>,
+    /// Scoring rules (TOML; default: launch_configs/scoring/default_rules.toml's values:
+    /// weights 0.8/0.2, no time limit, unfinished trials keep their correctness with speed 0).
+    #[arg(long, value_name = "FILE")]
+    pub rules: Option<PathBuf>,
+    /// Write report.md, scores.csv, overall.csv, trials.csv, scores.json and the figures
+    /// (radar_manipulation, radar_grasp, overall_vs_dof, overall_vs_dof_all_tasks; .svg and
+    /// .png) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Print the report as JSON on stdout instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The reason of a scoring error, without the file name the report shows beside it.
+pub(crate) fn reason(error: ScoringError) -> String {
+    match error {
+        ScoringError::Trial { reason, .. } => reason,
+        other => other.to_string(),
+    }
+}
+
+/// `pomdar score`.
+pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
+    let started = Instant::now();
+    let inputs = ScoringInputs::load(
+        args.catalog.as_deref(),
+        args.rules.as_deref(),
+        args.baseline.as_deref(),
+    )?;
+    let found = collect_trial_files(&args.paths);
+    if found.files.is_empty() && found.problems.is_empty() {
+        for s in &found.skipped {
+            eprintln!("note: skipped {}: {}", s.file, s.reason);
+        }
+        anyhow::bail!(
+            "no .mcap trial files in {}",
+            args.paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    let results = process_files(
+        &found.files,
+        |path| {
+            let log = load_trial_log(path)?;
+            score_trial(
+                &log,
+                &inputs.catalog,
+                inputs.baseline.as_ref(),
+                &inputs.rules,
+            )
+            .map_err(reason)
+        },
+        progress_style(found.files.len()),
+        "trial files scored",
+    );
+    let mut scores: Vec<TrialScore> = Vec::new();
+    let mut rejected = found.problems.clone();
+    for (path, result) in found.files.iter().zip(results) {
+        match result {
+            Ok(s) => scores.push(s),
+            Err(reason) => rejected.push(FileProblem {
+                file: path.display().to_string(),
+                reason,
+            }),
+        }
+    }
+    let scored = scores.len();
+    let mut report = ScoreReport::build(ReportInputs {
+        catalog: &inputs.catalog,
+        baseline: inputs.baseline.as_ref(),
+        rules: &inputs.rules,
+        rules_origin: &inputs.rules_origin,
+        dof: &inputs.dof,
+        scores,
+        rejected,
+        skipped: found.skipped,
+    });
+
+    let mut figure_errors = Vec::new();
+    if let Some(dir) = &args.out {
+        let written = write_report_files(dir, &mut report)?;
+        figure_errors = written.figure_errors;
+        eprintln!("wrote {} files to {}", written.files.len(), dir.display());
+    }
+    if args.json {
+        println!("{}", report.to_json());
+    } else {
+        print!("{}", scoring::render_terminal(&report));
+    }
+    for s in &report.skipped {
+        eprintln!("note: skipped {}: {}", s.file, s.reason);
+    }
+    for r in &report.rejected {
+        eprintln!("error: {}: {}", r.file, r.reason);
+    }
+    for e in &figure_errors {
+        eprintln!("error: {e}");
+    }
+    eprintln!(
+        "scored {scored} of {} trial files ({} rejected, {} skipped) in {:.2} s",
+        scored + report.rejected.len(),
+        report.rejected.len(),
+        report.skipped.len(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(if !figure_errors.is_empty() {
+        ExitCode::FAILURE
+    } else if !report.rejected.is_empty() {
+        ExitCode::from(EXIT_SOME_REJECTED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

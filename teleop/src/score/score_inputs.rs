@@ -1,0 +1,77 @@
+//! The configuration of a scoring run, read from files: task catalog (`--catalog`, default
+//! the built-in one), rules (`--rules`, default the paper's weights), baseline
+//! (`--baseline`), and the embodiments' degrees of freedom (the built-in embodiment catalog).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::Context as _;
+use scoring::{BaselineTable, DEFAULT_RULES_ORIGIN, ScoringRules, TaskCatalog};
+
+/// The catalog, rules and baseline of a run.
+#[derive(Debug, Clone)]
+pub struct ScoringInputs {
+    /// Task catalog.
+    pub catalog: TaskCatalog,
+    /// Rules.
+    pub rules: ScoringRules,
+    /// Where the rules came from.
+    pub rules_origin: String,
+    /// Baseline, if given.
+    pub baseline: Option<BaselineTable>,
+    /// Degrees of freedom per embodiment.
+    pub dof: BTreeMap<String, u32>,
+}
+
+fn read(path: &Path, what: &str) -> anyhow::Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))
+}
+
+impl ScoringInputs {
+    /// Loads and validates the files given (errors name the file, the key and the allowed
+    /// values).
+    pub fn load(
+        catalog: Option<&Path>,
+        rules: Option<&Path>,
+        baseline: Option<&Path>,
+    ) -> anyhow::Result<ScoringInputs> {
+        let catalog = match catalog {
+            Some(path) => TaskCatalog::from_toml_str(
+                &read(path, "task catalog")?,
+                &path.display().to_string(),
+            )?,
+            None => TaskCatalog::builtin(),
+        };
+        let (rules, rules_origin) = match rules {
+            Some(path) => {
+                let origin = path.display().to_string();
+                let rules =
+                    ScoringRules::from_toml_str(&read(path, "scoring rules")?, &origin, &catalog)?;
+                (rules, origin)
+            }
+            None => (ScoringRules::default(), DEFAULT_RULES_ORIGIN.to_string()),
+        };
+        let baseline = baseline
+            .map(|path| {
+                BaselineTable::from_toml_str(
+                    &read(path, "baseline")?,
+                    &path.display().to_string(),
+                    &catalog,
+                )
+                .map_err(anyhow::Error::from)
+            })
+            .transpose()?;
+        let dof = retarget::EmbodimentCatalog::builtin()
+            .embodiments
+            .iter()
+            .map(|e| (e.name.clone(), u32::try_from(e.dof).unwrap_or(u32::MAX)))
+            .collect();
+        Ok(ScoringInputs {
+            catalog,
+            rules,
+            rules_origin,
+            baseline,
+            dof,
+        })
+    }
+}
