@@ -1,7 +1,8 @@
 //! `pomdar calibrate` as the operator runs it (the built binary): a simulated user's whole
 //! session over loopback DDS to a profile, the same session fitted again from its recording,
 //! sessions with a bad pose refused without writing anything, and the station and resim
-//! refusing a bad profile (naming the file and the key) and accepting the good one.
+//! refusing a bad profile (naming the file and the key) and accepting the good one; the
+//! session file decoded by the independent MCAP readers (interop, issue 9).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
@@ -12,6 +13,7 @@ use std::sync::OnceLock;
 
 use calibration::CalibrationProfile;
 use msgs::Float32MultiArray;
+use pomdar_tests::interop::{assert_readers_decode_as_we_do, independent_readers_with_values};
 use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::station_harness::test_domain;
 use teleop::calibrate::session_events::capture_windows;
@@ -144,6 +146,19 @@ fn a_simulated_session_writes_a_profile_close_to_the_truth() {
         "{} commanded poses",
         commanded.len()
     );
+}
+
+/// The session file (another kind of file the station writes, beside trial logs) decodes with
+/// the independent readers (`mcap` + `mcap-ros2-support`, `rosbags`) to exactly the values the
+/// station reads from it, message for message (the same session as the test above: no extra
+/// DDS time).
+#[test]
+fn the_independent_readers_decode_the_session_file_as_the_station_does() {
+    let sim = simulated();
+    let log = TrialReader::open(&sim.session).unwrap();
+    if let Some(report) = independent_readers_with_values(&sim.session) {
+        assert_readers_decode_as_we_do(&report, &log);
+    }
 }
 
 #[test]
