@@ -188,7 +188,8 @@ pub fn resim(
             let points = keypoints(message, format)
                 .with_context(|| format!("keypoints at log time {now} ns"))?
                 .points();
-            match r.core.on_keypoints(&points, now) {
+            let source_ns = (message.publish_time_ns > 0).then_some(message.publish_time_ns);
+            match r.core.on_stamped_keypoints(&points, source_ns, now) {
                 Verdict::New => {
                     r.frame_source_ns = if message.publish_time_ns > 0 {
                         message.publish_time_ns

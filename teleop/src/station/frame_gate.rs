@@ -6,7 +6,8 @@
 //! between consecutive points of each digit chain, and wrist to each digit base) within
 //! `[min_bone_m, max_bone_m]`; no point moving more than `max_jump_m` relative to the wrist
 //! since the last accepted frame (the arm may move the whole hand freely; a finger may not
-//! teleport).
+//! teleport). Before these, frames stamped by their sender before the newest accepted one are
+//! turned away as late ([`source_order`](super::source_order); the station core applies it).
 
 use nalgebra::Point3;
 use retarget::{Finger, KeypointLayout};
@@ -23,6 +24,10 @@ pub struct GateConfig {
     /// Largest plausible motion of any point relative to the wrist between accepted frames,
     /// metres.
     pub max_jump_m: f64,
+    /// A frame whose source stamp is at most this much older than the newest accepted frame's
+    /// is late (rejected, `out_of_order`); older still means the sender's clock jumped back
+    /// (followed). Milliseconds; less than `watchdog.disengage_timeout_ms`.
+    pub reorder_window_ms: u64,
 }
 
 impl Default for GateConfig {
@@ -31,6 +36,7 @@ impl Default for GateConfig {
             min_bone_m: 0.004,
             max_bone_m: 0.16,
             max_jump_m: 0.12,
+            reorder_window_ms: 250,
         }
     }
 }
@@ -41,13 +47,19 @@ impl GateConfig {
         if !(self.min_bone_m >= 0.0 && self.min_bone_m < self.max_bone_m && self.max_bone_m <= 1.0)
         {
             anyhow::bail!(
-                "safety.min_bone_m = {} and safety.max_bone_m = {} must satisfy 0 ≤ min < max ≤ 1",
+                "gate.min_bone_m = {} and gate.max_bone_m = {} must satisfy 0 ≤ min < max ≤ 1",
                 self.min_bone_m,
                 self.max_bone_m
             );
         }
         if !(self.max_jump_m > 0.0 && self.max_jump_m <= 1.0) {
-            anyhow::bail!("safety.max_jump_m = {} must be in (0, 1]", self.max_jump_m);
+            anyhow::bail!("gate.max_jump_m = {} must be in (0, 1]", self.max_jump_m);
+        }
+        if !(1..=10_000).contains(&self.reorder_window_ms) {
+            anyhow::bail!(
+                "gate.reorder_window_ms = {} must be in 1..=10000",
+                self.reorder_window_ms
+            );
         }
         Ok(())
     }
@@ -67,16 +79,19 @@ pub enum Rejection {
     Jump,
     /// The retargeter refused it (collapsed palm).
     Retargeter,
+    /// Stamped by its sender before the newest accepted frame (late, reordered).
+    OutOfOrder,
 }
 
 impl Rejection {
     /// All reasons, for counters.
-    pub const ALL: [Rejection; 5] = [
+    pub const ALL: [Rejection; 6] = [
         Rejection::WrongSize,
         Rejection::NonFinite,
         Rejection::BoneLength,
         Rejection::Jump,
         Rejection::Retargeter,
+        Rejection::OutOfOrder,
     ];
 }
 
@@ -107,6 +122,11 @@ impl FrameGate {
             config,
             last: None,
         }
+    }
+
+    /// The limits.
+    pub fn config(&self) -> &GateConfig {
+        &self.config
     }
 
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).

@@ -4,12 +4,15 @@
 //!
 //! Stamps: a command's header carries the DDS source time of the glove frame it was computed
 //! from (its receive time when the sender gives none), so any subscriber can measure
-//! end-to-end latency; all other times come from the station's one clock.
+//! end-to-end latency; held commands, arm targets and the status carry the station's one
+//! clock. Frames that arrive together are taken together (the newest wins); frames stamped
+//! before the newest accepted one are rejected as late. docs/FAULTS.md lists what the station
+//! does on each input fault.
 
 use std::time::Duration;
 
 use anyhow::Context as _;
-use futures::StreamExt;
+use futures::{FutureExt as _, StreamExt};
 use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
 use nalgebra::Isometry3;
 use retarget::{EmbodimentCatalog, HandModel, Retargeter};
@@ -28,6 +31,11 @@ use crate::station::recorder::{RecordingOptions, StationRecorder};
 use crate::station::station_config::{ControlMode, KeypointFormat, StationConfig};
 use crate::station::station_core::{Counters, StationCore};
 use crate::station::watchdog::Watchdog;
+
+/// Most keypoint frames taken in one go when they arrive together (see the keypoint branch of
+/// [`run_station`]); more wait for the next turn of the loop, so a flood cannot starve the
+/// control timer.
+const MAX_BURST_FRAMES: usize = 1000;
 
 /// What the operator (console, test, demo) tells a running station.
 #[derive(Debug, Clone, PartialEq)]
@@ -236,23 +244,35 @@ pub async fn run_station(
                 }
             }
             Some(item) = keypoints.next() => {
-                let now = clock.now_ns();
-                if let Ok((message, source_ns)) = item {
-                    if let Some(r) = recorder.as_mut() {
-                        r.keypoints(&config.input.keypoints_topic, now, source_ns, &message);
-                    }
-                    let points = message.points();
-                    match core.on_keypoints(&points, now) {
-                        Verdict::New => {
-                            input_rate.record(now);
-                            frame_source_ns = source_ns.unwrap_or(now);
-                            if auto_engage_pending && core.engage(now) {
-                                auto_engage_pending = false;
-                            }
-                            tick_now = config.control.mode == ControlMode::EveryFrame;
+                // A burst (frames queued while the station was busy, or delivered together after
+                // a network stall) is taken whole before the next control step: every frame is
+                // recorded and judged, the newest wins, and every-frame control solves once for
+                // it instead of working through a backlog of stale frames.
+                let mut next = Some(item);
+                let mut taken = 0;
+                while let Some(item) = next.take() {
+                    taken += 1;
+                    let now = clock.now_ns();
+                    if let Ok((message, source_ns)) = item {
+                        if let Some(r) = recorder.as_mut() {
+                            r.keypoints(&config.input.keypoints_topic, now, source_ns, &message);
                         }
-                        Verdict::Repeat => repeat_rate.record(now),
-                        Verdict::Rejected(_) => {}
+                        let points = message.points();
+                        match core.on_stamped_keypoints(&points, source_ns, now) {
+                            Verdict::New => {
+                                input_rate.record(now);
+                                frame_source_ns = source_ns.unwrap_or(now);
+                                if auto_engage_pending && core.engage(now) {
+                                    auto_engage_pending = false;
+                                }
+                                tick_now = config.control.mode == ControlMode::EveryFrame;
+                            }
+                            Verdict::Repeat => repeat_rate.record(now),
+                            Verdict::Rejected(_) => {}
+                        }
+                    }
+                    if taken < MAX_BURST_FRAMES {
+                        next = keypoints.next().now_or_never().flatten();
                     }
                 }
             }

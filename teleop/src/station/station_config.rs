@@ -218,6 +218,13 @@ impl StationConfig {
         self.output.qos.validate("output.qos")?;
         self.gate.validate()?;
         self.watchdog.validate()?;
+        if self.gate.reorder_window_ms >= self.watchdog.disengage_timeout_ms {
+            bail!(
+                "gate.reorder_window_ms = {} must be less than watchdog.disengage_timeout_ms ({}): a sender's clock stepping back must not disengage the station",
+                self.gate.reorder_window_ms,
+                self.watchdog.disengage_timeout_ms
+            );
+        }
         self.retarget
             .validate()
             .map_err(|e| anyhow::anyhow!("retarget: {e}"))?;

@@ -1,8 +1,9 @@
 //! The station's control step, synchronous and clock-free: frames in, commands out.
 //!
-//! The ROS adapter feeds it keypoint frames with their receive times and calls [`StationCore::tick`]
-//! at the configured rate (or on every new frame); tests drive it directly. It owns the frame
-//! gate, the watchdog and the retargeter, and keeps the counters the status topic reports.
+//! The ROS adapter feeds it keypoint frames with their receive times (and their senders' source
+//! stamps) and calls [`StationCore::tick`] at the configured rate (or on every new frame); tests
+//! drive it directly. It owns the source order, the frame gate, the watchdog and the
+//! retargeter, and keeps the counters the status topic reports.
 
 use std::collections::BTreeMap;
 
@@ -11,6 +12,7 @@ use retarget::{Retargeter, SolveStatus};
 use serde::Serialize;
 
 use crate::station::frame_gate::{FrameGate, Rejection, Verdict};
+use crate::station::source_order::{SourceOrder, StampOrder};
 use crate::station::watchdog::{DriveState, Watchdog};
 
 /// Longest time step handed to the retargeter, seconds (its rate limit caps it anyway).
@@ -38,6 +40,9 @@ pub struct Counters {
     pub frames_repeated: u64,
     /// Rejected frames by reason.
     pub rejected: BTreeMap<String, u64>,
+    /// Frames whose sender's clock had jumped (back beyond the reorder window, or ahead beyond
+    /// what the receive clock explains); they were accepted.
+    pub source_clock_jumps: u64,
     /// Frames retargeted.
     pub solves: u64,
     /// Solves that ended on the step budget.
@@ -63,6 +68,7 @@ pub struct Tick {
 #[derive(Debug)]
 pub struct StationCore {
     retargeter: Retargeter,
+    order: SourceOrder,
     gate: FrameGate,
     watchdog: Watchdog,
     pending: Option<(Vec<Point3<f64>>, i64)>,
@@ -80,6 +86,7 @@ impl StationCore {
         }
         StationCore {
             retargeter,
+            order: SourceOrder::new(gate.config().reorder_window_ms),
             gate,
             watchdog,
             pending: None,
@@ -109,9 +116,33 @@ impl StationCore {
         self.watchdog.age_ns(now_ns)
     }
 
-    /// A keypoint frame arrived at `received_ns`.
+    /// A keypoint frame without a source stamp arrived at `received_ns`.
     pub fn on_keypoints(&mut self, points: &[Point3<f64>], received_ns: i64) -> Verdict {
+        self.on_stamped_keypoints(points, None, received_ns)
+    }
+
+    /// A keypoint frame stamped `source_ns` by its sender (the DDS source time, when there is
+    /// one) arrived at `received_ns`. A frame stamped before the newest accepted one is late
+    /// and rejected (`out_of_order`); a jump of the sender's clock is counted and followed
+    /// (see [`source_order`](crate::station::source_order)). Then the frame gate decides.
+    pub fn on_stamped_keypoints(
+        &mut self,
+        points: &[Point3<f64>],
+        source_ns: Option<i64>,
+        received_ns: i64,
+    ) -> Verdict {
+        let order = source_ns.map(|s| (s, self.order.check(s, received_ns)));
+        if let Some((_, StampOrder::Late)) = order {
+            self.count_rejection(Rejection::OutOfOrder);
+            return Verdict::Rejected(Rejection::OutOfOrder);
+        }
         let verdict = self.gate.judge(points);
+        if let (Some((source, stamp)), Verdict::New | Verdict::Repeat) = (order, verdict) {
+            self.order.accept(source, received_ns);
+            if stamp == StampOrder::ClockJump {
+                self.counters.source_clock_jumps += 1;
+            }
+        }
         match verdict {
             Verdict::New => {
                 self.counters.frames_new += 1;
@@ -212,6 +243,7 @@ pub fn rejection_name(reason: Rejection) -> &'static str {
         Rejection::BoneLength => "bone_length",
         Rejection::Jump => "jump",
         Rejection::Retargeter => "retargeter",
+        Rejection::OutOfOrder => "out_of_order",
     }
 }
 
@@ -297,5 +329,38 @@ mod tests {
         assert_eq!(after.q, before.q);
         assert_eq!(core.counters().rejected["non_finite"], 1);
         assert_eq!(core.counters().rejected["wrong_size"], 1);
+    }
+
+    #[test]
+    fn late_frames_are_rejected_and_clock_jumps_followed() {
+        let (model, mut core) = station();
+        let stamped = |core: &mut StationCore, q: f64, source_ms: i64, received_ms: i64| {
+            core.on_stamped_keypoints(&frame(&model, q), Some(source_ms * MS), received_ms * MS)
+        };
+        assert_eq!(stamped(&mut core, 0.2, 100, 0), Verdict::New);
+        core.engage(MS);
+        let first = core.tick(2 * MS).hand.unwrap();
+        assert_eq!(stamped(&mut core, 0.3, 120, 20), Verdict::New);
+        // Sent before the frame at 120: late, whatever its keypoints.
+        assert_eq!(
+            stamped(&mut core, 0.4, 110, 21),
+            Verdict::Rejected(Rejection::OutOfOrder)
+        );
+        let tick = core.tick(22 * MS).hand.unwrap();
+        assert_eq!(
+            tick.frame_received_ns,
+            20 * MS,
+            "the late frame was not solved"
+        );
+        assert_ne!(tick.q, first.q);
+        assert_eq!(core.counters().rejected["out_of_order"], 1);
+        // The same stamp again with the same keypoints: a repeat, not late.
+        assert_eq!(stamped(&mut core, 0.3, 120, 23), Verdict::Repeat);
+        // The sender's clock jumps back an hour: followed, counted.
+        assert_eq!(stamped(&mut core, 0.35, 140 - 3_600_000, 40), Verdict::New);
+        assert_eq!(core.counters().source_clock_jumps, 1);
+        assert_eq!(stamped(&mut core, 0.4, 160 - 3_600_000, 60), Verdict::New);
+        assert_eq!(core.counters().rejected["out_of_order"], 1);
+        assert_eq!(core.tick(61 * MS).state, DriveState::Engaged);
     }
 }

@@ -39,13 +39,13 @@ impl WatchdogConfig {
     pub fn validate(&self) -> anyhow::Result<()> {
         if !(10..=10_000).contains(&self.hold_timeout_ms) {
             anyhow::bail!(
-                "safety.hold_timeout_ms = {} must be in 10..=10000",
+                "watchdog.hold_timeout_ms = {} must be in 10..=10000",
                 self.hold_timeout_ms
             );
         }
         if self.disengage_timeout_ms <= self.hold_timeout_ms || self.disengage_timeout_ms > 60_000 {
             anyhow::bail!(
-                "safety.disengage_timeout_ms = {} must be greater than hold_timeout_ms ({}) and at most 60000",
+                "watchdog.disengage_timeout_ms = {} must be greater than hold_timeout_ms ({}) and at most 60000",
                 self.disengage_timeout_ms,
                 self.hold_timeout_ms
             );
