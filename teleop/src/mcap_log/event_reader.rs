@@ -28,6 +28,7 @@ use mcap::records::{Record, op};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use msgs::StringMsg;
 
+use super::record_scan::chunk_records;
 use super::{LogError, TRIAL_EVENTS_TOPIC, TrialReader};
 
 /// What [`read_trial_events`] found.
@@ -132,7 +133,7 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
     for index in chunks {
         let offset = index.chunk_start_offset;
         let bytes = read_range(&mut file, path, size, offset, index.chunk_length)?;
-        let Record::Chunk { header, data } = parse_at(&bytes, offset, path)? else {
+        let Record::Chunk { .. } = parse_at(&bytes, offset, path)? else {
             return Err(damaged(
                 path,
                 offset,
@@ -140,10 +141,10 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
             ));
         };
         out.chunks_read += 1;
-        let reader = mcap::read::ChunkReader::new(header, &data)
-            .map_err(|e| damaged(path, offset, &format!("chunk: {e}")))?;
-        for record in reader {
-            let record = record.map_err(|e| damaged(path, offset, &format!("chunk: {e}")))?;
+        // Bounded decompression (record lengths limited by the chunk's size): a damaged
+        // chunk is an error, never a huge allocation.
+        let records = chunk_records(&bytes).map_err(|reason| damaged(path, offset, &reason))?;
+        for record in records {
             let Record::Message { header, data } = record else {
                 continue;
             };

@@ -116,3 +116,33 @@ fn other_files_are_not_mcap() {
         .to_string();
     assert!(err.contains("missing.mcap: cannot open"), "{err}");
 }
+
+#[test]
+fn a_damaged_event_chunk_is_an_error_not_an_allocation() {
+    let dir = TestDir::new("event_reader_damaged");
+    let path = dir.path().join("t.mcap");
+    let options = TrialWriterOptions {
+        sync_on_flush: false,
+        compression: LogCompression::None,
+        ..TrialWriterOptions::default()
+    };
+    let mut w = TrialWriter::create(&path, options).unwrap();
+    w.write_metadata("pomdar_trial", BTreeMap::new()).unwrap();
+    w.write_event(T0, &json!({"event": "start"})).unwrap();
+    w.finish().unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+    let chunk = &summary.chunk_indexes[0];
+    // Chunk body: start, end, uncompressed size (u64 each), CRC (u32), compression (u32 length
+    // + text), records length (u64), then the records: opcode u8, length u64.
+    let body = chunk.chunk_start_offset as usize + 9;
+    let compression_len = 0;
+    let crc = body + 24;
+    bytes[crc..crc + 4].copy_from_slice(&[0; 4]); // 0: no CRC to check
+    let first_record = body + 24 + 4 + 4 + compression_len + 8;
+    bytes[first_record + 1..first_record + 9].copy_from_slice(&(u64::MAX - 7).to_le_bytes());
+    let damaged = dir.path().join("damaged.mcap");
+    std::fs::write(&damaged, &bytes).unwrap();
+    let err = read_trial_events(&damaged).unwrap_err().to_string();
+    assert!(err.contains("damaged.mcap: damaged at byte"), "{err}");
+}
