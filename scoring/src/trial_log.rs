@@ -103,7 +103,7 @@ pub struct TrialRecord {
 impl TrialRecord {
     /// Trial time in seconds (start → stop, or start → abort).
     pub fn time_s(&self) -> f64 {
-        (self.end_ns - self.start_ns) as f64 * 1e-9
+        (self.end_ns - self.start_ns) as f64 / 1e9
     }
 
     /// Checks `log` (see the module docs) against `catalog`.
