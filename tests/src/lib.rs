@@ -3,6 +3,7 @@
 pub mod dependency_rule;
 pub mod interop;
 pub mod pomdar_binary;
+pub mod stamped_glove;
 pub mod station_harness;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,570 @@
+//! Glove faults against the real station over loopback DDS, each asserting exactly what
+//! docs/FAULTS.md says the station does: drop-outs shorter and longer than the hold timeout,
+//! a dead glove whose ingress republishes its last frame, bursts (timer and every-frame
+//! control), duplicated frames, out-of-order frames, and jumps of the sender's clock. (SIGKILL
+//! of the station is `fault_station_kill.rs`; the glove lost for good, then an explicit engage,
+//! is `station_dds.rs`.)
+//!
+//! Frames whose DDS source stamp matters are sent by [`StampedGlove`], which sets it; the
+//! station here shares the test's clock, so times on both sides compare directly.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::time::Duration;
+
+use msgs::JointState;
+use nalgebra::{Isometry3, Point3};
+use pomdar_tests::stamped_glove::StampedGlove;
+use pomdar_tests::station_harness::{Harness, Heard, test_domain};
+use retarget::KeypointLayout;
+use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use teleop::ros::QosConfig;
+use teleop::station::ros_station::OperatorCommand;
+use teleop::station::station_config::{ControlMode, StationConfig};
+
+const MS: i64 = 1_000_000;
+const HOUR: i64 = 3_600_000 * MS;
+
+fn glove() -> SimGlove {
+    let shape = HumanHandShape::average();
+    let motion = Motion::new(MotionKind::OpenClose, 4.0, &shape).unwrap();
+    SimGlove::new(shape, motion, KeypointLayout::Lab22).unwrap()
+}
+
+fn rows(glove: &SimGlove, t: f64) -> Vec<[f32; 3]> {
+    glove
+        .frame(t)
+        .0
+        .iter()
+        .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+        .collect()
+}
+
+fn points(glove: &SimGlove, t: f64) -> (Vec<Point3<f64>>, Isometry3<f64>) {
+    glove.frame(t)
+}
+
+fn config(mode: ControlMode) -> StationConfig {
+    let mut config = StationConfig::default();
+    config.control.mode = mode;
+    config.control.auto_engage = true;
+    config.input.qos = QosConfig::reliable(1000);
+    config.output.qos = QosConfig::reliable(1000);
+    config.output.status_rate_hz = 20.0;
+    config
+}
+
+async fn stamped_glove(h: &Harness) -> StampedGlove {
+    let glove = StampedGlove::new(&h.network, "/ingress/mano", QosConfig::reliable(1000)).unwrap();
+    glove
+        .wait_for_reader(Duration::from_secs(15))
+        .await
+        .unwrap();
+    glove
+}
+
+/// Keypoints and wrist through the harness (source stamp: now), `seconds` at `rate_hz`.
+async fn play(h: &Harness, glove: &SimGlove, from_s: f64, seconds: f64, rate_hz: f64) {
+    for i in 0..(seconds * rate_hz) as usize {
+        let t = from_s + i as f64 / rate_hz;
+        let (keypoints, wrist) = points(glove, t);
+        h.publish(&keypoints, &wrist).await.unwrap();
+        tokio::time::sleep(Duration::from_secs_f64(1.0 / rate_hz)).await;
+    }
+}
+
+/// Stamped frames at `rate_hz` for `seconds`, each stamped now + `offset_ns`; returns the
+/// stamps sent.
+async fn play_stamped(
+    h: &Harness,
+    sender: &StampedGlove,
+    glove: &SimGlove,
+    from_s: f64,
+    seconds: f64,
+    offset_ns: i64,
+) -> Vec<i64> {
+    let mut stamps = Vec::new();
+    for i in 0..(seconds * 50.0) as usize {
+        let stamp = h.clock.now_ns() + offset_ns;
+        sender
+            .publish(&rows(glove, from_s + i as f64 * 0.02), stamp)
+            .await
+            .unwrap();
+        stamps.push(stamp);
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    stamps
+}
+
+fn stamp_ns(m: &JointState) -> i64 {
+    m.header.stamp.to_nanos()
+}
+
+/// The DDS timestamp keeps 2^-32 s: a stamp comes back within a nanosecond or so.
+fn same_stamp(a: i64, b: i64) -> bool {
+    (a - b).abs() < 1_000
+}
+
+/// The latest status counters, once `condition` holds on them (at most 5 s).
+async fn counters_when(
+    h: &Harness,
+    condition: impl Fn(&serde_json::Value) -> bool,
+) -> serde_json::Value {
+    h.wait_until(Duration::from_secs(5), |heard| {
+        heard
+            .status
+            .last()
+            .is_some_and(|(_, s)| condition(&s["counters"]))
+    })
+    .await
+    .unwrap_or_else(|e| panic!("{e}: last status {:?}", h.last_status()));
+    h.last_status().unwrap()["counters"].clone()
+}
+
+fn states_between(heard: &Heard, from: i64, to: i64) -> Vec<String> {
+    heard
+        .status
+        .iter()
+        .filter(|(t, _)| *t > from && *t <= to)
+        .map(|(_, s)| s["state"].as_str().unwrap_or("").to_string())
+        .collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn dropouts_shorter_than_the_hold_timeout_change_nothing_longer_ones_hold_then_follow_again()
+{
+    let h = Harness::start(config(ControlMode::Rate), test_domain(0))
+        .await
+        .unwrap();
+    let glove = glove();
+    play(&h, &glove, 0.0, 0.6, 50.0).await;
+
+    // 80 ms without frames (hold timeout 150 ms): still engaged throughout.
+    let short_gap = h.clock.now_ns();
+    tokio::time::sleep(Duration::from_millis(80)).await;
+    play(&h, &glove, 0.7, 0.3, 50.0).await;
+    let after_short = h.clock.now_ns();
+
+    // 500 ms without frames: held within one tick of the timeout, not disengaged.
+    let stopped = h.clock.now_ns();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let resumed = h.clock.now_ns();
+    play(&h, &glove, 1.5, 0.6, 50.0).await;
+    let end = h.clock.now_ns();
+
+    {
+        let heard = h.heard.lock().unwrap();
+        let short = states_between(&heard, short_gap, after_short);
+        assert!(
+            !short.is_empty() && short.iter().all(|s| s == "engaged"),
+            "{short:?}"
+        );
+        let medium = states_between(&heard, stopped, end);
+        assert!(medium.iter().any(|s| s == "held"), "{medium:?}");
+        assert!(medium.iter().all(|s| s != "disengaged"), "{medium:?}");
+        // The hand repeats its last command through the gap; once held (timeout + one 40 ms tick)
+        // the command is stamped with the station's clock, not the last frame's source time.
+        let last_fresh = heard
+            .targets
+            .iter()
+            .rfind(|(t, _)| *t <= stopped + 20 * MS)
+            .unwrap()
+            .1
+            .clone();
+        let in_gap: Vec<&JointState> = heard
+            .targets
+            .iter()
+            .filter(|(t, _)| *t > stopped + 20 * MS && *t <= resumed)
+            .map(|(_, m)| m)
+            .collect();
+        assert!(in_gap.len() >= 8, "{} targets in the gap", in_gap.len());
+        assert!(in_gap.iter().all(|m| m.position == last_fresh.position));
+        let held: Vec<&&JointState> = in_gap
+            .iter()
+            .filter(|m| stamp_ns(m) > stopped + 150 * MS)
+            .collect();
+        assert!(held.len() >= 5, "{} held targets", held.len());
+        let arm_in_gap: Vec<_> = heard
+            .arm
+            .iter()
+            .filter(|(t, _)| *t > stopped + 20 * MS && *t <= resumed)
+            .map(|(_, m)| m.pose)
+            .collect();
+        assert!(!arm_in_gap.is_empty());
+        assert!(
+            arm_in_gap.windows(2).all(|w| w[0] == w[1]),
+            "the arm target moved while held"
+        );
+        // Frames return: followed again without an engage.
+        assert!(
+            heard
+                .targets
+                .iter()
+                .any(|(t, m)| *t > resumed && m.position != last_fresh.position),
+            "the hand did not follow after the hold"
+        );
+        assert_eq!(
+            states_between(&heard, end - 100 * MS, end).last().unwrap(),
+            "engaged"
+        );
+    }
+    h.stop().await.unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_dead_glove_republished_by_the_ingress_holds_then_disengages_the_arm_until_engage() {
+    let h = Harness::start(config(ControlMode::Rate), test_domain(1))
+        .await
+        .unwrap();
+    let glove = glove();
+    play(&h, &glove, 0.0, 0.6, 50.0).await;
+    let before = counters_when(&h, |c| c["frames_new"] == 30).await;
+
+    // The glove dies; the ingress keeps republishing its last frame at 50 Hz (new source
+    // stamps, same keypoints): repeats keep nothing alive.
+    let died = h.clock.now_ns();
+    let (last, wrist) = points(&glove, 0.58);
+    for _ in 0..75 {
+        h.publish(&last, &wrist).await.unwrap();
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let after = counters_when(&h, |c| {
+        c["frames_repeated"].as_u64() >= Some(before["frames_repeated"].as_u64().unwrap() + 70)
+    })
+    .await;
+    assert_eq!(after["frames_new"], before["frames_new"]);
+    let disengaged_at = {
+        let heard = h.heard.lock().unwrap();
+        let states = states_between(&heard, died, h.clock.now_ns());
+        assert!(states.iter().any(|s| s == "held"), "{states:?}");
+        heard
+            .status
+            .iter()
+            .find(|(t, s)| *t > died && s["state"] == "disengaged")
+            .map(|(t, _)| *t)
+            .unwrap_or_else(|| panic!("never disengaged: {states:?}"))
+    };
+
+    // New frames, no engage: the hand keeps its held command, the arm gets nothing.
+    play(&h, &glove, 1.0, 0.5, 50.0).await;
+    let engaged_at = h.clock.now_ns();
+    {
+        let heard = h.heard.lock().unwrap();
+        let arm_late = heard
+            .arm
+            .iter()
+            .filter(|(t, _)| *t > disengaged_at + 100 * MS)
+            .count();
+        assert_eq!(arm_late, 0, "arm targets after the disengage");
+        let hand: Vec<&JointState> = heard
+            .targets
+            .iter()
+            .filter(|(t, _)| *t > disengaged_at)
+            .map(|(_, m)| m)
+            .collect();
+        assert!(
+            hand.len() >= 10,
+            "the hand stopped hearing its held command"
+        );
+        assert!(hand.windows(2).all(|w| w[0].position == w[1].position));
+        // Held commands carry the station's clock.
+        assert!(hand.iter().all(|m| stamp_ns(m) > died + 150 * MS));
+    }
+
+    // An explicit engage resumes hand and arm.
+    h.operator(OperatorCommand::Engage);
+    play(&h, &glove, 1.5, 0.6, 50.0).await;
+    {
+        let heard = h.heard.lock().unwrap();
+        assert!(
+            heard.arm.iter().any(|(t, _)| *t > engaged_at),
+            "the arm did not resume after engage"
+        );
+        let held = &heard
+            .targets
+            .iter()
+            .rfind(|(t, _)| *t <= engaged_at)
+            .unwrap()
+            .1;
+        assert!(
+            heard
+                .targets
+                .iter()
+                .any(|(t, m)| *t > engaged_at && m.position != held.position)
+        );
+    }
+    h.stop().await.unwrap();
+}
+
+/// A burst of `count` frames sent back to back after half a second of steady input; returns
+/// their stamps and the time the burst started.
+async fn burst(
+    h: &Harness,
+    sender: &StampedGlove,
+    glove: &SimGlove,
+    count: usize,
+) -> (Vec<i64>, i64) {
+    play_stamped(h, sender, glove, 0.0, 0.5, 0).await;
+    counters_when(h, |c| c["frames_new"].as_u64() >= Some(25)).await;
+    let started = h.clock.now_ns();
+    let mut stamps = Vec::new();
+    for i in 0..count {
+        let stamp = started + i as i64 * 1_000; // a microsecond apart, in order
+        sender
+            .publish(&rows(glove, 0.5 + i as f64 * 0.002), stamp)
+            .await
+            .unwrap();
+        stamps.push(stamp);
+    }
+    (stamps, started)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_burst_on_timer_control_is_judged_whole_and_only_the_newest_frame_is_driven() {
+    let h = Harness::start(config(ControlMode::Rate), test_domain(2))
+        .await
+        .unwrap();
+    let sender = stamped_glove(&h).await;
+    let glove = glove();
+    let (burst, started) = burst(&h, &sender, &glove, 200).await;
+    // Every frame of the burst reaches the gate.
+    counters_when(&h, |c| c["frames_new"].as_u64() >= Some(225)).await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+
+    {
+        let heard = h.heard.lock().unwrap();
+        let window = heard
+            .targets
+            .iter()
+            .filter(|(t, _)| *t > started && *t <= started + 400 * MS)
+            .count();
+        assert!(window <= 13, "{window} targets in 400 ms at 25 Hz");
+        // A tick without a new frame repeats the last command with its stamp: stamps never go
+        // back, and few burst frames are ever driven.
+        let from_burst: Vec<i64> = heard
+            .targets
+            .iter()
+            .map(|(_, m)| stamp_ns(m))
+            .filter(|s| burst.iter().any(|b| same_stamp(*b, *s)))
+            .collect();
+        assert!(
+            from_burst.windows(2).all(|w| w[0] <= w[1]),
+            "an older frame after a newer one"
+        );
+        let mut driven = from_burst.clone();
+        driven.dedup();
+        println!("{} of 200 burst frames driven", driven.len());
+        assert!(
+            !driven.is_empty() && driven.len() <= 12,
+            "{} of 200 burst frames driven",
+            driven.len()
+        );
+        assert!(
+            same_stamp(*from_burst.last().unwrap(), *burst.last().unwrap()),
+            "the newest frame of the burst was not the last driven"
+        );
+    }
+    h.stop().await.unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_burst_on_every_frame_control_is_coalesced_and_the_newest_frame_wins() {
+    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(3))
+        .await
+        .unwrap();
+    let sender = stamped_glove(&h).await;
+    let glove = glove();
+    let (burst, _) = burst(&h, &sender, &glove, 200).await;
+    counters_when(&h, |c| c["frames_new"].as_u64() >= Some(225)).await;
+    tokio::time::sleep(Duration::from_millis(100)).await;
+
+    {
+        let heard = h.heard.lock().unwrap();
+        let from_burst: Vec<i64> = heard
+            .targets
+            .iter()
+            .map(|(_, m)| stamp_ns(m))
+            .filter(|s| burst.iter().any(|b| same_stamp(*b, *s)))
+            .collect();
+        println!("{} of 200 burst frames driven", from_burst.len());
+        assert!(
+            !from_burst.is_empty() && from_burst.len() < 200,
+            "{} of 200 burst frames driven: no coalescing",
+            from_burst.len()
+        );
+        assert!(
+            from_burst.windows(2).all(|w| w[0] < w[1]),
+            "an older frame after a newer one"
+        );
+        assert!(same_stamp(
+            *from_burst.last().unwrap(),
+            *burst.last().unwrap()
+        ));
+    }
+    h.stop().await.unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn duplicated_frames_are_counted_as_repeats_and_change_no_output() {
+    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(4))
+        .await
+        .unwrap();
+    let sender = stamped_glove(&h).await;
+    let glove = glove();
+    play_stamped(&h, &sender, &glove, 0.0, 0.3, 0).await;
+    let before = counters_when(&h, |c| c["frames_new"].as_u64() >= Some(15)).await;
+    let repeats = before["frames_repeated"].as_u64().unwrap();
+
+    let frame = rows(&glove, 0.5);
+    let stamp = h.clock.now_ns();
+    sender.publish(&frame, stamp).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(20)).await;
+    // The same sample again (a duplicate on the wire), then the same keypoints sent anew.
+    sender.publish(&frame, stamp).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(20)).await;
+    sender.publish(&frame, stamp + 20 * MS).await.unwrap();
+    let after = counters_when(&h, |c| c["frames_repeated"].as_u64() >= Some(repeats + 2)).await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+
+    assert_eq!(after["frames_repeated"].as_u64().unwrap(), repeats + 2);
+    assert_eq!(
+        after["frames_new"].as_u64().unwrap(),
+        before["frames_new"].as_u64().unwrap() + 1
+    );
+    {
+        let heard = h.heard.lock().unwrap();
+        let driven: Vec<&JointState> = heard
+            .targets
+            .iter()
+            .map(|(_, m)| m)
+            .filter(|m| same_stamp(stamp_ns(m), stamp) || same_stamp(stamp_ns(m), stamp + 20 * MS))
+            .collect();
+        assert_eq!(
+            driven.len(),
+            1,
+            "one command for the frame, none for its duplicates"
+        );
+        assert!(same_stamp(stamp_ns(driven[0]), stamp));
+        let position = &driven[0].position;
+        let first = heard
+            .targets
+            .iter()
+            .position(|(_, m)| same_stamp(stamp_ns(m), stamp))
+            .unwrap();
+        assert!(
+            heard.targets[first..]
+                .iter()
+                .all(|(_, m)| &m.position == position),
+            "a duplicate changed the output"
+        );
+    }
+    h.stop().await.unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_frame_sent_before_the_newest_is_rejected_as_out_of_order() {
+    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(5))
+        .await
+        .unwrap();
+    let sender = stamped_glove(&h).await;
+    let glove = glove();
+    play_stamped(&h, &sender, &glove, 0.0, 0.3, 0).await;
+    counters_when(&h, |c| c["frames_new"].as_u64() >= Some(15)).await;
+
+    let a = h.clock.now_ns();
+    let (b, c, d) = (a + 20 * MS, a + 10 * MS, a + 40 * MS);
+    for (t, stamp) in [(0.30, a), (0.32, b), (0.31, c), (0.34, d), (0.30, a)] {
+        sender.publish(&rows(&glove, t), stamp).await.unwrap();
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let counters = counters_when(&h, |c| c["rejected"]["out_of_order"] == 2).await;
+    assert_eq!(counters["source_clock_jumps"], 0);
+    tokio::time::sleep(Duration::from_millis(100)).await;
+
+    {
+        let heard = h.heard.lock().unwrap();
+        let driven: Vec<i64> = heard
+            .targets
+            .iter()
+            .map(|(_, m)| stamp_ns(m))
+            .filter(|s| *s >= a - MS && *s <= d + MS)
+            .collect();
+        assert_eq!(driven.len(), 3, "{driven:?}");
+        assert!(same_stamp(driven[0], a) && same_stamp(driven[1], b) && same_stamp(driven[2], d));
+    }
+    h.stop().await.unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn jumps_of_the_sender_clock_are_followed_and_freshness_runs_on_the_station_clock() {
+    let h = Harness::start(config(ControlMode::Rate), test_domain(6))
+        .await
+        .unwrap();
+    let sender = stamped_glove(&h).await;
+    let glove = glove();
+    let start = h.clock.now_ns();
+    let phases = [0, HOUR, -2 * HOUR];
+    let mut sent = Vec::new();
+    for (k, offset) in phases.iter().enumerate() {
+        sent.push(play_stamped(&h, &sender, &glove, k as f64 * 0.5, 0.5, *offset).await);
+    }
+    let stopped = h.clock.now_ns();
+    // When the last frame was sent, on the station's clock (its stamp was 2 h behind).
+    let last_sent = sent[2].last().unwrap() + 2 * HOUR;
+    let counters = counters_when(&h, |c| c["source_clock_jumps"] == 2).await;
+    assert_eq!(counters["rejected"]["out_of_order"], 0);
+    h.wait_until(Duration::from_secs(3), |heard| {
+        heard
+            .status
+            .iter()
+            .any(|(t, s)| *t > stopped && s["state"] == "disengaged")
+    })
+    .await
+    .unwrap();
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let end = h.clock.now_ns();
+
+    {
+        let heard = h.heard.lock().unwrap();
+        // Engaged from the first frames to the last, whatever the stamps said.
+        let states = states_between(&heard, start + 300 * MS, stopped);
+        assert!(states.iter().all(|s| s == "engaged"), "{states:?}");
+        // Commands kept coming in every phase, each stamped with its frame's source time.
+        for (k, stamps) in sent.iter().enumerate() {
+            let driven = heard
+                .targets
+                .iter()
+                .filter(|(_, m)| stamps.iter().any(|s| same_stamp(*s, stamp_ns(m))))
+                .count();
+            assert!(driven >= 8, "phase {k}: {driven} commands from its frames");
+        }
+        // The watchdog measured age on the station's clock: held after the hold timeout, not at
+        // once (the last stamp was 2 h old) and not never; disengaged after the disengage timeout.
+        let first = |state: &str| {
+            heard
+                .status
+                .iter()
+                .find(|(t, s)| *t > stopped && s["state"] == state)
+                .map(|(t, _)| t - last_sent)
+                .unwrap()
+        };
+        let (held_after, disengaged_after) = (first("held"), first("disengaged"));
+        println!(
+            "held {} ms, disengaged {} ms after the last frame",
+            held_after / MS,
+            disengaged_after / MS
+        );
+        assert!((150 * MS..1000 * MS).contains(&held_after));
+        assert!((1000 * MS..2000 * MS).contains(&disengaged_after));
+        // Held commands carry the station's clock.
+        let late: Vec<i64> = heard
+            .targets
+            .iter()
+            .filter(|(t, _)| *t > stopped + 300 * MS)
+            .map(|(_, m)| stamp_ns(m))
+            .collect();
+        assert!(!late.is_empty());
+        assert!(late.iter().all(|s| *s > stopped && *s <= end), "{late:?}");
+    }
+    h.stop().await.unwrap();
+}

@@ -1,0 +1,235 @@
+//! SIGKILL of the station mid-trial: `pomdar station --record` runs as its own process, as the
+//! operator starts it, with a glove and the robot's command listeners in this process on
+//! loopback DDS. After the kill the hand and the arm hear no more commands (they hold what
+//! they last got), and `pomdar recover` turns the interrupted `.part` into a complete trial
+//! log that loses at most about a second (the flush interval): its joint targets are exactly
+//! the first ones the hand received. What docs/FAULTS.md says, asserted.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::process::{Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use futures::StreamExt;
+use msgs::{JointState, PoseStamped};
+use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::station_harness::{loopback, test_domain};
+use retarget::KeypointLayout;
+use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use teleop::clock::StationClock;
+use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
+use teleop::ros::convert::{header, isometry_to_pose};
+use teleop::ros::{QosConfig, RosNode};
+
+const MS: i64 = 1_000_000;
+
+/// What the robot side heard: (receive time, message).
+#[derive(Default)]
+struct Robot {
+    hand: Vec<(i64, JointState)>,
+    arm: Vec<(i64, PoseStamped)>,
+}
+
+/// The station process, killed (SIGKILL) and reaped when dropped: a failing test leaves no
+/// station running.
+struct KilledOnDrop(std::process::Child);
+
+impl Drop for KilledOnDrop {
+    fn drop(&mut self) {
+        self.0.kill().ok();
+        self.0.wait().ok();
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_second() {
+    let binary = pomdar_binary().unwrap();
+    let dir = std::env::temp_dir().join(format!("pomdar-fault-kill-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let config_path = dir.join("station.toml");
+    std::fs::write(
+        &config_path,
+        "[input]\nqos = { reliability = \"reliable\", depth = 1000 }\n\n[arm]\nconstraint = \"free\"\n",
+    )
+    .unwrap();
+    let trial = dir.join("trial.mcap");
+    let domain = test_domain(7);
+
+    // The robot and the glove, in this process.
+    let clock = StationClock::new();
+    let network = loopback(domain);
+    let context = network.context().unwrap();
+    let mut node = RosNode::new(&context, "/", "robot_and_glove").unwrap();
+    let keypoints = node
+        .publisher::<msgs::Float32MultiArray>("/ingress/mano", QosConfig::reliable(1000))
+        .unwrap();
+    let wrist = node
+        .publisher::<PoseStamped>("/ingress/wrist", QosConfig::reliable(1000))
+        .unwrap();
+    let hand_sub = node
+        .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(1000))
+        .unwrap();
+    let arm_sub = node
+        .subscription::<PoseStamped>("/franka/end_effector_pose_cmd", QosConfig::reliable(1000))
+        .unwrap();
+    let mut station = KilledOnDrop(
+        Command::new(&binary)
+            .args([
+                "station",
+                "--engage",
+                "--interface",
+                "127.0.0.1",
+                "--domain-id",
+            ])
+            .arg(domain.to_string())
+            .arg("--config")
+            .arg(&config_path)
+            .arg("--record")
+            .arg(&trial)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+    let started = Instant::now();
+    // Matched both ways before the first frame, so the robot hears every command.
+    while keypoints.get_subscription_count(node.node()) == 0
+        || wrist.get_subscription_count(node.node()) == 0
+        || hand_sub.get_publisher_count(node.node()) == 0
+        || arm_sub.get_publisher_count(node.node()) == 0
+    {
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "the station and the test did not match"
+        );
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let robot = Arc::new(Mutex::new(Robot::default()));
+    let listener = {
+        let robot = robot.clone();
+        tokio::spawn(async move {
+            let mut hand = Box::pin(hand_sub.async_stream());
+            let mut arm = Box::pin(arm_sub.async_stream());
+            loop {
+                tokio::select! {
+                    Some(Ok((m, _))) = hand.next() => robot.lock().unwrap().hand.push((clock.now_ns(), m)),
+                    Some(Ok((m, _))) = arm.next() => robot.lock().unwrap().arm.push((clock.now_ns(), m)),
+                    else => break,
+                }
+            }
+        })
+    };
+
+    // The trial: 3 s of glove at 50 Hz, killed 2.5 s in; the glove carries on after the kill.
+    let shape = HumanHandShape::average();
+    let motion = Motion::new(MotionKind::OpenClose, 3.0, &shape).unwrap();
+    let glove = SimGlove::new(shape, motion, KeypointLayout::Lab22).unwrap();
+    let mut killed_ns = None;
+    for i in 0..200 {
+        let t = i as f64 * 0.02;
+        let (points, pose) = glove.frame(t);
+        let rows: Vec<[f32; 3]> = points
+            .iter()
+            .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        keypoints
+            .async_publish(msgs::Float32MultiArray::from_points(&rows).unwrap())
+            .await
+            .unwrap();
+        wrist
+            .async_publish(PoseStamped {
+                header: header(clock.now_ns(), "coil"),
+                pose: isometry_to_pose(&pose),
+            })
+            .await
+            .unwrap();
+        tokio::time::sleep(Duration::from_millis(20)).await;
+        if i == 125 {
+            assert!(
+                robot.lock().unwrap().hand.len() >= 20,
+                "the station is not driving the hand"
+            );
+            killed_ns = Some(clock.now_ns());
+            station.0.kill().unwrap(); // SIGKILL
+            station.0.wait().unwrap();
+        }
+    }
+    let killed_ns = killed_ns.unwrap();
+    listener.abort();
+    let robot = std::mem::take(&mut *robot.lock().unwrap());
+
+    // The robot holds: nothing arrives once the commands in flight at the kill are delivered,
+    // and nothing was sent after the kill (stamps: frame source times or the station clock).
+    for (what, times) in [
+        (
+            "hand",
+            robot
+                .hand
+                .iter()
+                .map(|(t, m)| (*t, m.header.stamp.to_nanos()))
+                .collect::<Vec<_>>(),
+        ),
+        (
+            "arm",
+            robot
+                .arm
+                .iter()
+                .map(|(t, m)| (*t, m.header.stamp.to_nanos()))
+                .collect(),
+        ),
+    ] {
+        assert!(times.len() >= 20, "{what}: {} commands", times.len());
+        let late: Vec<_> = times
+            .iter()
+            .filter(|(received, stamp)| {
+                *received > killed_ns + 500 * MS || *stamp > killed_ns + 50 * MS
+            })
+            .collect();
+        assert!(late.is_empty(), "{what} commands after the kill: {late:?}");
+    }
+
+    // The interrupted trial recovers with the operator's command.
+    let part = dir.join("trial.mcap.part");
+    assert!(part.exists(), "no .part left by the killed recording");
+    let recovered = Command::new(&binary)
+        .arg("recover")
+        .arg(&part)
+        .output()
+        .unwrap();
+    assert!(
+        recovered.status.success(),
+        "pomdar recover failed: {}",
+        String::from_utf8_lossy(&recovered.stderr)
+    );
+    let log = TrialReader::open(&trial).unwrap();
+    assert_eq!(
+        log.metadata_named("pomdar_trial").unwrap()["source"],
+        "pomdar station"
+    );
+    let events = log
+        .decode_topic::<msgs::StringMsg>(TRIAL_EVENTS_TOPIC)
+        .unwrap();
+    assert!(events[0].data.contains("\"start\""), "{:?}", events[0]);
+    let last_ns = log.messages().map(|m| m.log_time_ns).max().unwrap();
+    let lost_ms = (killed_ns - last_ns) / MS;
+    println!(
+        "killed after {} hand commands; recovered {} messages, lost the last {lost_ms} ms",
+        robot.hand.len(),
+        log.message_count()
+    );
+    assert!(lost_ms <= 1300, "lost {lost_ms} ms");
+    // What the log kept of the joint targets is exactly what the hand got first.
+    let logged: Vec<JointState> = log.decode_topic("/pomdar/hand/joint_targets").unwrap();
+    assert!(
+        logged.len() + 35 >= robot.hand.len(),
+        "{} of {}",
+        logged.len(),
+        robot.hand.len()
+    );
+    for (i, (m, (_, heard))) in logged.iter().zip(&robot.hand).enumerate() {
+        assert_eq!(m, heard, "joint target {i}: logged and received differ");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
