@@ -85,7 +85,7 @@ pub struct NodeArgs {
 }
 
 impl NodeArgs {
-    fn network(&self, base: &NetworkConfig) -> NetworkConfig {
+    pub(crate) fn network(&self, base: &NetworkConfig) -> NetworkConfig {
         NetworkConfig {
             domain_id: self.domain_id.or(base.domain_id),
             interfaces: if self.interfaces.is_empty() {
@@ -175,7 +175,7 @@ pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::
 }
 
 /// A shutdown signal that turns true on Ctrl-C.
-fn ctrl_c_shutdown() -> watch::Receiver<bool> {
+pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
     let (tx, rx) = watch::channel(false);
     tokio::spawn(async move {
         if tokio::signal::ctrl_c().await.is_ok() {

@@ -12,6 +12,7 @@ pub mod cli;
 pub mod clock;
 pub mod demo;
 pub mod hand_source;
+pub mod ingress;
 pub mod launch_config;
 pub mod mcap_log;
 pub mod model_report;

@@ -148,6 +148,9 @@ enum Command {
     ///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
     #[command(verbatim_doc_comment)]
     Baseline(teleop::score::baseline_command::BaselineArgs),
+    /// Glove ingress: a motion-capture stream in, the lab's ROS 2 keypoint topics out.
+    #[command(subcommand)]
+    Ingress(teleop::ingress::ingress_command::IngressCommand),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -204,6 +207,9 @@ fn main() -> ExitCode {
         Command::Resim(args) => cli::resim(args),
         Command::Recover(args) => cli::recover(args),
         Command::Replay(args) => cli::run_async(cli::replay(args)),
+        Command::Ingress(command) => {
+            cli::run_async(teleop::ingress::ingress_command::run(command))
+        }
         Command::Station(args) => cli::run_async(cli::station(args)),
         Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),
         Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),

@@ -1,0 +1,185 @@
+//! The Rokoko ingress's configuration (`launch_configs/ingress/rokoko.toml` spells out the
+//! defaults).
+
+use std::net::IpAddr;
+use std::path::Path;
+
+use anyhow::{Context, bail};
+use retarget::KeypointLayout;
+use serde::{Deserialize, Serialize};
+
+use crate::ros::{NetworkConfig, QosConfig};
+
+/// Which glove hand to publish.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum Hand {
+    /// The `right*` bones.
+    Right,
+    /// The `left*` bones, published as they are (in the same frame, not mirrored).
+    Left,
+}
+
+impl Hand {
+    /// The bone-name prefix.
+    pub fn bone_prefix(self) -> &'static str {
+        match self {
+            Hand::Right => "right",
+            Hand::Left => "left",
+        }
+    }
+}
+
+/// Settings of `pomdar ingress rokoko`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IngressConfig {
+    /// Local address to listen on (0.0.0.0: every interface; 127.0.0.1: this computer only).
+    pub bind_address: IpAddr,
+    /// UDP port Rokoko Studio streams to (14043 by convention).
+    pub port: u16,
+    /// The actor to follow, by name; unset: the first actor of each packet.
+    pub actor: Option<String>,
+    /// Which hand's bones.
+    pub hand: Hand,
+    /// Keypoint layout published: `lab22` (with the forearm point) or `lab21`.
+    pub layout: KeypointLayout,
+    /// Multiplier from the stream's position unit to metres (1.0: the stream is in metres,
+    /// which DOMAIN.md marks unverified; 0.01 if a studio streams centimetres).
+    pub position_scale_to_m: f64,
+    /// Packets larger than this are refused, bytes (one UDP datagram is at most 65507).
+    pub max_packet_bytes: usize,
+    /// A `scene.timestamp` this much older than the newest one seen is taken for a
+    /// restarted stream (accepted, counted) rather than an out-of-order packet (dropped),
+    /// seconds.
+    pub restart_after_backwards_s: f64,
+    /// Keypoint topic (`std_msgs/Float32MultiArray`, N × 3 metres).
+    pub keypoints_topic: String,
+    /// Wrist topic (`geometry_msgs/PoseStamped`, stamped at receipt).
+    pub wrist_topic: String,
+    /// The wrist pose's `frame_id`: ROS's right-handed version of Rokoko Studio's world.
+    pub wrist_frame_id: String,
+    /// Status topic (`std_msgs/String`, JSON once a second: rate, counts, drops by kind).
+    pub status_topic: String,
+    /// QoS of the keypoint and wrist topics.
+    pub qos: QosConfig,
+    /// DDS domain and interfaces.
+    pub network: NetworkConfig,
+}
+
+impl Default for IngressConfig {
+    fn default() -> Self {
+        IngressConfig {
+            bind_address: IpAddr::from([0, 0, 0, 0]),
+            port: 14043,
+            actor: None,
+            hand: Hand::Right,
+            layout: KeypointLayout::Lab22,
+            position_scale_to_m: 1.0,
+            max_packet_bytes: 65_507,
+            restart_after_backwards_s: 1.0,
+            keypoints_topic: "/ingress/mano".into(),
+            wrist_topic: "/ingress/wrist".into(),
+            wrist_frame_id: "rokoko_world".into(),
+            status_topic: "/ingress/status".into(),
+            qos: QosConfig::best_effort(400),
+            network: NetworkConfig::default(),
+        }
+    }
+}
+
+impl IngressConfig {
+    /// Parse and validate.
+    pub fn from_toml_str(text: &str) -> anyhow::Result<IngressConfig> {
+        let config: IngressConfig =
+            toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", e.to_string().trim_end()))?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Read, parse and validate a file; errors name it.
+    pub fn from_file(path: &Path) -> anyhow::Result<IngressConfig> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        IngressConfig::from_toml_str(&text).with_context(|| path.display().to_string())
+    }
+
+    /// Check every value; errors name the key and the allowed range.
+    pub fn validate(&self) -> anyhow::Result<()> {
+        if !matches!(self.layout, KeypointLayout::Lab22 | KeypointLayout::Lab21) {
+            bail!(
+                "layout = '{}' is not produced by this ingress (allowed: lab22, lab21)",
+                self.layout
+            );
+        }
+        let scale = self.position_scale_to_m;
+        if !(scale.is_finite() && (1e-4..=10.0).contains(&scale)) {
+            bail!("position_scale_to_m = {scale} must be in [0.0001, 10]");
+        }
+        if !(256..=65_507).contains(&self.max_packet_bytes) {
+            bail!(
+                "max_packet_bytes = {} must be in 256..=65507",
+                self.max_packet_bytes
+            );
+        }
+        let restart = self.restart_after_backwards_s;
+        if !(restart.is_finite() && restart > 0.0 && restart <= 3600.0) {
+            bail!("restart_after_backwards_s = {restart} must be in (0, 3600]");
+        }
+        for (key, topic) in [
+            ("keypoints_topic", &self.keypoints_topic),
+            ("wrist_topic", &self.wrist_topic),
+            ("status_topic", &self.status_topic),
+        ] {
+            if !topic.starts_with('/') {
+                bail!("{key} = '{topic}' must be an absolute topic name (start with '/')");
+            }
+        }
+        if let Some(actor) = &self.actor
+            && actor.trim().is_empty()
+        {
+            bail!("actor = '' must be a name, or be left out to follow the first actor");
+        }
+        self.qos.validate("qos")?;
+        crate::ros::domain_id(self.network.domain_id).context("network.domain_id")?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shipped_file_is_the_defaults() {
+        let text = include_str!("../../../launch_configs/ingress/rokoko.toml");
+        assert_eq!(
+            IngressConfig::from_toml_str(text).unwrap(),
+            IngressConfig::default()
+        );
+    }
+
+    #[test]
+    fn bad_values_name_their_key() {
+        for (text, key) in [
+            ("layout = \"mediapipe21\"", "layout"),
+            ("position_scale_to_m = 0.0", "position_scale_to_m"),
+            ("max_packet_bytes = 100000", "max_packet_bytes"),
+            ("keypoints_topic = \"mano\"", "keypoints_topic"),
+            ("actor = \" \"", "actor"),
+            (
+                "restart_after_backwards_s = -1.0",
+                "restart_after_backwards_s",
+            ),
+            (
+                "qos = { reliability = \"reliable\", depth = 0 }",
+                "qos.depth",
+            ),
+            ("port = 70000", "port"),
+            ("colour = 1", "colour"),
+        ] {
+            let e = format!("{:#}", IngressConfig::from_toml_str(text).unwrap_err());
+            assert!(e.contains(key), "{text}: {e}");
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! What the ingress counts, how it orders packets by their studio timestamp, and its status
+//! report. Pure: times are parameters.
+//!
+//! Order, by `scene.timestamp` against the newest accepted one:
+//! - newer: a new frame, published;
+//! - equal: a duplicate (Studio or the network sent the same frame twice), dropped;
+//! - older by less than `restart_after_backwards_s`: out of order (UDP reordering), dropped;
+//! - older by more: Studio restarted its clock; accepted as new, counted as a restart;
+//! - no timestamp: cannot be ordered, published.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use serde_json::{Value, json};
+
+/// A packet's place in the stream.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    /// Newer than every accepted packet (or unstamped): publish.
+    New,
+    /// Same timestamp as the newest: drop.
+    Duplicate,
+    /// Older than the newest, within the restart threshold: drop.
+    OutOfOrder,
+    /// Far older: the stream restarted; publish.
+    Restart,
+}
+
+/// Counts since start, and the newest studio timestamp.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct IngressCounters {
+    /// Datagrams received.
+    pub received: u64,
+    /// Frames published.
+    pub published: u64,
+    /// Dropped: same timestamp as the newest frame.
+    pub duplicates: u64,
+    /// Dropped: older than the newest frame.
+    pub out_of_order: u64,
+    /// Timestamps that jumped back past the restart threshold (published).
+    pub restarts: u64,
+    /// Refused packets by kind (`oversized`, `truncated`, `malformed`, `version`,
+    /// `no_actor`, `missing_bone`).
+    pub refused: BTreeMap<&'static str, u64>,
+    newest_timestamp_s: Option<f64>,
+    logged: BTreeSet<&'static str>,
+    window_start_ns: Option<i64>,
+    window_published: u64,
+    rate_hz: f64,
+    last_packet_ns: Option<i64>,
+}
+
+impl IngressCounters {
+    /// Count a received datagram at `now_ns`.
+    pub fn received(&mut self, now_ns: i64) {
+        self.received += 1;
+        self.last_packet_ns = Some(now_ns);
+    }
+
+    /// Place a parsed packet's timestamp in the stream (and remember it when accepted).
+    pub fn order(&mut self, timestamp_s: Option<f64>, restart_after_s: f64) -> Order {
+        let (Some(t), Some(newest)) = (timestamp_s, self.newest_timestamp_s) else {
+            if timestamp_s.is_some() {
+                self.newest_timestamp_s = timestamp_s;
+            }
+            return Order::New;
+        };
+        let order = if t > newest {
+            Order::New
+        } else if t == newest {
+            Order::Duplicate
+        } else if newest - t > restart_after_s {
+            Order::Restart
+        } else {
+            Order::OutOfOrder
+        };
+        match order {
+            Order::New => self.newest_timestamp_s = Some(t),
+            Order::Restart => {
+                self.newest_timestamp_s = Some(t);
+                self.restarts += 1;
+            }
+            Order::Duplicate => self.duplicates += 1,
+            Order::OutOfOrder => self.out_of_order += 1,
+        }
+        order
+    }
+
+    /// Count a refused packet; `true` the first time this kind is seen (log it then only).
+    pub fn refused(&mut self, kind: &'static str) -> bool {
+        *self.refused.entry(kind).or_default() += 1;
+        self.logged.insert(kind)
+    }
+
+    /// Count a published frame.
+    pub fn published(&mut self) {
+        self.published += 1;
+        self.window_published += 1;
+    }
+
+    /// Dropped packets of every kind.
+    pub fn dropped(&self) -> u64 {
+        self.duplicates + self.out_of_order + self.refused.values().sum::<u64>()
+    }
+
+    /// The status report at `now_ns` (also closes the rate window).
+    pub fn status(&mut self, now_ns: i64, port: u16) -> Value {
+        if let Some(start) = self.window_start_ns
+            && now_ns > start
+        {
+            self.rate_hz = self.window_published as f64 / ((now_ns - start) as f64 * 1e-9);
+        }
+        self.window_start_ns = Some(now_ns);
+        self.window_published = 0;
+        json!({
+            "node": "rokoko_ingress",
+            "port": port,
+            "received": self.received,
+            "published": self.published,
+            "rate_hz": (self.rate_hz * 10.0).round() / 10.0,
+            "dropped": self.dropped(),
+            "duplicates": self.duplicates,
+            "out_of_order": self.out_of_order,
+            "restarts": self.restarts,
+            "refused": self.refused,
+            "last_packet_age_s": self.last_packet_ns.map(|t| (now_ns - t) as f64 * 1e-9),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packets_are_ordered_by_their_timestamps() {
+        let mut c = IngressCounters::default();
+        assert_eq!(c.order(Some(10.0), 1.0), Order::New);
+        assert_eq!(c.order(Some(10.01), 1.0), Order::New);
+        assert_eq!(c.order(Some(10.01), 1.0), Order::Duplicate);
+        assert_eq!(c.order(Some(10.0), 1.0), Order::OutOfOrder);
+        assert_eq!(c.order(None, 1.0), Order::New);
+        assert_eq!(c.order(Some(10.02), 1.0), Order::New);
+        // Studio restarted: its clock starts again near 0.
+        assert_eq!(c.order(Some(0.5), 1.0), Order::Restart);
+        assert_eq!(c.order(Some(0.51), 1.0), Order::New);
+        assert_eq!((c.duplicates, c.out_of_order, c.restarts), (1, 1, 1));
+        assert_eq!(c.dropped(), 2);
+    }
+
+    #[test]
+    fn each_refusal_kind_is_logged_once() {
+        let mut c = IngressCounters::default();
+        assert!(c.refused("malformed"));
+        assert!(!c.refused("malformed"));
+        assert!(c.refused("truncated"));
+        assert_eq!(c.refused["malformed"], 2);
+        assert_eq!(c.dropped(), 3);
+    }
+
+    #[test]
+    fn the_status_reports_the_rate_over_its_window() {
+        let mut c = IngressCounters::default();
+        c.status(0, 14043);
+        for k in 0..50 {
+            c.received(k * 20_000_000);
+            c.published();
+        }
+        let status = c.status(1_000_000_000, 14043);
+        assert_eq!(status["rate_hz"], 50.0);
+        assert_eq!(status["published"], 50);
+        assert!((status["last_packet_age_s"].as_f64().unwrap() - 0.02).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,170 @@
+//! The ingress node: Rokoko Studio's UDP stream in, the lab's ROS 2 topics out.
+//!
+//! One datagram is one frame. A frame is published only when a packet arrives and is new
+//! (see [`super::ingress_counters`]): no timer republishes stale data. Keypoints go out as
+//! `std_msgs/Float32MultiArray` (N × 3, metres, ROS frame) and the hand bone's pose as
+//! `geometry_msgs/PoseStamped`, stamped with this computer's clock at receipt. A bad packet
+//! is counted under its kind and logged the first time that kind occurs; nothing about a
+//! packet stops the node. Once a second the counts go out as JSON on the status topic.
+
+use std::net::SocketAddr;
+use std::time::Duration;
+
+use anyhow::Context as _;
+use msgs::{Float32MultiArray, PoseStamped, StringMsg};
+use tokio::net::UdpSocket;
+use tokio::sync::{oneshot, watch};
+
+use crate::clock::StationClock;
+use crate::ingress::ingress_config::IngressConfig;
+use crate::ingress::ingress_counters::{IngressCounters, Order};
+use crate::ingress::rokoko_packet::{PacketError, Selection, parse_packet};
+use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::{QosConfig, RosNode};
+
+/// How often the status goes out.
+const STATUS_PERIOD: Duration = Duration::from_secs(1);
+
+/// Print a status line on stderr every this many status periods (with `print_status`).
+const PRINT_EVERY: u64 = 5;
+
+/// Run the ingress until `shutdown`; `bound` receives the local UDP address once listening
+/// (useful with port 0); with `print_status` a one-line status goes to stderr every 5 s.
+/// Returns the final counts.
+pub async fn run_rokoko_ingress(
+    config: IngressConfig,
+    clock: StationClock,
+    mut shutdown: watch::Receiver<bool>,
+    bound: Option<oneshot::Sender<SocketAddr>>,
+    print_status: bool,
+) -> anyhow::Result<IngressCounters> {
+    config.validate()?;
+    let socket = UdpSocket::bind((config.bind_address, config.port))
+        .await
+        .with_context(|| {
+            format!(
+                "cannot listen on UDP {}:{} (is another ingress running?)",
+                config.bind_address, config.port
+            )
+        })?;
+    let local = socket.local_addr()?;
+    let context = config.network.context()?;
+    let mut node = RosNode::new(&context, "/", "pomdar_rokoko_ingress")?;
+    let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, config.qos)?;
+    let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, config.qos)?;
+    let status_pub = node.publisher::<StringMsg>(&config.status_topic, QosConfig::reliable(10))?;
+    if let Some(tx) = bound {
+        tx.send(local).ok();
+    }
+    let selection = Selection {
+        actor: config.actor.as_deref(),
+        hand: config.hand,
+        layout: config.layout,
+        max_packet_bytes: config.max_packet_bytes,
+        position_scale_to_m: config.position_scale_to_m,
+    };
+    // One byte more than the limit, so an oversized datagram shows as such.
+    let mut buffer = vec![0u8; config.max_packet_bytes + 1];
+    let mut counters = IngressCounters::default();
+    counters.status(clock.now_ns(), local.port());
+    let mut ticks = 0u64;
+    let mut status_tick = tokio::time::interval(STATUS_PERIOD);
+    status_tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    loop {
+        tokio::select! {
+            _ = shutdown.changed() => if *shutdown.borrow() { break },
+            _ = status_tick.tick() => {
+                let status = counters.status(clock.now_ns(), local.port());
+                ticks += 1;
+                if print_status && ticks % PRINT_EVERY == 0 {
+                    eprintln!("{}", status_line(&status));
+                }
+                status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
+            }
+            received = socket.recv_from(&mut buffer) => {
+                let (n, from) = match received {
+                    Ok(r) => r,
+                    Err(e) => {
+                        // e.g. ICMP port-unreachable echoes on some systems: not fatal.
+                        if counters.refused("socket_error") {
+                            eprintln!("warning: rokoko ingress: receive error: {e} (counted, not logged again)");
+                        }
+                        continue;
+                    }
+                };
+                let now = clock.now_ns();
+                counters.received(now);
+                let frame = match parse_packet(&buffer[..n], &selection) {
+                    Ok(frame) => frame,
+                    Err(e) => {
+                        log_refusal(&mut counters, &e, from);
+                        continue;
+                    }
+                };
+                match counters.order(frame.timestamp_s, config.restart_after_backwards_s) {
+                    Order::Duplicate | Order::OutOfOrder => continue,
+                    Order::Restart => eprintln!(
+                        "note: rokoko ingress: the studio timestamp went back to {:.3} s: stream restarted",
+                        frame.timestamp_s.unwrap_or_default()
+                    ),
+                    Order::New => {}
+                }
+                let rows: Vec<[f32; 3]> = frame
+                    .keypoints
+                    .iter()
+                    .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+                    .collect();
+                let array = Float32MultiArray::from_points(&rows)?;
+                let pose = PoseStamped {
+                    header: header(now, &config.wrist_frame_id),
+                    pose: isometry_to_pose(&frame.wrist),
+                };
+                keypoints_pub.async_publish(array).await.ok();
+                wrist_pub.async_publish(pose).await.ok();
+                counters.published();
+            }
+        }
+    }
+    let status = counters.status(clock.now_ns(), local.port());
+    status_pub
+        .async_publish(StringMsg {
+            data: status.to_string(),
+        })
+        .await
+        .ok();
+    Ok(counters)
+}
+
+/// One line for the operator from a status report.
+pub fn status_line(status: &serde_json::Value) -> String {
+    let refused = status["refused"]
+        .as_object()
+        .map(|m| {
+            m.iter()
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .unwrap_or_default();
+    format!(
+        "rokoko ingress: {} Hz, {} received, {} published, dropped {} (duplicates {}, out of order {}{}{})",
+        status["rate_hz"],
+        status["received"],
+        status["published"],
+        status["dropped"],
+        status["duplicates"],
+        status["out_of_order"],
+        if refused.is_empty() { "" } else { ", " },
+        refused
+    )
+}
+
+fn log_refusal(counters: &mut IngressCounters, error: &PacketError, from: SocketAddr) {
+    if counters.refused(error.kind()) {
+        eprintln!(
+            "warning: rokoko ingress: packet from {from} refused: {error} \
+             (further '{}' packets are counted on the status topic, not logged)",
+            error.kind()
+        );
+    }
+}
