@@ -29,6 +29,8 @@ pub enum LaunchConfigKind {
     /// `baselines/*.toml`: human baseline tables (`pomdar score --baseline`), checked against
     /// the built-in task catalog.
     Baseline,
+    /// `ingress/*.toml`: glove ingress settings (`pomdar ingress rokoko --config`).
+    Ingress,
 }
 
 impl LaunchConfigKind {
@@ -43,6 +45,7 @@ impl LaunchConfigKind {
             "tasks" => Some(LaunchConfigKind::TaskCatalog),
             "scoring" => Some(LaunchConfigKind::ScoringRules),
             "baselines" => Some(LaunchConfigKind::Baseline),
+            "ingress" => Some(LaunchConfigKind::Ingress),
             _ => None,
         }
     }
@@ -52,7 +55,7 @@ impl LaunchConfigKind {
 pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
     let Some(kind) = LaunchConfigKind::of(path) else {
         bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/ or baselines/)",
+            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/, baselines/ or ingress/)",
             path.display()
         );
     };
@@ -88,6 +91,10 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
                 &path.display().to_string(),
                 &scoring::TaskCatalog::builtin(),
             )?;
+        }
+        LaunchConfigKind::Ingress => {
+            crate::ingress::ingress_config::IngressConfig::from_toml_str(&text)
+                .with_context(|| path.display().to_string())?;
         }
     }
     Ok(kind)
