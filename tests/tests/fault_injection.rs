@@ -16,8 +16,8 @@ use msgs::JointState;
 use nalgebra::{Isometry3, Point3};
 use pomdar_tests::stamped_glove::StampedGlove;
 use pomdar_tests::station_harness::{Harness, Heard, test_domain};
-use retarget::KeypointLayout;
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
 use teleop::ros::QosConfig;
 use teleop::station::ros_station::OperatorCommand;
 use teleop::station::station_config::{ControlMode, StationConfig};
@@ -297,13 +297,13 @@ async fn a_dead_glove_republished_by_the_ingress_holds_then_disengages_the_arm_u
 }
 
 /// A burst of `count` frames sent back to back after half a second of steady input; returns
-/// their stamps and the time the burst started.
+/// their stamps, the time the burst started and the last frame.
 async fn burst(
     h: &Harness,
     sender: &StampedGlove,
     glove: &SimGlove,
     count: usize,
-) -> (Vec<i64>, i64) {
+) -> (Vec<i64>, i64, Vec<[f32; 3]>) {
     play_stamped(h, sender, glove, 0.0, 0.5, 0).await;
     counters_when(h, |c| c["frames_new"].as_u64() >= Some(25)).await;
     let started = h.clock.now_ns();
@@ -316,17 +316,69 @@ async fn burst(
             .unwrap();
         stamps.push(stamp);
     }
-    (stamps, started)
+    (
+        stamps,
+        started,
+        rows(glove, 0.5 + (count - 1) as f64 * 0.002),
+    )
+}
+
+/// The timer burst test checks which frame a command was computed from, so the joint-speed
+/// limit is lifted: with a tick's time step the solution then depends on the frame and the
+/// previous command only (see `station_dds.rs`, joint targets equal the in-process
+/// retargeter). On every-frame control the frames of a burst are microseconds apart and the
+/// speed limit binds whatever its value, so there the stamps and the count say it.
+fn burst_config(mode: ControlMode) -> StationConfig {
+    let mut config = config(mode);
+    config.retarget.solver.max_joint_speed_rad_s = 100.0;
+    config.retarget.solver.max_rate_dt_s = 1.0;
+    config
+}
+
+/// The command stamped `stamp` (its first occurrence) is what the retargeter computes for
+/// `frame` from the command before it (to 1e-6 rad; another frame differs by far more).
+fn assert_computed_from(heard: &Heard, config: &StationConfig, stamp: i64, frame: &[[f32; 3]]) {
+    let k = heard
+        .targets
+        .iter()
+        .position(|(_, m)| same_stamp(stamp_ns(m), stamp))
+        .unwrap();
+    let mut reference = Retargeter::new(
+        HandModel::orca_v1_right(),
+        config.retarget.clone(),
+        &EmbodimentCatalog::builtin(),
+    )
+    .unwrap();
+    reference
+        .set_command(&heard.targets[k - 1].1.position)
+        .unwrap();
+    let points: Vec<Point3<f64>> = frame
+        .iter()
+        .map(|r| Point3::new(f64::from(r[0]), f64::from(r[1]), f64::from(r[2])))
+        .collect();
+    let expected = reference.retarget(&points, 0.04).unwrap().q;
+    let worst = heard.targets[k]
+        .1
+        .position
+        .iter()
+        .zip(&expected)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= 1e-6,
+        "not computed from the newest frame: differs by {worst} rad"
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_burst_on_timer_control_is_judged_whole_and_only_the_newest_frame_is_driven() {
-    let h = Harness::start(config(ControlMode::Rate), test_domain(2))
+    let config = burst_config(ControlMode::Rate);
+    let h = Harness::start(config.clone(), test_domain(2))
         .await
         .unwrap();
     let sender = stamped_glove(&h).await;
     let glove = glove();
-    let (burst, started) = burst(&h, &sender, &glove, 200).await;
+    let (burst, started, newest) = burst(&h, &sender, &glove, 200).await;
     // Every frame of the burst reaches the gate.
     counters_when(&h, |c| c["frames_new"].as_u64() >= Some(225)).await;
     tokio::time::sleep(Duration::from_millis(300)).await;
@@ -363,18 +415,20 @@ async fn a_burst_on_timer_control_is_judged_whole_and_only_the_newest_frame_is_d
             same_stamp(*from_burst.last().unwrap(), *burst.last().unwrap()),
             "the newest frame of the burst was not the last driven"
         );
+        assert_computed_from(&heard, &config, *burst.last().unwrap(), &newest);
     }
     h.stop().await.unwrap();
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_burst_on_every_frame_control_is_coalesced_and_the_newest_frame_wins() {
-    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(3))
+    let config = burst_config(ControlMode::EveryFrame);
+    let h = Harness::start(config.clone(), test_domain(3))
         .await
         .unwrap();
     let sender = stamped_glove(&h).await;
     let glove = glove();
-    let (burst, _) = burst(&h, &sender, &glove, 200).await;
+    let (burst, _, _) = burst(&h, &sender, &glove, 200).await;
     counters_when(&h, |c| c["frames_new"].as_u64() >= Some(225)).await;
     tokio::time::sleep(Duration::from_millis(100)).await;
 
