@@ -297,7 +297,17 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
     let logged_wrists = log
         .decode_topic::<PoseStamped>(&config.input.wrist_topic)
         .unwrap();
-    assert_eq!(logged_wrists, sent_wrists, "wrist poses: decoded vs sent");
+    assert_eq!(
+        logged_wrists.len(),
+        sent_wrists.len(),
+        "wrist poses received"
+    );
+    for (i, (decoded, sent)) in logged_wrists.iter().zip(&sent_wrists).enumerate() {
+        assert_eq!(
+            decoded, sent,
+            "wrist pose {i}: as the station decoded it vs as sent"
+        );
+    }
 
     // Outputs: Cyclone decoded exactly what the station sent.
     let logged_targets = log
