@@ -207,9 +207,7 @@ fn main() -> ExitCode {
         Command::Resim(args) => cli::resim(args),
         Command::Recover(args) => cli::recover(args),
         Command::Replay(args) => cli::run_async(cli::replay(args)),
-        Command::Ingress(command) => {
-            cli::run_async(teleop::ingress::ingress_command::run(command))
-        }
+        Command::Ingress(command) => cli::run_async(teleop::ingress::ingress_command::run(command)),
         Command::Station(args) => cli::run_async(cli::station(args)),
         Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),
         Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),

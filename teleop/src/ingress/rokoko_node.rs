@@ -76,7 +76,7 @@ pub async fn run_rokoko_ingress(
             _ = status_tick.tick() => {
                 let status = counters.status(clock.now_ns(), local.port());
                 ticks += 1;
-                if print_status && ticks % PRINT_EVERY == 0 {
+                if print_status && ticks.is_multiple_of(PRINT_EVERY) {
                     eprintln!("{}", status_line(&status));
                 }
                 status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
