@@ -2,8 +2,9 @@
 //! (zstd, lz4 and uncompressed chunks; finished, and interrupted `.part` files) are mutated
 //! at the byte level — bit flips, byte and length-field writes, truncation, extension,
 //! insertion, deletion, copied ranges, a splice of another log — and handed to
-//! [`TrialReader::from_bytes`] and [`recover`](teleop::mcap_log::recover) through
-//! `mcap_oracle`: no panic, errors are `Err`, what succeeds is consistent.
+//! [`TrialReader::from_bytes`], [`read_trial_events`](teleop::mcap_log::read_trial_events)
+//! and [`recover`](teleop::mcap_log::recover) through `mcap_oracle`: no panic, errors are
+//! `Err`, what succeeds is consistent.
 //!
 //! The CI budget is a few thousand cases; `PROPTEST_CASES=N` sets a longer run, and `fuzz/`
 //! has the same oracle as cargo-fuzz targets (docs/FUZZING.md).
@@ -259,7 +260,7 @@ fn the_seeds_are_what_they_claim() {
             assert!(log.statistics().unwrap().chunk_count > 3, "seed {i}");
         } else {
             assert!(log.is_none(), "interrupted seed {i} read as complete");
-            mcap_oracle::check_recover(seed, scratch(), &unique_name("seed-recover"));
+            mcap_oracle::check_files(seed, scratch(), &unique_name("seed-recover"));
         }
     }
 }
@@ -280,7 +281,7 @@ proptest! {
     }
 
     #[test]
-    fn mutated_logs_recover_to_readable_logs_or_fail(
+    fn mutated_logs_give_events_and_recover_to_readable_logs_or_fail(
         seed in any::<Index>(),
         edits in prop::collection::vec(mutations(), 1..5),
     ) {
@@ -288,7 +289,7 @@ proptest! {
         for edit in &edits {
             apply(&mut bytes, edit);
         }
-        mcap_oracle::check_recover(&bytes, scratch(), &unique_name("case"));
+        mcap_oracle::check_files(&bytes, scratch(), &unique_name("case"));
     }
 }
 
@@ -304,7 +305,7 @@ proptest! {
         let mut bytes = seeds()[2][..keep].to_vec();
         bytes.extend(tail);
         mcap_oracle::check_trial_reader(&bytes);
-        mcap_oracle::check_recover(&bytes, scratch(), &unique_name("random"));
+        mcap_oracle::check_files(&bytes, scratch(), &unique_name("random"));
     }
 }
 

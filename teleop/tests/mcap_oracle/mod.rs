@@ -6,6 +6,8 @@
 //!   as its recorded type or gives an error.
 //! - [`recover`]: its output is a complete log that [`TrialReader`] reads, holding exactly the
 //!   messages the report counts plus the recovery metadata record.
+//! - [`read_trial_events`] (scoring's reader, through the summary's indexes): decompresses no
+//!   more chunks than the file has; on a file that also reads whole, finds the same metadata.
 //!
 //! Shared by the stable proptest fuzzing (`tests/fuzz_mcap_reader.rs`) and the cargo-fuzz
 //! targets (`fuzz/fuzz_targets/mcap_*.rs`).
@@ -13,7 +15,9 @@
 use std::path::Path;
 
 use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
-use teleop::mcap_log::{LoggedMessage, RECOVERY_METADATA_NAME, TrialReader, recover};
+use teleop::mcap_log::{
+    LoggedMessage, RECOVERY_METADATA_NAME, TrialReader, read_trial_events, recover,
+};
 
 /// Read `bytes` as a complete log; check what comes back. Returns the log when it reads.
 pub fn check_trial_reader(bytes: &[u8]) -> Option<TrialReader> {
@@ -61,12 +65,22 @@ fn decode_as_recorded(message: &LoggedMessage) {
     );
 }
 
-/// Recover `bytes` written to `scratch/NAME.mcap.part` into `scratch/NAME.mcap`; check that
-/// a recovery that succeeds wrote a readable, complete log. Removes both files.
-pub fn check_recover(bytes: &[u8], scratch: &Path, name: &str) {
+/// Write `bytes` to `scratch/NAME.mcap.part`; read its trial events, then recover it into
+/// `scratch/NAME.mcap` and check that a recovery that succeeds wrote a readable, complete
+/// log. Removes both files.
+pub fn check_files(bytes: &[u8], scratch: &Path, name: &str) {
     let part = scratch.join(format!("{name}.mcap.part"));
     let out = scratch.join(format!("{name}.mcap"));
     std::fs::write(&part, bytes).expect("writing the scratch file");
+    match read_trial_events(&part) {
+        Ok(events) => {
+            assert!(events.read_whole_file || events.chunks_read <= events.chunks_total);
+            if let Ok(whole) = TrialReader::from_bytes(bytes, &part) {
+                assert_eq!(events.metadata, whole.metadata(), "metadata differs");
+            }
+        }
+        Err(error) => assert!(!error.to_string().is_empty()),
+    }
     let result = recover(&part, &out);
     if let Ok(report) = &result {
         let log = TrialReader::open(&out)
