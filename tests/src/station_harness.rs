@@ -29,6 +29,21 @@ pub fn loopback(domain: u16) -> NetworkConfig {
     }
 }
 
+/// A station configuration whose joint targets do not depend on when frames arrive: every
+/// frame is retargeted, the joint-speed limit never binds, the station engages on fresh
+/// input, and inputs and outputs are reliable with deep queues. Its targets equal an
+/// in-process retargeter's (or re-simulation's) fed the same frames.
+pub fn timing_independent_config() -> StationConfig {
+    let mut config = StationConfig::default();
+    config.control.mode = teleop::station::station_config::ControlMode::EveryFrame;
+    config.control.auto_engage = true;
+    config.input.qos = QosConfig::reliable(2000);
+    config.output.qos = QosConfig::reliable(2000);
+    config.retarget.solver.max_joint_speed_rad_s = 100.0;
+    config.retarget.solver.max_rate_dt_s = 1.0;
+    config
+}
+
 /// Everything the test node heard, with receive times (station clock, ns).
 #[derive(Debug, Default)]
 pub struct Heard {

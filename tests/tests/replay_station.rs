@@ -13,12 +13,11 @@ use std::time::Duration;
 
 use msgs::JointState;
 use pomdar_tests::interop::reference_file;
-use pomdar_tests::station_harness::{Harness, test_domain};
+use pomdar_tests::station_harness::{Harness, test_domain, timing_independent_config};
 use retarget::HandModel;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::replay::{ReplayOptions, replay};
 use teleop::ros::QosConfig;
-use teleop::station::station_config::{ControlMode, StationConfig};
 use tokio::sync::watch;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -26,13 +25,7 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
     let Some(path) = reference_file("rokoko_orca_2024-11-20.mcap") else {
         return;
     };
-    let mut config = StationConfig::default();
-    config.control.mode = ControlMode::EveryFrame;
-    config.control.auto_engage = true;
-    config.input.qos = QosConfig::reliable(2000);
-    config.output.qos = QosConfig::reliable(2000);
-    config.retarget.solver.max_joint_speed_rad_s = 100.0;
-    config.retarget.solver.max_rate_dt_s = 1.0;
+    let mut config = timing_independent_config();
     config.watchdog.hold_timeout_ms = 2000;
     config.watchdog.disengage_timeout_ms = 5000;
 
