@@ -445,12 +445,12 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
         }
         let first = path.last().map_or(0, |&j| j + 1);
         let mut best = (f64::INFINITY, first);
-        for j in first..received.len().min(first + 24) {
+        for (j, frame) in received.iter().enumerate().skip(first).take(24) {
             match i {
                 0 => retargeter.reset(),
                 _ => retargeter.set_command(&live[i - 1]).unwrap(),
             }
-            let q = retargeter.retarget(&received[j], 0.04).unwrap().q;
+            let q = retargeter.retarget(frame, 0.04).unwrap().q;
             let d = distance(&q, target);
             if d < best.0 {
                 best = (d, j);
