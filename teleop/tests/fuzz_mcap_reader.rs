@@ -394,3 +394,72 @@ fn a_record_overrunning_an_uncompressed_chunk_is_damage_not_a_panic() {
     inner.extend_from_slice(&[0; 10]);
     assert_damaged_chunk(&file_with_chunk("", 1000, &inner, 200), "overrun.mcap");
 }
+
+/// A channel record whose topic claims 3.7 GB. Found by cargo-fuzz (`mcap_files`): the mcap
+/// crate's record parser reserved the claimed string length before reading it (libFuzzer:
+/// "out-of-memory (malloc(3707764739))"). Field lengths are now checked against the record
+/// first, in chunks, in the data section and in the summary.
+#[test]
+fn a_string_claiming_gigabytes_is_damage_not_an_allocation() {
+    let mut channel = vec![1, 0, 0, 0]; // channel id 1, no schema
+    channel.extend_from_slice(&0xDD00_0000u32.to_le_bytes()); // the topic's claimed length
+    channel.extend_from_slice(b"/topic");
+    let record = mcap_record(0x04, &channel);
+    let in_chunk = file_with_chunk("", record.len() as u64, &record, 0);
+    let error = TrialReader::from_bytes(&in_chunk, Path::new("huge.mcap")).unwrap_err();
+    assert!(error.to_string().contains("topic claims"), "{error}");
+    assert_damaged_chunk(&in_chunk, "huge_topic.mcap");
+
+    // The same in the summary of a finished log: its first channel record.
+    let mut log = seeds()[0].clone();
+    let footer = log.len() - 8 - 29;
+    assert_eq!(log[footer], 0x02, "footer record");
+    let summary_start =
+        u64::from_le_bytes(log[footer + 9..footer + 17].try_into().unwrap()) as usize;
+    let mut at = summary_start;
+    while log[at] != 0x04 {
+        let len = u64::from_le_bytes(log[at + 1..at + 9].try_into().unwrap()) as usize;
+        at += 9 + len;
+    }
+    log[at + 13..at + 17].copy_from_slice(&0xDD00_0000u32.to_le_bytes());
+    let error = TrialReader::from_bytes(&log, Path::new("summary.mcap")).unwrap_err();
+    assert!(
+        error.to_string().contains("summary record 0x04") && error.to_string().contains("topic"),
+        "{error}"
+    );
+}
+
+/// Small valid chunks still read: one channel record, stored, and in a zstd frame whose raw
+/// block makes it larger than its content. (The first bounded reader limited every length to
+/// the chunk's uncompressed size, the chunk's own 40-byte header and its compressed bytes
+/// included, and refused both.)
+#[test]
+fn small_chunks_stored_or_compressed_larger_than_their_content_read() {
+    let mut channel = vec![1, 0, 0, 0];
+    channel.extend_from_slice(&mcap_string("/topic"));
+    channel.extend_from_slice(&mcap_string("cdr"));
+    channel.extend_from_slice(&0u32.to_le_bytes()); // no metadata
+    let record = mcap_record(0x04, &channel);
+    let mut frame = vec![0x28, 0xB5, 0x2F, 0xFD, 0x20, record.len() as u8];
+    frame.extend_from_slice(&(1 | ((record.len() as u32) << 3)).to_le_bytes()[..3]);
+    frame.extend_from_slice(&record);
+    for (name, file) in [
+        (
+            "stored",
+            file_with_chunk("", record.len() as u64, &record, 0),
+        ),
+        (
+            "zstd",
+            file_with_chunk("zstd", record.len() as u64, &frame, 0),
+        ),
+    ] {
+        let part = scratch().join(format!("small_{name}.mcap.part"));
+        std::fs::write(&part, &file).unwrap();
+        let out = scratch().join(format!("small_{name}.mcap"));
+        let report = teleop::mcap_log::recover(&part, &out).unwrap();
+        assert!(!report.tail_damaged, "{name}: {report}");
+        assert_eq!(report.messages_per_topic.get("/topic"), Some(&0), "{name}");
+        std::fs::remove_file(&part).ok();
+        std::fs::remove_file(&out).ok();
+    }
+}

@@ -28,7 +28,7 @@ use mcap::records::{Record, op};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use msgs::StringMsg;
 
-use super::record_scan::chunk_records;
+use super::record_scan::{chunk_records, parse};
 use super::{LogError, TRIAL_EVENTS_TOPIC, TrialReader};
 
 /// What [`read_trial_events`] found.
@@ -261,7 +261,8 @@ fn parse_at<'a>(bytes: &'a [u8], offset: u64, path: &Path) -> Result<Record<'a>,
             &format!("unexpected record opcode {opcode:#04x} at an indexed offset"),
         ));
     }
-    mcap::parse_record(opcode, body).map_err(|e| damaged(path, offset, &format!("record: {e}")))
+    // Field lengths checked before parsing: no allocation a damaged length asks for.
+    parse(opcode, body).map_err(|e| damaged(path, offset, &e))
 }
 
 /// Fallback for files without usable summary indexes: read everything.

@@ -97,7 +97,7 @@ pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
     }
     let mut offset = mcap::MAGIC.len();
     let header = match next_frame(bytes, offset) {
-        Ok((op::HEADER, body, next)) => match mcap::parse_record(op::HEADER, body) {
+        Ok((op::HEADER, body, next)) => match parse(op::HEADER, body) {
             Ok(Record::Header(h)) => {
                 offset = next;
                 h
@@ -137,9 +137,7 @@ pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
             op::SCHEMA | op::CHANNEL | op::MESSAGE | op::METADATA => {
                 parse(opcode, body).and_then(|record| state.take(record))
             }
-            op::ATTACHMENT => check_attachment_length(body)
-                .and_then(|()| parse(opcode, body))
-                .and_then(|record| state.take(record)),
+            op::ATTACHMENT => parse(opcode, body).and_then(|record| state.take(record)),
             op::HEADER => Err("a second header record".to_string()),
             // Indexes, statistics, private records: nothing to keep.
             _ => Ok(()),
@@ -192,8 +190,8 @@ fn next_frame(bytes: &[u8], offset: usize) -> Result<(u8, &[u8], usize), String>
 /// Not `mcap::read::ChunkReader`, which trusts the length of each record inside a chunk:
 /// fuzzing found a compressed chunk whose record claimed 144 PB making it reserve that much
 /// memory, and the process aborted. Here the mcap crate's sans-I/O reader runs with a record
-/// length limit of the chunk's own uncompressed size (itself at most
-/// [`MAX_CHUNK_UNCOMPRESSED_BYTES`]). Fed the whole chunk record, that reader would read an
+/// length limit of the larger of the chunk's uncompressed size (itself at most
+/// [`MAX_CHUNK_UNCOMPRESSED_BYTES`]) and the chunk record's own length. Fed the whole chunk record, that reader would read an
 /// uncompressed chunk's record on into the padding after it and then subtract with overflow
 /// (a panic, also found by fuzzing), so an uncompressed chunk's framing is walked first.
 pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, String> {
@@ -206,7 +204,11 @@ pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, Strin
     if uncompressed_size > MAX_CHUNK_UNCOMPRESSED_BYTES {
         return Err(too_large());
     }
-    let limit = usize::try_from(uncompressed_size).map_err(|_| too_large())?;
+    // Nothing in the chunk is longer than its content or than the chunk itself: the chunk's
+    // own header and compressed bytes are checked against the limit too, and compressed data
+    // can be longer than its content.
+    let limit =
+        usize::try_from(uncompressed_size.max(record.len() as u64)).map_err(|_| too_large())?;
     if header.compression.is_empty() {
         let mut offset = 0;
         while offset < data.len() {
@@ -233,8 +235,8 @@ pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, Strin
                 rest = &rest[n..];
             }
             LinearReadEvent::Record { data, opcode } => records.push(
-                mcap::parse_record(opcode, data)
-                    .map_err(|e| format!("chunk: record {opcode:#04x}: {e}"))?
+                parse(opcode, data)
+                    .map_err(|e| format!("chunk: {e}"))?
                     .into_owned(),
             ),
         }
@@ -242,27 +244,164 @@ pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, Strin
     Ok(records)
 }
 
-fn parse(opcode: u8, body: &[u8]) -> Result<Record<'_>, String> {
+/// Checks the field lengths of every record of the summary section, which starts at
+/// `summary_start` and ends at the footer, before `mcap::Summary::read` parses them.
+pub(crate) fn check_summary_fields(bytes: &[u8], summary_start: u64) -> Result<(), String> {
+    let Ok(mut offset) = usize::try_from(summary_start) else {
+        return Err(format!("summary start {summary_start} is beyond the file"));
+    };
+    if offset == 0 {
+        return Ok(());
+    }
+    if offset > bytes.len() {
+        return Err(format!("summary start {summary_start} is beyond the file"));
+    }
+    loop {
+        let (opcode, body, next) =
+            next_frame(bytes, offset).map_err(|reason| format!("summary: {reason}"))?;
+        if opcode == op::FOOTER {
+            return Ok(());
+        }
+        check_field_lengths(opcode, body)
+            .map_err(|e| format!("summary record {opcode:#04x} at byte {offset}: {e}"))?;
+        offset = next;
+    }
+}
+
+/// Parses one record body, after [`check_field_lengths`].
+pub(crate) fn parse(opcode: u8, body: &[u8]) -> Result<Record<'_>, String> {
+    check_field_lengths(opcode, body).map_err(|e| format!("record {opcode:#04x}: {e}"))?;
     mcap::parse_record(opcode, body).map_err(|e| format!("record {opcode:#04x}: {e}"))
 }
 
-/// `mcap::parse_record` slices an attachment body assuming its fields fit; check first.
-fn check_attachment_length(body: &[u8]) -> Result<(), String> {
-    let read_u32 = |at: usize| -> Option<usize> {
-        let b = body.get(at..at + 4)?;
-        Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
-    };
-    let too_short = || "attachment record shorter than its fields".to_string();
-    let name_len = read_u32(16).ok_or_else(too_short)?;
-    let media_at = 20usize.checked_add(name_len).ok_or_else(too_short)?;
-    let media_len = read_u32(media_at).ok_or_else(too_short)?;
-    let fixed = media_at
-        .checked_add(4 + media_len + 8 + 4)
-        .ok_or_else(too_short)?;
-    if body.len() < fixed {
-        return Err(too_short());
+/// Checks that every length-prefixed field of a record fits in its body.
+///
+/// `mcap::parse_record` reserves memory for each string, byte array and map a record
+/// claims before it reads them (up to 4 GiB for a `u32` length; cargo-fuzz found a damaged
+/// channel record asking for 3.7 GB), and slices an attachment assuming its fields fit. The
+/// layouts are the MCAP specification's; records this module does not parse pass unchecked.
+fn check_field_lengths(opcode: u8, body: &[u8]) -> Result<(), String> {
+    let mut fields = Fields { body, at: 0 };
+    match opcode {
+        op::HEADER => {
+            fields.string("profile")?;
+            fields.string("library")?;
+        }
+        op::SCHEMA => {
+            fields.skip(2, "id")?;
+            fields.string("name")?;
+            fields.string("encoding")?;
+            fields.bytes(4, "data")?;
+        }
+        op::CHANNEL => {
+            fields.skip(4, "ids")?;
+            fields.string("topic")?;
+            fields.string("message_encoding")?;
+            fields.string_map("metadata")?;
+        }
+        op::CHUNK => {
+            fields.skip(28, "times, size and CRC")?;
+            fields.string("compression")?;
+            fields.bytes(8, "records")?;
+        }
+        op::METADATA => {
+            fields.string("name")?;
+            fields.string_map("metadata")?;
+        }
+        op::ATTACHMENT => {
+            fields.skip(16, "times")?;
+            fields.string("name")?;
+            fields.string("media_type")?;
+            fields.bytes(8, "data")?;
+            fields.skip(4, "crc")?;
+        }
+        // The summary section's records.
+        op::MESSAGE_INDEX => {
+            fields.skip(2, "channel id")?;
+            fields.bytes(4, "records")?;
+        }
+        op::CHUNK_INDEX => {
+            fields.skip(32, "times and offsets")?;
+            fields.bytes(4, "message_index_offsets")?;
+            fields.skip(8, "message_index_length")?;
+            fields.string("compression")?;
+            fields.skip(16, "sizes")?;
+        }
+        op::ATTACHMENT_INDEX => {
+            fields.skip(40, "offsets, times and size")?;
+            fields.string("name")?;
+            fields.string("media_type")?;
+        }
+        op::STATISTICS => {
+            fields.skip(42, "counts and times")?;
+            fields.bytes(4, "channel_message_counts")?;
+        }
+        op::METADATA_INDEX => {
+            fields.skip(16, "offset and length")?;
+            fields.string("name")?;
+        }
+        _ => {}
     }
     Ok(())
+}
+
+/// A cursor over a record body that checks each field against what is left.
+struct Fields<'a> {
+    body: &'a [u8],
+    at: usize,
+}
+
+impl Fields<'_> {
+    fn remaining(&self) -> usize {
+        self.body.len() - self.at
+    }
+
+    fn skip(&mut self, n: usize, what: &str) -> Result<(), String> {
+        if n > self.remaining() {
+            return Err(format!(
+                "{what}: the record ends {} bytes in",
+                self.body.len()
+            ));
+        }
+        self.at += n;
+        Ok(())
+    }
+
+    /// A length prefix of `width` bytes (4 or 8, little-endian), then that many bytes.
+    fn bytes(&mut self, width: usize, what: &str) -> Result<(), String> {
+        let start = self.at;
+        self.skip(width, what)?;
+        let mut prefix = [0u8; 8];
+        prefix[..width].copy_from_slice(&self.body[start..start + width]);
+        let len = u64::from_le_bytes(prefix);
+        if len > self.remaining() as u64 {
+            return Err(format!(
+                "{what} claims {len} bytes, the record has {} left",
+                self.remaining()
+            ));
+        }
+        self.at += len as usize;
+        Ok(())
+    }
+
+    fn string(&mut self, what: &str) -> Result<(), String> {
+        self.bytes(4, what)
+    }
+
+    /// A map of strings: a `u32` byte length, then key and value strings filling it exactly.
+    fn string_map(&mut self, what: &str) -> Result<(), String> {
+        let start = self.at + 4;
+        self.bytes(4, what)?;
+        let mut entries = Fields {
+            body: &self.body[start..self.at],
+            at: 0,
+        };
+        while entries.remaining() > 0 {
+            entries.string(what)?;
+            entries.string(what)?;
+        }
+        Ok(())
+    }
 }
 
 #[derive(Default)]

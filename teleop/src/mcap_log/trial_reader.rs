@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 
 use msgs::RosMessage;
 
-use super::record_scan::{DataRecord, ScanEnd, scan};
+use super::record_scan::{DataRecord, ScanEnd, check_summary_fields, scan};
 use super::{LogError, LoggedMessage, OfferedQos, qos_profiles_from_yaml};
 
 /// One channel of a log.
@@ -122,10 +122,11 @@ impl TrialReader {
             offset: scanned.intact_end,
             reason,
         };
-        mcap::read::footer(bytes).map_err(|e| LogError::Incomplete {
+        let footer = mcap::read::footer(bytes).map_err(|e| LogError::Incomplete {
             path: path.to_path_buf(),
             reason: format!("after the data end record: {e}"),
         })?;
+        check_summary_fields(bytes, footer.summary_start).map_err(damaged)?;
         let summary = mcap::Summary::read(bytes).map_err(|e| damaged(format!("summary: {e}")))?;
 
         let mut schemas: HashMap<u16, (String, String, String)> = HashMap::new();
