@@ -397,8 +397,9 @@ fn a_record_overrunning_an_uncompressed_chunk_is_damage_not_a_panic() {
 
 /// A channel record whose topic claims 3.7 GB. Found by cargo-fuzz (`mcap_files`): the mcap
 /// crate's record parser reserved the claimed string length before reading it (libFuzzer:
-/// "out-of-memory (malloc(3707764739))"). Field lengths are now checked against the record
-/// first, in chunks, in the data section and in the summary.
+/// "out-of-memory (malloc(3707764739))"; then 4.3 GB for a chunk index's compression name in
+/// the event reader's summary). Field lengths are now checked against the record first, in
+/// chunks, in the data section and in the summary.
 #[test]
 fn a_string_claiming_gigabytes_is_damage_not_an_allocation() {
     let mut channel = vec![1, 0, 0, 0]; // channel id 1, no schema
@@ -427,6 +428,13 @@ fn a_string_claiming_gigabytes_is_damage_not_an_allocation() {
         error.to_string().contains("summary record 0x04") && error.to_string().contains("topic"),
         "{error}"
     );
+    // Scoring's event reader reads the summary from disk (cargo-fuzz found the same in a
+    // chunk index there).
+    let path = scratch().join("huge_summary.mcap");
+    std::fs::write(&path, &log).unwrap();
+    let error = teleop::mcap_log::read_trial_events(&path).unwrap_err();
+    std::fs::remove_file(&path).ok();
+    assert!(error.to_string().contains("summary record 0x04"), "{error}");
 }
 
 /// Small valid chunks still read: one channel record, stored, and in a zstd frame whose raw

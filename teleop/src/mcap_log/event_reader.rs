@@ -28,7 +28,7 @@ use mcap::records::{Record, op};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use msgs::StringMsg;
 
-use super::record_scan::{chunk_records, parse};
+use super::record_scan::{check_summary_section, chunk_records, parse};
 use super::{LogError, TRIAL_EVENTS_TOPIC, TrialReader};
 
 /// What [`read_trial_events`] found.
@@ -80,6 +80,7 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
         });
     }
 
+    check_summary_on_disk(&mut file, size, path)?;
     let Some(summary) = read_summary(&mut file, size, path)? else {
         return read_whole(path);
     };
@@ -177,6 +178,33 @@ fn damaged(path: &Path, offset: u64, reason: &str) -> LogError {
         offset,
         reason: reason.to_string(),
     }
+}
+
+/// Checks the field lengths of the summary section's records before the mcap crate's summary
+/// reader parses them: it reserves whatever a damaged string length claims (cargo-fuzz found a
+/// chunk index whose compression name claimed 4 GiB). A file whose footer cannot be found is
+/// left to the summary reader to report.
+fn check_summary_on_disk(
+    file: &mut BufReader<File>,
+    size: u64,
+    path: &Path,
+) -> Result<(), LogError> {
+    const FOOTER_AND_MAGIC: u64 = 9 + 20 + 8;
+    if size < FOOTER_AND_MAGIC + 8 {
+        return Ok(());
+    }
+    let footer = read_range(file, path, size, size - FOOTER_AND_MAGIC, FOOTER_AND_MAGIC)?;
+    if footer[0] != op::FOOTER {
+        return Ok(());
+    }
+    let mut start = [0u8; 8];
+    start.copy_from_slice(&footer[9..17]);
+    let summary_start = u64::from_le_bytes(start);
+    if summary_start == 0 || summary_start >= size - FOOTER_AND_MAGIC {
+        return Ok(());
+    }
+    let section = read_range(file, path, size, summary_start, size - summary_start)?;
+    check_summary_section(&section, summary_start).map_err(|e| damaged(path, summary_start, &e))
 }
 
 /// The summary section, driving the mcap crate's sans-I/O summary reader with the file;

@@ -245,25 +245,34 @@ pub(crate) fn chunk_records(record: &[u8]) -> Result<Vec<Record<'static>>, Strin
 }
 
 /// Checks the field lengths of every record of the summary section, which starts at
-/// `summary_start` and ends at the footer, before `mcap::Summary::read` parses them.
+/// `summary_start` (0: none) and ends at the footer, before `mcap::Summary::read` parses them.
 pub(crate) fn check_summary_fields(bytes: &[u8], summary_start: u64) -> Result<(), String> {
-    let Ok(mut offset) = usize::try_from(summary_start) else {
-        return Err(format!("summary start {summary_start} is beyond the file"));
-    };
-    if offset == 0 {
+    if summary_start == 0 {
         return Ok(());
     }
-    if offset > bytes.len() {
-        return Err(format!("summary start {summary_start} is beyond the file"));
-    }
+    let section = usize::try_from(summary_start)
+        .ok()
+        .and_then(|start| bytes.get(start..))
+        .ok_or_else(|| format!("summary start {summary_start} is beyond the file"))?;
+    check_summary_section(section, summary_start)
+}
+
+/// [`check_summary_fields`] on the bytes from the summary's start (at file offset `at`) to
+/// the end of the file.
+pub(crate) fn check_summary_section(section: &[u8], at: u64) -> Result<(), String> {
+    let mut offset = 0;
     loop {
         let (opcode, body, next) =
-            next_frame(bytes, offset).map_err(|reason| format!("summary: {reason}"))?;
+            next_frame(section, offset).map_err(|reason| format!("summary: {reason}"))?;
         if opcode == op::FOOTER {
             return Ok(());
         }
-        check_field_lengths(opcode, body)
-            .map_err(|e| format!("summary record {opcode:#04x} at byte {offset}: {e}"))?;
+        check_field_lengths(opcode, body).map_err(|e| {
+            format!(
+                "summary record {opcode:#04x} at byte {}: {e}",
+                at + offset as u64
+            )
+        })?;
         offset = next;
     }
 }
