@@ -114,11 +114,12 @@ pub fn radar_drawing(chart: &RadarChart) -> Result<(Drawing, RadarGeometry), Plo
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::plot::ValueProblem;
 
-    fn chart(values: &[&[Option<f64>]]) -> RadarChart {
+    /// A chart of `values` (one slice per series) on axes G1, G2, …
+    pub(crate) fn chart(values: &[&[Option<f64>]]) -> RadarChart {
         RadarChart {
             title: "Grasping".into(),
             axes: (1..=values[0].len()).map(|i| format!("G{i}")).collect(),

@@ -208,18 +208,7 @@ mod tests {
     use crate::plot::primitives::Primitive;
     use crate::plot::radar::radar_drawing;
 
-    fn chart(values: &[&[Option<f64>]]) -> RadarChart {
-        RadarChart {
-            title: "Grasping".into(),
-            axes: (1..=values[0].len()).map(|i| format!("G{i}")).collect(),
-            series: (values.iter().enumerate())
-                .map(|(i, v)| RadarSeries {
-                    label: format!("Orca_{i}"),
-                    values: v.to_vec(),
-                })
-                .collect(),
-        }
-    }
+    use crate::plot::radar::tests::chart;
 
     fn circles(d: &Drawing, class: &str) -> Vec<(Point, f64)> {
         (d.items.iter())
