@@ -118,6 +118,19 @@ pub enum Error {
         /// The offending value.
         value: f64,
     },
+    /// A finite number outside the range a hand model can sensibly hold (a unit error or a
+    /// corrupted file: offsets of kilometres overflow the forward kinematics).
+    #[error("joint '{joint}': {field} = {} is outside the allowed range {allowed}", compact(*.value))]
+    OutOfRange {
+        /// The joint.
+        joint: String,
+        /// The field, as in [`Error::NonFinite`].
+        field: &'static str,
+        /// The offending value.
+        value: f64,
+        /// The allowed range, with its unit.
+        allowed: &'static str,
+    },
     /// A revolute joint axis of (near) zero length.
     #[error("joint '{joint}': axis {axis:?} has zero length")]
     ZeroAxis {
@@ -251,5 +264,14 @@ impl Error {
             path: path.into(),
             source: Box::new(self),
         }
+    }
+}
+
+/// A number short enough for a message: plain in the everyday range, else scientific.
+fn compact(value: f64) -> String {
+    if value == 0.0 || (1e-3..1e6).contains(&value.abs()) {
+        value.to_string()
+    } else {
+        format!("{value:e}")
     }
 }

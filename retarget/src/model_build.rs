@@ -31,7 +31,7 @@ pub(crate) fn build(
     let mut dof_of_joint: HashMap<&str, usize> = HashMap::new();
     let mut dofs = Vec::new();
     for (i, j) in spec.joints.iter().enumerate() {
-        check_finite(j)?;
+        check_numbers(j)?;
         if j.kind != JointKindSpec::Fixed && j.coupled.is_none() {
             dof_of_joint.insert(j.name.as_str(), dofs.len());
             dofs.push(Dof {
@@ -189,36 +189,64 @@ impl<'a> Tree<'a> {
     }
 }
 
-fn check_finite(j: &JointSpec) -> Result<(), Error> {
-    let fields = [("xyz_m", &j.xyz_m[..]), ("rpy_rad", &j.rpy_rad[..])]
-        .into_iter()
-        .chain(j.axis.as_ref().map(|a| ("axis", &a[..])))
-        .chain(
-            j.lower_rad
-                .as_ref()
-                .map(|v| ("lower_rad", std::slice::from_ref(v))),
-        )
-        .chain(
-            j.upper_rad
-                .as_ref()
-                .map(|v| ("upper_rad", std::slice::from_ref(v))),
-        );
-    for (field, values) in fields {
-        if let Some(&value) = values.iter().find(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                joint: j.name.clone(),
-                field,
-                value,
-            });
-        }
-    }
-    if let Some(c) = &j.coupled {
-        for (field, value) in [("multiplier", c.multiplier), ("offset_rad", c.offset_rad)] {
+/// Largest joint offset a hand model may hold, metres (a hand is well under one metre; the
+/// bound catches unit errors and keeps the forward kinematics finite).
+const MAX_OFFSET_M: f64 = 10.0;
+/// Largest angle (rpy, limits, coupling offset), radians: one turn, with rounding slack.
+const MAX_ANGLE_RAD: f64 = std::f64::consts::TAU + 1e-6;
+/// Largest axis component before normalisation.
+const MAX_AXIS: f64 = 1e3;
+/// Largest coupling multiplier.
+const MAX_MULTIPLIER: f64 = 100.0;
+
+/// Every number of `j` finite and within the range a hand model can hold.
+fn check_numbers(j: &JointSpec) -> Result<(), Error> {
+    let angle = (MAX_ANGLE_RAD, "[-2π, 2π] rad");
+    let fields = [
+        ("xyz_m", &j.xyz_m[..], (MAX_OFFSET_M, "[-10, 10] m")),
+        ("rpy_rad", &j.rpy_rad[..], angle),
+    ]
+    .into_iter()
+    .chain(
+        j.axis
+            .as_ref()
+            .map(|a| ("axis", &a[..], (MAX_AXIS, "[-1000, 1000]"))),
+    )
+    .chain(
+        j.lower_rad
+            .as_ref()
+            .map(|v| ("lower_rad", std::slice::from_ref(v), angle)),
+    )
+    .chain(
+        j.upper_rad
+            .as_ref()
+            .map(|v| ("upper_rad", std::slice::from_ref(v), angle)),
+    )
+    .chain(j.coupled.iter().flat_map(|c| {
+        [
+            (
+                "multiplier",
+                std::slice::from_ref(&c.multiplier),
+                (MAX_MULTIPLIER, "[-100, 100]"),
+            ),
+            ("offset_rad", std::slice::from_ref(&c.offset_rad), angle),
+        ]
+    }));
+    for (field, values, (max, allowed)) in fields {
+        for &value in values {
             if !value.is_finite() {
                 return Err(Error::NonFinite {
                     joint: j.name.clone(),
                     field,
                     value,
+                });
+            }
+            if value.abs() > max {
+                return Err(Error::OutOfRange {
+                    joint: j.name.clone(),
+                    field,
+                    value,
+                    allowed,
                 });
             }
         }

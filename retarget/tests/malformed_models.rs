@@ -98,7 +98,7 @@ fn the_test_urdf_itself_is_valid() {
 
 #[test]
 fn urdf_errors_name_the_element_and_the_problem() {
-    let cases: [(&str, &str, &[&str]); 9] = [
+    let cases: [(&str, &str, &[&str]); 11] = [
         (
             r#"<joint name="b_flex" type="revolute"><parent link="b"/><child link="nowhere"/>
                <axis xyz="0 1 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>"#,
@@ -128,6 +128,18 @@ fn urdf_errors_name_the_element_and_the_problem() {
                <origin xyz="0 NaN 0"/><axis xyz="0 1 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>"#,
             "",
             &["b_flex", "xyz_m", "finite"],
+        ),
+        (
+            r#"<joint name="b_flex" type="revolute"><parent link="b"/><child link="f"/>
+               <origin xyz="0 1e308 0"/><axis xyz="0 1 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>"#,
+            "",
+            &["b_flex", "xyz_m", "1e308", "[-10, 10] m"],
+        ),
+        (
+            r#"<joint name="b_flex" type="revolute"><parent link="b"/><child link="f"/>
+               <axis xyz="0 1 0"/><limit lower="0" upper="1e9" effort="1" velocity="1"/></joint>"#,
+            "",
+            &["b_flex", "upper_rad", "[-2π, 2π] rad"],
         ),
         (
             r#"<joint name="b_flex" type="revolute"><parent link="b"/><child link="f"/>
