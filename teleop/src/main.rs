@@ -79,6 +79,18 @@ enum Command {
     ///   pomdar replay rokoko_orca_2024-11-20.mcap --topics /ingress/mano,/ingress/wrist --rate 1
     #[command(verbatim_doc_comment)]
     Replay(cli::ReplayArgs),
+    /// Check DDS discovery from this host: which publishers it sees, and at what rate.
+    ///
+    /// Joins the domain on the given interfaces, waits for a publisher of each topic, counts
+    /// its samples for --duration seconds and prints every discovered publisher with the
+    /// addresses it announced (its host) and each topic's rate. Exit status 0 when every
+    /// topic was heard, 2 when one was not discovered or not heard (docs/DEPLOYMENT.md says
+    /// what to check).
+    ///
+    /// Example:
+    ///   pomdar probe --topics /pomdar/hand/joint_targets,/franka/end_effector_pose_cmd --interface 10.251.0.3
+    #[command(verbatim_doc_comment)]
+    Probe(teleop::ros::probe_command::ProbeArgs),
     /// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
     ///
     /// Three ways to run it:
@@ -207,6 +219,9 @@ fn main() -> ExitCode {
         Command::Resim(args) => cli::resim(args),
         Command::Recover(args) => cli::recover(args),
         Command::Replay(args) => cli::run_async(cli::replay(args)),
+        Command::Probe(args) => {
+            return exit_code(cli::run_async(teleop::ros::probe_command::run(args)));
+        }
         Command::Ingress(command) => cli::run_async(teleop::ingress::ingress_command::run(command)),
         Command::Station(args) => cli::run_async(cli::station(args)),
         Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),

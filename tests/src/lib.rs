@@ -1,7 +1,9 @@
 //! Helpers shared by the workspace integration tests in `tests/tests/`.
 
 pub mod dependency_rule;
+pub mod deployment_guide;
 pub mod interop;
+pub mod netns_lab;
 pub mod pomdar_binary;
 pub mod stamped_glove;
 pub mod station_harness;

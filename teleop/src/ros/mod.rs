@@ -2,8 +2,10 @@
 //! subscriptions for the `msgs` types (ros2-client on RustDDS; no ROS installation needed).
 
 pub mod convert;
+pub mod discovery_probe;
 mod endpoint;
 mod participant;
+pub mod probe_command;
 mod qos;
 
 pub use endpoint::{RosNode, Stamped};

@@ -2,6 +2,14 @@
 //! network interfaces discovery may use.
 //!
 //! ros2-client does not read `ROS_DOMAIN_ID` itself; the station does, here, as ROS tools do.
+//!
+//! What RustDDS 0.15 offers for the network side, and so all the station can configure:
+//! the domain id, and the local addresses whose interfaces carry SPDP multicast (joined, sent)
+//! and are announced as this participant's unicast locators (`with_only_networks`; the
+//! unicast sockets still bind to every address). Discovery is SPDP multicast on 239.255.0.1
+//! plus loopback unicast to same-host participants; RustDDS has no list of unicast
+//! (initial) peers, so hosts on a network that drops multicast do not discover each other
+//! (docs/DEPLOYMENT.md).
 
 use std::net::IpAddr;
 
@@ -18,7 +26,24 @@ pub struct NetworkConfig {
     pub domain_id: Option<u16>,
     /// Restrict discovery to these local addresses (for example `["127.0.0.1"]` for a
     /// loopback-only test, or one interface of a multi-homed lab PC). Empty: all interfaces.
+    /// Each must be an address of this host (checked when the participant is created).
     pub interfaces: Vec<IpAddr>,
+}
+
+/// Check that `address` can restrict DDS to an interface of this host: a unicast address
+/// one of its interfaces holds (a UDP socket binds to it).
+pub fn check_interface_address(address: IpAddr) -> anyhow::Result<()> {
+    if address.is_unspecified() || address.is_multicast() {
+        bail!(
+            "network.interfaces (--interface): {address} is not an interface address; give one of this host's unicast addresses, or none for every interface"
+        );
+    }
+    std::net::UdpSocket::bind((address, 0)).with_context(|| {
+        format!(
+            "network.interfaces (--interface): {address} is not an address of this host; give one of this host's addresses (`ip -brief address`), or none for every interface"
+        )
+    })?;
+    Ok(())
 }
 
 /// The effective domain id: `configured`, else the `ROS_DOMAIN_ID` environment variable (the
@@ -45,6 +70,9 @@ impl NetworkConfig {
     pub fn context(&self) -> anyhow::Result<Context> {
         let domain = domain_id(self.domain_id)?;
         let mut builder = DomainParticipantBuilder::new(domain);
+        for address in &self.interfaces {
+            check_interface_address(*address)?;
+        }
         if !self.interfaces.is_empty() {
             builder = builder.with_only_networks(self.interfaces.iter().copied());
         }
@@ -52,5 +80,33 @@ impl NetworkConfig {
             .build()
             .with_context(|| format!("cannot create a DDS participant on domain {domain}"))?;
         Context::from_domain_participant(participant).context("cannot create the ROS 2 context")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interface_addresses_must_belong_to_this_host() {
+        check_interface_address(IpAddr::from([127, 0, 0, 1])).unwrap();
+        // TEST-NET-3 (RFC 5737): documentation only, never assigned to a host.
+        let err = check_interface_address(IpAddr::from([203, 0, 113, 77])).unwrap_err();
+        let text = format!("{err:#}");
+        assert!(text.contains("network.interfaces"), "{text}");
+        assert!(
+            text.contains("203.0.113.77 is not an address of this host"),
+            "{text}"
+        );
+        let err = check_interface_address(IpAddr::from([0, 0, 0, 0])).unwrap_err();
+        assert!(
+            err.to_string().contains("not an interface address"),
+            "{err}"
+        );
+        let err = check_interface_address(IpAddr::from([239, 255, 0, 1])).unwrap_err();
+        assert!(
+            err.to_string().contains("not an interface address"),
+            "{err}"
+        );
     }
 }

@@ -1,0 +1,58 @@
+//! `pomdar probe`: the command line of the discovery probe.
+
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::Args;
+
+use crate::cli::{NodeArgs, ctrl_c_shutdown};
+use crate::ros::NetworkConfig;
+use crate::ros::discovery_probe::{ProbeOptions, probe};
+
+/// `pomdar probe` options.
+#[derive(Debug, Args)]
+pub struct ProbeArgs {
+    /// Topics to listen to, comma-separated (e.g. /pomdar/hand/joint_targets).
+    #[arg(long, value_delimiter = ',', required = true)]
+    pub topics: Vec<String>,
+    /// Seconds to count each topic's samples once its publisher is discovered.
+    #[arg(long, default_value_t = 5.0)]
+    pub duration: f64,
+    /// Seconds to wait for a publisher of each topic.
+    #[arg(long, default_value_t = 15.0)]
+    pub discovery_timeout: f64,
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+fn seconds(flag: &str, value: f64) -> anyhow::Result<Duration> {
+    if !(value > 0.0 && value <= 3600.0) {
+        anyhow::bail!("{flag} {value} must be in (0, 3600] seconds");
+    }
+    Ok(Duration::from_secs_f64(value))
+}
+
+/// `pomdar probe`: exit status 0 when every topic was discovered and heard, 2 otherwise.
+pub async fn run(args: ProbeArgs) -> anyhow::Result<ExitCode> {
+    let options = ProbeOptions {
+        topics: args.topics,
+        duration: seconds("--duration", args.duration)?,
+        discovery_timeout: seconds("--discovery-timeout", args.discovery_timeout)?,
+    };
+    let network = args.node.network(&NetworkConfig::default());
+    let report = probe(&network, &options, ctrl_c_shutdown()).await?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{report}");
+    }
+    Ok(if report.all_heard() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    })
+}

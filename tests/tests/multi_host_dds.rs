@@ -1,0 +1,506 @@
+//! Three hosts over DDS, as docs/DEPLOYMENT.md deploys them: the glove PC (A) replays the
+//! reference recording, the station PC (B) runs `pomdar station --record`, the robot PC (C)
+//! runs the mock hand and mock Franka; each host a network namespace cabled to a switch (a
+//! bridge), addresses 10.251.0.1–3/24 inside the namespaces only. The commands are the guide's
+//! `# on host` blocks, read from the guide and run as written.
+//!
+//! Asserted: joint targets and arm targets arrive on C at the station's control rate (the
+//! guide's probe on C); pulling A's cable makes the station hold, then disengage, and the
+//! trial log on B shows the gap, the held commands, the status turning held then disengaged,
+//! the arm targets stopping, the frames after the cable is back, and every frame the station
+//! counted. Skipped with a message where network namespaces cannot be created; under CI it
+//! fails instead.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::collections::BTreeMap;
+use std::net::Ipv4Addr;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use msgs::{JointState, StringMsg};
+use pomdar_tests::deployment_guide::{GuideStep, HostBlock, read_host_blocks};
+use pomdar_tests::interop::reference_file;
+use pomdar_tests::netns_lab::{NetnsLab, namespaces_available};
+use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::workspace_root;
+use serde_json::Value;
+use teleop::mcap_log::{LoggedMessage, TRIAL_EVENTS_TOPIC, TrialReader};
+use teleop::station::station_config::StationConfig;
+
+const MS: i64 = 1_000_000;
+/// How long host A's cable stays pulled: longer than the disengage timeout.
+const CUT: Duration = Duration::from_secs(3);
+/// How long the replay runs after the cable is back, before everything stops.
+const AFTER_RESTORE: Duration = Duration::from_secs(4);
+const HOSTS: [(&str, Ipv4Addr); 3] = [
+    ("A", Ipv4Addr::new(10, 251, 0, 1)),
+    ("B", Ipv4Addr::new(10, 251, 0, 2)),
+    ("C", Ipv4Addr::new(10, 251, 0, 3)),
+];
+const JOINT_TARGETS: &str = "/pomdar/hand/joint_targets";
+const ARM_TARGETS: &str = "/franka/end_effector_pose_cmd";
+const KEYPOINTS: &str = "/ingress/mano";
+const STATUS: &str = "/pomdar/status";
+
+fn wall_ns() -> i64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .unwrap()
+        .as_nanos() as i64
+}
+
+/// A node started from a guide line; SIGKILLed if still running when dropped (the lab's drop
+/// also kills whatever runs in its namespaces).
+struct Node {
+    host: String,
+    line: String,
+    child: Child,
+    log: PathBuf,
+}
+
+impl Node {
+    /// Ctrl-C, as the guide stops nodes; wait for the node to finish.
+    fn interrupt(&mut self) -> std::process::ExitStatus {
+        Command::new("kill")
+            .args(["-INT", &self.child.id().to_string()])
+            .status()
+            .unwrap();
+        let started = Instant::now();
+        loop {
+            if let Some(status) = self.child.try_wait().unwrap() {
+                return status;
+            }
+            assert!(
+                started.elapsed() < Duration::from_secs(30),
+                "host {}: `{}` did not stop on SIGINT within 30 s; its output: {}",
+                self.host,
+                self.line,
+                self.log.display()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn output(&self) -> String {
+        std::fs::read_to_string(&self.log).unwrap_or_default()
+    }
+}
+
+impl Drop for Node {
+    fn drop(&mut self) {
+        if self.child.try_wait().ok().flatten().is_none() {
+            self.child.kill().ok();
+            self.child.wait().ok();
+        }
+    }
+}
+
+/// Runs the guide's blocks on the lab's hosts.
+struct Session<'a> {
+    lab: &'a NetnsLab,
+    dir: PathBuf,
+    bin: PathBuf,
+    env: BTreeMap<String, BTreeMap<String, String>>,
+    nodes: Vec<Node>,
+}
+
+impl Session<'_> {
+    fn home(&self, host: &str) -> PathBuf {
+        self.dir.join(format!("home-{}", host.to_lowercase()))
+    }
+
+    /// `line` through `sh` in `host`'s namespace, from the checkout's top directory, with the
+    /// host's home, its exported variables and `pomdar` on the PATH.
+    fn shell(&self, host: &str, line: &str) -> Command {
+        let mut command = self.lab.command(host, "sh").unwrap();
+        command
+            .arg("-c")
+            .arg(format!("exec {line}"))
+            .current_dir(workspace_root())
+            .env_remove("ROS_DOMAIN_ID")
+            .env("HOME", self.home(host))
+            .env(
+                "PATH",
+                format!(
+                    "{}:{}",
+                    self.bin.display(),
+                    std::env::var("PATH").unwrap_or_default()
+                ),
+            )
+            .envs(self.env.get(host).into_iter().flatten())
+            .stdin(Stdio::null());
+        command
+    }
+
+    /// Run one block; returns the output of the commands that ran to completion.
+    fn run(&mut self, block: &HostBlock) -> Vec<String> {
+        std::fs::create_dir_all(self.home(&block.host)).unwrap();
+        let mut outputs = Vec::new();
+        for step in &block.steps {
+            match step {
+                GuideStep::Export { name, value } => {
+                    self.env
+                        .entry(block.host.clone())
+                        .or_default()
+                        .insert(name.clone(), value.clone());
+                }
+                GuideStep::Background(line) => {
+                    let log =
+                        self.dir
+                            .join(format!("host-{}-{}.log", block.host, self.nodes.len()));
+                    let file = std::fs::File::create(&log).unwrap();
+                    let child = self
+                        .shell(&block.host, line)
+                        .stdout(file.try_clone().unwrap())
+                        .stderr(file)
+                        .spawn()
+                        .unwrap();
+                    println!("host {}: started `{line}`", block.host);
+                    self.nodes.push(Node {
+                        host: block.host.clone(),
+                        line: line.clone(),
+                        child,
+                        log,
+                    });
+                }
+                GuideStep::Run(line) => {
+                    let output = self.shell(&block.host, line).output().unwrap();
+                    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+                    println!(
+                        "host {}: `{line}` → {}\n{stdout}{}",
+                        block.host,
+                        output.status,
+                        String::from_utf8_lossy(&output.stderr)
+                    );
+                    assert!(
+                        output.status.success(),
+                        "host {}: `{line}` failed ({}); nodes' output in {}",
+                        block.host,
+                        output.status,
+                        self.dir.display()
+                    );
+                    outputs.push(stdout);
+                }
+            }
+        }
+        outputs
+    }
+
+    fn node(&mut self, host: &str, program: &str) -> &mut Node {
+        self.nodes
+            .iter_mut()
+            .find(|n| n.host == host && n.line.starts_with(program))
+            .unwrap_or_else(|| panic!("the guide starts no `{program}` on host {host}"))
+    }
+}
+
+/// The rate `pomdar probe` printed for `topic` (`  /topic  25.0 Hz (...)`).
+fn probe_rate(report: &str, topic: &str) -> f64 {
+    let line = report
+        .lines()
+        .skip_while(|l| l.trim() != "topics")
+        .find(|l| l.split_whitespace().next() == Some(topic))
+        .unwrap_or_else(|| panic!("the probe reported nothing for {topic}:\n{report}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(
+        words.get(2),
+        Some(&"Hz"),
+        "{topic} not heard on host C: {line}"
+    );
+    words[1].parse().unwrap()
+}
+
+fn status_state(message: &LoggedMessage) -> (i64, String) {
+    let status: Value = serde_json::from_str(&message.decode::<StringMsg>().unwrap().data).unwrap();
+    (
+        message.log_time_ns,
+        status["state"].as_str().unwrap_or_default().to_string(),
+    )
+}
+
+/// What the trial log on host B shows about the cut.
+fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns: i64) {
+    let log = TrialReader::open(path).unwrap();
+    let frames: Vec<i64> = log.messages_on(KEYPOINTS).map(|m| m.log_time_ns).collect();
+    assert!(frames.len() > 100, "{} glove frames recorded", frames.len());
+
+    // The gap: the longest silence between frames, where the cable was pulled.
+    let (gap_index, gap_ns) = frames
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| (i, w[1] - w[0]))
+        .max_by_key(|(_, gap)| *gap)
+        .unwrap();
+    let last_ns = frames[gap_index];
+    let back_ns = frames[gap_index + 1];
+    // Freshness is the age of the last *new* frame: the glove's ingress republishes its last
+    // keypoints at 200 Hz between real changes (~24 a second), and a repeat refreshes nothing.
+    let payloads: Vec<&[u8]> = log
+        .messages_on(KEYPOINTS)
+        .map(|m| m.data.as_slice())
+        .collect();
+    let last_new_ns = (1..=gap_index)
+        .rev()
+        .find(|&i| payloads[i] != payloads[i - 1])
+        .map_or(frames[0], |i| frames[i]);
+    println!(
+        "trial log: {} glove frames; gap {} ms from {} ms after the cut to {} ms after the restore; last new frame {} ms before the gap",
+        frames.len(),
+        gap_ns / MS,
+        (last_ns - cut_ns) / MS,
+        (back_ns - restored_ns) / MS,
+        (last_ns - last_new_ns) / MS
+    );
+    assert!(
+        gap_ns >= CUT.as_nanos() as i64 - 300 * MS,
+        "the longest gap in the glove frames is {} ms, the cable was pulled for {} ms",
+        gap_ns / MS,
+        CUT.as_millis()
+    );
+    assert!(
+        (last_ns - cut_ns).abs() < 500 * MS && (back_ns - restored_ns).abs() < 2_000 * MS,
+        "the gap ({last_ns}..{back_ns}) is not where the cable was pulled ({cut_ns}..{restored_ns})"
+    );
+    let after = frames.len() - gap_index - 1;
+    assert!(
+        after >= 100,
+        "only {after} glove frames recorded after the cable was back"
+    );
+
+    // Held hand commands carry the station clock (stamp = log time); commands computed from a
+    // frame carry the frame's source stamp.
+    let hand: Vec<(i64, bool)> = log
+        .messages_on(JOINT_TARGETS)
+        .map(|m| {
+            let stamp = m.decode::<JointState>().unwrap().header.stamp.to_nanos();
+            (m.log_time_ns, stamp == m.log_time_ns)
+        })
+        .collect();
+    let hold_ms = config.watchdog.hold_timeout_ms as i64;
+    let disengage_ms = config.watchdog.disengage_timeout_ms as i64;
+    let tick_ms = (1000.0 / config.control.rate_hz).ceil() as i64;
+    let first_held = hand
+        .iter()
+        .find(|(t, held)| *t > last_new_ns && *held)
+        .map(|(t, _)| *t)
+        .expect("no held hand command after the last frame before the gap");
+    let hold_after_ms = (first_held - last_new_ns) / MS;
+    assert!(
+        hand.iter()
+            .filter(|(t, _)| *t > first_held && *t < back_ns)
+            .all(|(_, held)| *held),
+        "a command during the gap was not held"
+    );
+    let held_in_gap = hand
+        .iter()
+        .filter(|(t, _)| *t > first_held && *t < back_ns)
+        .count();
+    let held_after = hand
+        .iter()
+        .filter(|(t, held)| *t > back_ns && *held)
+        .count();
+    // Held commands keep flowing at the control rate through the gap (≥ 80 %).
+    let gap_s = (back_ns - first_held) as f64 * 1e-9;
+    assert!(
+        held_in_gap as f64 >= 0.8 * config.control.rate_hz * gap_s,
+        "{held_in_gap} held commands over {gap_s:.2} s of gap"
+    );
+    assert!(held_after > 0, "no hand command after the cable was back");
+
+    // The arm: targets until the disengage timeout, none after (disengaged until engage).
+    let arm: Vec<i64> = log
+        .messages_on(ARM_TARGETS)
+        .map(|m| m.log_time_ns)
+        .collect();
+    let last_arm = arm
+        .iter()
+        .copied()
+        .filter(|t| *t < back_ns)
+        .max()
+        .expect("no arm target before the gap");
+    let arm_stop_ms = (last_arm - last_new_ns) / MS;
+    let arm_after = arm.iter().filter(|t| **t > last_arm).count();
+
+    // The status: held, then disengaged during the gap, still disengaged after; and it kept
+    // being recorded through the gap.
+    let statuses: Vec<(i64, String)> = log.messages_on(STATUS).map(status_state).collect();
+    let first_state = |state: &str| {
+        statuses
+            .iter()
+            .find(|(t, s)| *t > last_new_ns && s == state)
+            .map(|(t, _)| (*t - last_new_ns) / MS)
+    };
+    let held_status_ms = first_state("held").expect("no `held` status after the gap began");
+    let disengaged_status_ms =
+        first_state("disengaged").expect("no `disengaged` status after the gap began");
+    let status_gap_ms = statuses
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0) / MS)
+        .max()
+        .unwrap();
+    println!(
+        "hold: first held command {hold_after_ms} ms after the last new frame ({held_in_gap} held commands in the gap, {held_after} after), status `held` at {held_status_ms} ms; last arm target at {arm_stop_ms} ms, `disengaged` status at {disengaged_status_ms} ms; longest status interval {status_gap_ms} ms"
+    );
+    assert!(
+        (hold_ms..=hold_ms + tick_ms + 150).contains(&hold_after_ms),
+        "held {hold_after_ms} ms after the last new frame; configured {hold_ms} ms (+ one {tick_ms} ms tick)"
+    );
+    assert!(
+        (disengage_ms - tick_ms..=disengage_ms + tick_ms + 300).contains(&arm_stop_ms),
+        "the last arm target came {arm_stop_ms} ms after the last new frame; disengage at {disengage_ms} ms"
+    );
+    assert_eq!(
+        arm_after, 0,
+        "{arm_after} arm targets after the disengage (the station must stay disengaged until engage)"
+    );
+    assert!(held_status_ms < disengaged_status_ms);
+    assert!(
+        statuses
+            .iter()
+            .filter(|(t, _)| *t > back_ns + 500 * MS)
+            .all(|(_, s)| s == "disengaged"),
+        "the station re-engaged by itself after the cable was back"
+    );
+    let status_period_ms = (1000.0 / config.output.status_rate_hz) as i64;
+    assert!(
+        status_gap_ms <= 2 * status_period_ms,
+        "the status was not recorded for {status_gap_ms} ms"
+    );
+
+    // Nothing the station received or sent is missing from the log: every frame up to the last
+    // status is counted in it, and the stop event's totals match the commands logged.
+    let (last_status_ns, last_status) = log
+        .messages_on(STATUS)
+        .map(|m| {
+            let status: Value =
+                serde_json::from_str(&m.decode::<StringMsg>().unwrap().data).unwrap();
+            (m.log_time_ns, status)
+        })
+        .last()
+        .unwrap();
+    let counters = &last_status["counters"];
+    let counted = counters["frames_new"].as_u64().unwrap()
+        + counters["frames_repeated"].as_u64().unwrap()
+        + counters["rejected"]
+            .as_object()
+            .unwrap()
+            .values()
+            .map(|v| v.as_u64().unwrap())
+            .sum::<u64>();
+    let logged = frames.iter().filter(|t| **t <= last_status_ns).count() as u64;
+    assert_eq!(
+        logged, counted,
+        "frames in the log up to the last status vs the station's counters"
+    );
+    let events = log.decode_topic::<StringMsg>(TRIAL_EVENTS_TOPIC).unwrap();
+    let stop: Value = serde_json::from_str(&events.last().unwrap().data).unwrap();
+    assert_eq!(stop["event"], "stop", "{stop}");
+    assert_eq!(
+        stop["summary"]["hand_commands"].as_u64().unwrap(),
+        hand.len() as u64
+    );
+    assert_eq!(
+        stop["summary"]["arm_targets"].as_u64().unwrap(),
+        arm.len() as u64
+    );
+}
+
+#[test]
+fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glove_link_is_cut() {
+    let Some(_reference) = reference_file("rokoko_orca_2024-11-20.mcap") else {
+        return;
+    };
+    let tag = format!("{}", std::process::id() % 100_000);
+    if let Err(why) = namespaces_available(&tag) {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must be able to create network namespaces (root and iproute2; .ci/run installs iproute2): {why}"
+        );
+        eprintln!("SKIPPED: cannot create network namespaces here ({why})");
+        return;
+    }
+    let root = workspace_root();
+    let blocks = read_host_blocks(&root.join("docs/DEPLOYMENT.md")).unwrap();
+    let config =
+        StationConfig::from_file(&root.join("launch_configs/station/deploy_station.toml")).unwrap();
+    let hosts: Vec<&str> = blocks.iter().map(|b| b.host.as_str()).collect();
+    assert_eq!(
+        hosts,
+        ["C", "B", "A", "C"],
+        "the guide's host blocks: robot, station, glove, then the check"
+    );
+
+    let binary = pomdar_binary().unwrap();
+    let dir = std::env::temp_dir().join(format!("pomdar-multi-host-{tag}"));
+    std::fs::remove_dir_all(&dir).ok();
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    std::os::unix::fs::symlink(&binary, bin.join("pomdar")).unwrap();
+
+    let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
+    let mut session = Session {
+        lab: &lab,
+        dir: dir.clone(),
+        bin,
+        env: BTreeMap::new(),
+        nodes: Vec::new(),
+    };
+    let mut reports = Vec::new();
+    for block in &blocks {
+        println!("== {}", block.title);
+        reports.extend(session.run(block));
+    }
+
+    // The check on C: commands at the station's rate.
+    let report = reports.last().expect("the check block printed nothing");
+    let joint_hz = probe_rate(report, JOINT_TARGETS);
+    let arm_hz = probe_rate(report, ARM_TARGETS);
+    let rate = config.control.rate_hz;
+    println!(
+        "on host C: joint targets {joint_hz:.1} Hz, arm targets {arm_hz:.1} Hz (configured {rate} Hz)"
+    );
+    for (topic, hz) in [(JOINT_TARGETS, joint_hz), (ARM_TARGETS, arm_hz)] {
+        assert!(
+            hz >= 0.8 * rate && hz <= 1.2 * rate,
+            "{topic} arrives on host C at {hz:.1} Hz, the station runs at {rate} Hz"
+        );
+    }
+
+    // Pull the glove PC's cable, plug it back.
+    let cut_ns = wall_ns();
+    lab.cut("A").unwrap();
+    std::thread::sleep(CUT);
+    let restored_ns = wall_ns();
+    lab.restore("A").unwrap();
+    std::thread::sleep(AFTER_RESTORE);
+
+    // Ctrl-C: the station first (it finishes its log), then the glove and the robot.
+    let station = session.node("B", "pomdar station");
+    let status = station.interrupt();
+    assert!(
+        status.success(),
+        "the station exited with {status}: {}",
+        station.output()
+    );
+    println!("host B: {}", station.output().trim_end());
+    let replay = session.node("A", "pomdar replay");
+    replay.interrupt();
+    println!("host A: {}", replay.output().trim_end());
+    for node in session.nodes.iter_mut().filter(|n| n.host == "C") {
+        node.interrupt();
+        println!("host C: {}", node.output().trim_end());
+    }
+
+    let trial = session.home("B").join("pomdar-trials/deploy_check.mcap");
+    assert!(
+        trial.is_file(),
+        "the station's trial log {} is missing",
+        trial.display()
+    );
+    check_trial_log(&trial, &config, cut_ns, restored_ns);
+    drop(session);
+    drop(lab);
+    std::fs::remove_dir_all(&dir).ok();
+}
