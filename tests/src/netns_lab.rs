@@ -170,8 +170,9 @@ impl Drop for NetnsLab {
     fn drop(&mut self) {
         for namespace in self.created.iter().rev() {
             for pid in pids_in(namespace) {
-                Command::new("kill")
-                    .args(["-KILL", &pid.to_string()])
+                // The shell's builtin `kill`: no procps needed.
+                Command::new("sh")
+                    .args(["-c", &format!("kill -KILL {pid}")])
                     .status()
                     .ok();
             }
