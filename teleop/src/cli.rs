@@ -76,10 +76,12 @@ impl From<MotionArg> for MotionKind {
 /// Options shared by the node commands.
 #[derive(Debug, Args)]
 pub struct NodeArgs {
-    /// ROS domain id (default: the config's, else ROS_DOMAIN_ID, else 0).
+    /// ROS domain id, 0–232 (default: the config's, else ROS_DOMAIN_ID, else 0).
     #[arg(long)]
     pub domain_id: Option<u16>,
-    /// Restrict DDS to this local address (repeatable), e.g. 127.0.0.1.
+    /// Use this address of this host for DDS (repeatable): discovery multicast is joined and
+    /// sent on its interface and only it is announced to other hosts, e.g. 127.0.0.1 or the
+    /// lab-network address (docs/DEPLOYMENT.md). An address this host lacks is refused.
     #[arg(long = "interface", value_name = "ADDRESS")]
     pub interfaces: Vec<std::net::IpAddr>,
 }
