@@ -433,8 +433,21 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
     }
     let root = workspace_root();
     let blocks = read_host_blocks(&root.join("docs/DEPLOYMENT.md")).unwrap();
-    let config =
-        StationConfig::from_file(&root.join("launch_configs/station/deploy_station.toml")).unwrap();
+    // The station's configuration is the one the guide's station command names.
+    let station_line = blocks
+        .iter()
+        .flat_map(|b| &b.steps)
+        .find_map(|s| match s {
+            GuideStep::Background(line) if line.starts_with("pomdar station") => Some(line),
+            _ => None,
+        })
+        .expect("the guide starts no station");
+    let config_path = station_line
+        .split_whitespace()
+        .skip_while(|w| *w != "--config")
+        .nth(1)
+        .expect("the guide's station command has no --config");
+    let config = StationConfig::from_file(&root.join(config_path)).unwrap();
     let hosts: Vec<&str> = blocks.iter().map(|b| b.host.as_str()).collect();
     assert_eq!(
         hosts,
