@@ -130,6 +130,7 @@
 //! palm → tip error. Malformed input (wrong point count, non-finite values, a collapsed palm,
 //! a bad time step) is an `Err` and leaves the command untouched: the caller holds it.
 
+mod box_active_set;
 mod calibration_transform;
 mod embodiment;
 pub mod energy;
@@ -163,7 +164,7 @@ pub use model_file::{ORCA_CORE_JOINTS, ORCA_V1_RIGHT_TOML};
 pub use model_spec::{FrameSpec, ModelSpec};
 pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
 pub use retarget_config::{
-    KeyVectorWeights, PinchConfig, Regularisation, RetargetConfig, SolverConfig,
+    KeyVectorWeights, PinchConfig, QpMethod, Regularisation, RetargetConfig, SolverConfig,
 };
 pub use retargeter::{Retargeter, Solution, SolveStatus};
 pub use urdf_import::{UrdfImport, spec_from_urdf};

@@ -1,4 +1,7 @@
-//! One Gauss–Newton step as a box-constrained QP, solved by Clarabel:
+//! One Gauss–Newton step as a box-constrained QP. With [`QpMethod::ActiveSet`] (the default)
+//! a step is first tried by the exact active-set method of [`crate::box_active_set`]
+//! (certified by the KKT conditions); when that gives no certified answer, or with
+//! [`QpMethod::Clarabel`], Clarabel solves it:
 //!
 //! ```text
 //! minimise  ½ Δᵀ P Δ + qᵀ Δ   subject to   l ≤ Δ ≤ u
@@ -22,6 +25,9 @@ use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
 use nalgebra::{DMatrix, DVector};
+
+use crate::box_active_set::solve_box_qp;
+use crate::retarget_config::QpMethod;
 
 /// What one QP solve produced.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,6 +54,7 @@ impl QpOutcome {
 pub struct BoxQp {
     n: usize,
     max_iterations: u32,
+    method: QpMethod,
     solver: Option<DefaultSolver<f64>>,
     p_values: Vec<f64>,
     q: Vec<f64>,
@@ -65,11 +72,12 @@ impl std::fmt::Debug for BoxQp {
 }
 
 impl BoxQp {
-    /// A QP over `n` variables.
-    pub fn new(n: usize, max_iterations: u32) -> BoxQp {
+    /// A QP over `n` variables, solved by `method`.
+    pub fn new(n: usize, max_iterations: u32, method: QpMethod) -> BoxQp {
         BoxQp {
             n,
             max_iterations,
+            method,
             solver: None,
             p_values: vec![0.0; n * (n + 1) / 2],
             q: vec![0.0; n],
@@ -99,6 +107,16 @@ impl BoxQp {
         upper: &[f64],
         step: &mut DVector<f64>,
     ) -> QpOutcome {
+        if self.method == QpMethod::ActiveSet
+            && let Some(x) = solve_box_qp(H, g, lower, upper, 4 * self.n + 4)
+        {
+            step.copy_from(&x);
+            return QpOutcome {
+                status: SolverStatus::Solved,
+                iterations: 0,
+                solve_time_s: 0.0,
+            };
+        }
         let n = self.n;
         let floor = 1e-12 * (0..n).map(|i| H[(i, i)]).fold(f64::MIN_POSITIVE, f64::max);
         for i in 0..n {
@@ -200,7 +218,7 @@ mod tests {
         // stationarity in x0 with x1 = −1: 2(x0 − 1) + x1 = 0 ⇒ x0 = 1.5.
         let H = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 2.0]);
         let g = DVector::from_vec(vec![-2.0, 4.0]);
-        let mut qp = BoxQp::new(2, 50);
+        let mut qp = BoxQp::new(2, 50, QpMethod::Clarabel);
         let mut x = DVector::zeros(2);
         let out = qp.solve(&H, &g, &[-10.0, -1.0], &[10.0, 10.0], &mut x);
         assert!(out.usable(), "{out:?}");
@@ -224,7 +242,7 @@ mod tests {
     fn scaling_does_not_move_the_minimiser() {
         let H = DMatrix::from_row_slice(2, 2, &[4e-6, 0.0, 0.0, 1e-6]);
         let g = DVector::from_vec(vec![-4e-6, 2e-6]);
-        let mut qp = BoxQp::new(2, 50);
+        let mut qp = BoxQp::new(2, 50, QpMethod::Clarabel);
         let mut x = DVector::zeros(2);
         assert!(
             qp.solve(&H, &g, &[-5.0, -5.0], &[5.0, 5.0], &mut x)

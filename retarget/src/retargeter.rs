@@ -187,7 +187,7 @@ impl Retargeter {
             lower_step: vec![0.0; n],
             upper_step: vec![0.0; n],
             trial: neutral.clone(),
-            qp: BoxQp::new(n, config.solver.qp_max_iterations),
+            qp: BoxQp::new(n, config.solver.qp_max_iterations, config.solver.qp_method),
             command: neutral.clone(),
             neutral,
             free,
