@@ -62,6 +62,10 @@ fn check(outcomes: &[UserOutcome]) {
     );
     assert!(scale_ok / n >= 0.9, "scale recovered for too few users");
     assert!(
+        both_ok / n >= 0.9,
+        "scale and rotation recovered for too few users"
+    );
+    assert!(
         cut >= 0.5,
         "held-out error cut by only {:.0} %",
         100.0 * cut
