@@ -7,15 +7,17 @@
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
-use calibration::{CaptureSchedule, PoseSet, SyntheticUser, human_copies};
-use retarget::{CalibrationTransform, HandModel};
+use calibration::{
+    CalibrationSettings, CaptureSchedule, FitInputs, PoseSet, Study, SyntheticUser, human_copies,
+};
+use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel};
 use tokio::sync::watch;
 
 use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
-use crate::station::station_config::KeypointFormat;
+use crate::station::station_config::{KeypointFormat, StationConfig};
 
 /// Keypoint noise of a simulated user, metres (standard deviation per axis).
 pub const SIMULATED_NOISE_M: f64 = 0.002;
@@ -45,10 +47,26 @@ pub fn synthetic_user(
     })
 }
 
-/// The transform that calibrates `user`, relative to the average hand's calibration (taken
-/// as the identity).
-pub fn true_transform(user: &SyntheticUser) -> CalibrationTransform {
-    user.true_transform(&CalibrationTransform::IDENTITY)
+/// The transform that calibrates `user`: the user's hand size and glove misalignment
+/// composed with the reference calibration — the average hand in an aligned glove without
+/// noise, fitted with a generous budget ([`calibration::Study`], as in the acceptance test).
+pub fn true_transform(
+    user: &SyntheticUser,
+    station: &StationConfig,
+    settings: &CalibrationSettings,
+) -> anyhow::Result<CalibrationTransform> {
+    let model = HandModel::orca_v1_right();
+    let catalog = EmbodimentCatalog::builtin();
+    let poses = PoseSet::orca_v1();
+    let study = Study::new(FitInputs {
+        model: &model,
+        config: &station.retarget,
+        catalog: &catalog,
+        poses: &poses,
+        settings,
+    })
+    .context("calibrating the reference hand")?;
+    Ok(user.true_transform(study.reference()))
 }
 
 /// Record a session of `user` on loopback DDS (`session.station.network` is replaced by
