@@ -442,8 +442,9 @@ pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.stats_json {
         std::fs::write(path, &json).with_context(|| format!("cannot write {}", path.display()))?;
     }
+    let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
     eprintln!(
-        "re-simulated {}: {} frames ({} new, {} repeated, rejected {:?}), {} joint targets, layout {}, step p50 {:?} ms p99 {:?} ms → {}",
+        "re-simulated {}: {} frames ({} new, {} repeated, rejected {:?}), {} joint targets, layout {}, control step p50 {} ms, p99 {} ms → {}",
         args.input.display(),
         stats.frames_read,
         stats.frames_new,
@@ -451,8 +452,8 @@ pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
         stats.rejected,
         stats.joint_targets,
         stats.layout,
-        stats.step_ms_p50,
-        stats.step_ms_p99,
+        ms(stats.step_ms_p50),
+        ms(stats.step_ms_p99),
         args.out.display()
     );
     Ok(())
