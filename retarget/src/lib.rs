@@ -147,6 +147,7 @@ mod model_file;
 pub mod model_spec;
 mod palm_frame;
 pub mod qp_step;
+pub mod quality;
 mod retarget_config;
 mod retargeter;
 mod synthetic_keypoints;
@@ -163,6 +164,7 @@ pub use keypoint_layout::KeypointLayout;
 pub use model_file::{ORCA_CORE_JOINTS, ORCA_V1_RIGHT_TOML};
 pub use model_spec::{FrameSpec, ModelSpec};
 pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
+pub use quality::{DigitQuality, QualityRecorder, QualityReport};
 pub use retarget_config::{
     KeyVectorWeights, PinchConfig, QpMethod, Regularisation, RetargetConfig, SolverConfig,
 };

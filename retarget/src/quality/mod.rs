@@ -1,0 +1,167 @@
+//! Retargeting quality: how closely a sequence of robot commands follows a sequence of human
+//! keypoint frames, with definitions fixed so results compare across retargeters.
+//!
+//! Feed [`QualityRecorder::push`] each distinct human frame (keypoints in the configured
+//! layout, metres) with the joint command the retargeter produced for it; [`QualityRecorder::report`]
+//! then gives, overall and per digit:
+//!
+//! - **tip error**: human fingertips `h_{t,i}` in the human palm frame and robot fingertips
+//!   `r_{t,i}` in the robot palm frame (both built as in [`crate::PalmFrame`]; the robot's from
+//!   its fixed named frames: wrist on the wrist flexion axis, thumb base at the thumb's first
+//!   joint, finger bases at their abduction joints). One global scale
+//!   `s* = Σ r·h / Σ h·h` (least squares over every frame and digit), then the mean and p95 of
+//!   `‖r_{t,i} − s* h_{t,i}‖`;
+//! - **pinches**: frames where the human thumb tip is within [`PINCH_HUMAN_M`] of another
+//!   fingertip (unscaled; the nearest one counts); the robot's thumb-tip to that fingertip
+//!   distance, and the share of those frames where it is under [`PINCH_CLOSED_M`];
+//! - **jerk**: mean over joints and frames of `|q_t − 3q_{t−1} + 3q_{t−2} − q_{t−3}|`, radians;
+//!   **max step**: largest `|q_t − q_{t−1}|` of any joint;
+//! - **limit violations**: frames with a joint outside the model's limits by more than
+//!   [`LIMIT_TOLERANCE_RAD`], or not finite.
+//!
+//! Joints belong to the digit whose fingertip chain alone they move; joints shared by every
+//! chain (the wrist) are reported as "wrist". Pure: the caller reads files and measures time.
+
+mod report;
+
+pub use report::{DigitQuality, QualityReport};
+
+use nalgebra::{Point3, Vector3};
+
+use crate::error::Error;
+use crate::finger::Finger;
+use crate::forward_kinematics::FkState;
+use crate::hand_model::HandModel;
+use crate::human_key_vectors::validate_keypoints;
+use crate::keypoint_layout::KeypointLayout;
+use crate::palm_frame::PalmFrame;
+
+/// Human thumb-tip to fingertip distance under which a frame is a pinch, metres.
+pub const PINCH_HUMAN_M: f64 = 0.02;
+
+/// Robot thumb-tip to fingertip distance under which a pinch counts as closed, metres.
+pub const PINCH_CLOSED_M: f64 = 0.015;
+
+/// Slack beyond a joint limit still counted as within it, radians (rounding only).
+pub const LIMIT_TOLERANCE_RAD: f64 = 1e-9;
+
+/// One frame as the metrics need it.
+#[derive(Debug, Clone)]
+struct FrameSample {
+    /// Human fingertips in the human palm frame, metres.
+    human_tips: [Vector3<f64>; 5],
+    /// Robot fingertips in the robot palm frame, metres; `None` when the command is not finite.
+    robot_tips: Option<[Vector3<f64>; 5]>,
+    /// The pinching digit and the robot thumb-tip to its tip distance (metres), when the human
+    /// pinches; the distance is `None` when the command is not finite.
+    pinch: Option<(Finger, Option<f64>)>,
+    /// The command.
+    q: Vec<f64>,
+    /// Whether the command is outside the limits or not finite.
+    violation: bool,
+}
+
+/// Collects (human keypoints, robot command) pairs and computes the quality metrics.
+#[derive(Debug, Clone)]
+pub struct QualityRecorder {
+    model: HandModel,
+    layout: KeypointLayout,
+    fk: FkState,
+    /// For each degree of freedom, the digit it moves alone (`None`: shared, the wrist).
+    dof_digit: Vec<Option<Finger>>,
+    samples: Vec<FrameSample>,
+}
+
+impl QualityRecorder {
+    /// A recorder for commands of `model` retargeted from keypoints in `layout`.
+    pub fn new(model: HandModel, layout: KeypointLayout) -> QualityRecorder {
+        let dof_digit = model
+            .dofs
+            .iter()
+            .map(|dof| {
+                let moves: Vec<Finger> = Finger::ALL
+                    .into_iter()
+                    .filter(|f| model.chains[model.frames.tip(*f).0].contains(&dof.joint))
+                    .collect();
+                match moves[..] {
+                    [finger] => Some(finger),
+                    _ => None,
+                }
+            })
+            .collect();
+        QualityRecorder {
+            fk: model.fk_state(),
+            model,
+            layout,
+            dof_digit,
+            samples: Vec::new(),
+        }
+    }
+
+    /// Number of frames pushed.
+    pub fn len(&self) -> usize {
+        self.samples.len()
+    }
+
+    /// Whether no frame was pushed.
+    pub fn is_empty(&self) -> bool {
+        self.samples.is_empty()
+    }
+
+    /// Add a frame: the human keypoints and the command retargeted from them. `Err` when the
+    /// keypoints are malformed (count, not finite, collapsed palm) or `q` has the wrong length;
+    /// nothing is recorded then. A non-finite command is recorded as a limit violation.
+    pub fn push(&mut self, keypoints: &[Point3<f64>], q: &[f64]) -> Result<(), Error> {
+        validate_keypoints(self.layout, keypoints)?;
+        if q.len() != self.model.dof() {
+            return Err(Error::DofMismatch {
+                expected: self.model.dof(),
+                got: q.len(),
+            });
+        }
+        let layout = self.layout;
+        let human_palm = PalmFrame::from_landmarks(&layout.palm_landmarks(keypoints))?;
+        let human_tips = Finger::ALL.map(|f| human_palm.point_to_palm(&keypoints[layout.tip(f)]));
+        let finite = q.iter().all(|v| v.is_finite());
+        let within = self.model.dofs.iter().zip(q).all(|(d, &v)| {
+            v >= d.limits.lower_rad - LIMIT_TOLERANCE_RAD
+                && v <= d.limits.upper_rad + LIMIT_TOLERANCE_RAD
+        });
+        let robot_tips = if finite {
+            self.model.forward(q, &mut self.fk)?;
+            let palm = self.model.palm_frame(&self.fk)?;
+            Some(
+                Finger::ALL
+                    .map(|f| palm.point_to_palm(&self.fk.position(self.model.frames.tip(f)))),
+            )
+        } else {
+            None
+        };
+        let thumb = keypoints[layout.tip(Finger::Thumb)];
+        let pinch = Finger::OPPOSING
+            .into_iter()
+            .map(|f| (f, (keypoints[layout.tip(f)] - thumb).norm()))
+            .filter(|(_, d)| *d < PINCH_HUMAN_M)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(f, _)| {
+                let gap = robot_tips.map(|tips| (tips[f.index()] - tips[0]).norm());
+                (f, gap)
+            });
+        self.samples.push(FrameSample {
+            human_tips,
+            robot_tips,
+            pinch,
+            q: q.to_vec(),
+            violation: !(finite && within),
+        });
+        Ok(())
+    }
+
+    /// The metrics over every frame pushed so far.
+    pub fn report(&self) -> QualityReport {
+        report::compute(&self.samples, &self.dof_digit)
+    }
+}
+
+#[cfg(test)]
+mod tests;

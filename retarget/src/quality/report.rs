@@ -1,0 +1,190 @@
+//! The metrics of [`super`] from the recorded frames.
+
+use serde::{Deserialize, Serialize};
+
+use super::{FrameSample, PINCH_CLOSED_M};
+use crate::finger::Finger;
+
+/// Quality metrics over a recording, overall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct QualityReport {
+    /// Frames measured.
+    pub frames: usize,
+    /// The least-squares global scale `s*` of the human fingertip vectors.
+    pub tip_scale: f64,
+    /// Mean of `‖r − s*·h‖` over frames and digits, millimetres.
+    pub tip_error_mean_mm: f64,
+    /// 95th percentile of the same, millimetres.
+    pub tip_error_p95_mm: f64,
+    /// Frames where the human pinches (thumb tip within 2 cm of another fingertip).
+    pub pinch_frames: usize,
+    /// Mean robot thumb-tip to pinched fingertip distance over those frames, millimetres.
+    pub pinch_gap_mean_mm: Option<f64>,
+    /// Share of pinch frames where that distance is under 15 mm, percent.
+    pub pinches_closed_pct: Option<f64>,
+    /// Mean absolute third difference of each joint per frame, radians.
+    pub jerk_rad: f64,
+    /// Largest per-frame change of any joint, radians.
+    pub max_step_rad: f64,
+    /// Frames with a joint outside its limits (beyond 1e-9 rad) or not finite.
+    pub limit_violation_frames: usize,
+    /// The same per digit (and "wrist" for joints every chain shares).
+    pub per_digit: Vec<DigitQuality>,
+}
+
+/// Quality metrics of one digit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DigitQuality {
+    /// `thumb`, `index`, `middle`, `ring`, `little`, or `wrist`.
+    pub digit: String,
+    /// Mean fingertip error, millimetres (`None` for the wrist).
+    pub tip_error_mean_mm: Option<f64>,
+    /// 95th percentile fingertip error, millimetres (`None` for the wrist).
+    pub tip_error_p95_mm: Option<f64>,
+    /// Pinch frames with this finger (none for the thumb and the wrist).
+    pub pinch_frames: usize,
+    /// Share of them closed, percent.
+    pub pinches_closed_pct: Option<f64>,
+    /// Mean absolute third difference of this digit's joints, radians.
+    pub jerk_rad: Option<f64>,
+    /// Largest per-frame change of this digit's joints, radians.
+    pub max_step_rad: Option<f64>,
+}
+
+/// `p`-quantile (0..=1) by nearest rank of unsorted values; `None` when empty.
+fn percentile(values: &[f64], p: f64) -> Option<f64> {
+    if values.is_empty() {
+        return None;
+    }
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let rank = (p * sorted.len() as f64).ceil() as usize;
+    Some(sorted[rank.clamp(1, sorted.len()) - 1])
+}
+
+fn mean(values: &[f64]) -> Option<f64> {
+    (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
+}
+
+/// Jerk terms and steps of the degrees of freedom selected by `keep`.
+fn motion(samples: &[FrameSample], keep: impl Fn(usize) -> bool) -> (Vec<f64>, Vec<f64>) {
+    let (mut jerks, mut steps) = (Vec::new(), Vec::new());
+    let dofs = samples.first().map_or(0, |s| s.q.len());
+    for j in (0..dofs).filter(|&j| keep(j)) {
+        let q: Vec<f64> = samples.iter().map(|s| s.q[j]).collect();
+        steps.extend(
+            q.windows(2)
+                .map(|w| (w[1] - w[0]).abs())
+                .filter(|v| v.is_finite()),
+        );
+        jerks.extend(
+            q.windows(4)
+                .map(|w| (w[3] - 3.0 * w[2] + 3.0 * w[1] - w[0]).abs())
+                .filter(|v| v.is_finite()),
+        );
+    }
+    (jerks, steps)
+}
+
+fn pinch_stats<'a>(gaps: impl Iterator<Item = &'a Option<f64>>) -> (usize, Vec<f64>, Option<f64>) {
+    let gaps: Vec<Option<f64>> = gaps.copied().collect();
+    let closed = gaps
+        .iter()
+        .filter(|g| g.is_some_and(|g| g < PINCH_CLOSED_M))
+        .count();
+    let share = (!gaps.is_empty()).then(|| 100.0 * closed as f64 / gaps.len() as f64);
+    (gaps.len(), gaps.into_iter().flatten().collect(), share)
+}
+
+pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> QualityReport {
+    // The scale: least squares of r ≈ s·h over every frame with a finite command.
+    let (mut rh, mut hh) = (0.0, 0.0);
+    for s in samples {
+        if let Some(robot) = &s.robot_tips {
+            for (r, h) in robot.iter().zip(&s.human_tips) {
+                rh += r.dot(h);
+                hh += h.dot(h);
+            }
+        }
+    }
+    let scale = if hh > 0.0 { rh / hh } else { 1.0 };
+    let mut errors: [Vec<f64>; 5] = Default::default();
+    for s in samples {
+        if let Some(robot) = &s.robot_tips {
+            for (i, (r, h)) in robot.iter().zip(&s.human_tips).enumerate() {
+                errors[i].push((r - h * scale).norm() * 1e3);
+            }
+        }
+    }
+    let all_errors: Vec<f64> = errors.iter().flatten().copied().collect();
+    let (pinch_frames, gaps, closed) = pinch_stats(
+        samples
+            .iter()
+            .filter_map(|s| s.pinch.as_ref().map(|p| &p.1)),
+    );
+    let (jerks, steps) = motion(samples, |_| true);
+    let max = |v: &[f64]| v.iter().copied().reduce(f64::max);
+
+    let mut per_digit: Vec<DigitQuality> = Finger::ALL
+        .into_iter()
+        .map(|finger| {
+            let (frames, _, closed) = pinch_stats(
+                samples
+                    .iter()
+                    .filter_map(|s| s.pinch.as_ref())
+                    .filter(|p| p.0 == finger)
+                    .map(|p| &p.1),
+            );
+            let (jerks, steps) = motion(samples, |j| dof_digit[j] == Some(finger));
+            let e = &errors[finger.index()];
+            DigitQuality {
+                digit: finger.name().into(),
+                tip_error_mean_mm: mean(e),
+                tip_error_p95_mm: percentile(e, 0.95),
+                pinch_frames: frames,
+                pinches_closed_pct: closed,
+                jerk_rad: mean(&jerks),
+                max_step_rad: max(&steps),
+            }
+        })
+        .collect();
+    if dof_digit.iter().any(Option::is_none) {
+        let (jerks, steps) = motion(samples, |j| dof_digit[j].is_none());
+        per_digit.push(DigitQuality {
+            digit: "wrist".into(),
+            tip_error_mean_mm: None,
+            tip_error_p95_mm: None,
+            pinch_frames: 0,
+            pinches_closed_pct: None,
+            jerk_rad: mean(&jerks),
+            max_step_rad: max(&steps),
+        });
+    }
+    QualityReport {
+        frames: samples.len(),
+        tip_scale: scale,
+        tip_error_mean_mm: mean(&all_errors).unwrap_or(0.0),
+        tip_error_p95_mm: percentile(&all_errors, 0.95).unwrap_or(0.0),
+        pinch_frames,
+        pinch_gap_mean_mm: mean(&gaps).map(|g| g * 1e3),
+        pinches_closed_pct: closed,
+        jerk_rad: mean(&jerks).unwrap_or(0.0),
+        max_step_rad: max(&steps).unwrap_or(0.0),
+        limit_violation_frames: samples.iter().filter(|s| s.violation).count(),
+        per_digit,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentile_is_nearest_rank() {
+        let v: Vec<f64> = (1..=20).map(f64::from).collect();
+        assert_eq!(percentile(&v, 0.95), Some(19.0));
+        assert_eq!(percentile(&v, 1.0), Some(20.0));
+        assert_eq!(percentile(&v, 0.0), Some(1.0));
+        assert_eq!(percentile(&[], 0.5), None);
+    }
+}
