@@ -11,6 +11,7 @@ pub mod calibrate;
 pub mod cli;
 pub mod clock;
 pub mod demo;
+pub mod eval_command;
 pub mod hand_source;
 pub mod ingress;
 pub mod launch_config;

@@ -70,6 +70,24 @@ enum Command {
     ///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
     #[command(verbatim_doc_comment)]
     Resim(cli::ResimArgs),
+    /// Retargeting quality on a recording's glove keypoints: how closely the hand follows.
+    ///
+    /// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
+    /// through the station's retargeter, configured by --config and calibrated by --profile,
+    /// with the recording's time between frames as the time step (the station's input gate
+    /// and 25 Hz rate control are left out: every glove frame is scored). Prints, overall and
+    /// per finger: fingertip error after one global scale s* of the human hand (mean, p95;
+    /// fingertip-to-palm-centre vectors in each hand's palm frame), pinches (human thumb tip
+    /// within 2 cm of a fingertip) and the share the robot closes under 15 mm, jerk (mean
+    /// absolute third difference per joint and frame), the largest per-frame joint step,
+    /// frames outside the joint limits, and the time per frame. Any layout the station
+    /// accepts.
+    ///
+    /// Examples:
+    ///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
+    ///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
+    #[command(verbatim_doc_comment)]
+    Eval(teleop::eval_command::EvalArgs),
     /// Repair an interrupted log (NAME.mcap.part) up to its last flushed chunk.
     ///
     /// Prints what was recovered and what was lost; never modifies the input.
@@ -218,6 +236,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => cli::run_async(cli::demo(args)),
         Command::Calibrate(args) => teleop::calibrate::calibrate_command::calibrate(args),
         Command::Resim(args) => cli::resim(args),
+        Command::Eval(args) => teleop::eval_command::eval(args),
         Command::Recover(args) => cli::recover(args),
         Command::Replay(args) => cli::run_async(cli::replay(args)),
         Command::Probe(args) => {

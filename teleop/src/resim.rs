@@ -56,7 +56,10 @@ pub struct ResimStats {
 
 /// If the configuration names a lab layout but the log carries the other lab layout (22 vs
 /// 21 points), use the log's.
-fn layout_for(config: &StationConfig, first_frame_points: Option<usize>) -> KeypointLayout {
+pub(crate) fn layout_for(
+    config: &StationConfig,
+    first_frame_points: Option<usize>,
+) -> KeypointLayout {
     let configured = config.retarget.layout;
     match (configured, first_frame_points) {
         (KeypointLayout::Lab22, Some(21)) => KeypointLayout::Lab21,
@@ -65,7 +68,10 @@ fn layout_for(config: &StationConfig, first_frame_points: Option<usize>) -> Keyp
     }
 }
 
-fn keypoints(message: &LoggedMessage, format: KeypointFormat) -> anyhow::Result<KeypointMessage> {
+pub(crate) fn keypoints(
+    message: &LoggedMessage,
+    format: KeypointFormat,
+) -> anyhow::Result<KeypointMessage> {
     Ok(match format {
         KeypointFormat::Float32MultiArray => KeypointMessage::Array(message.decode()?),
         KeypointFormat::PoseArray => KeypointMessage::Poses(message.decode()?),

@@ -1,0 +1,226 @@
+//! `pomdar eval`: retargeting quality on a recording's glove frames.
+//!
+//! Every distinct keypoint frame of the log (a frame equal to the one before it is a repeat
+//! of the ingress's re-publishing, not a new frame) goes through the station's
+//! [`Retargeter`], configured and calibrated as the station would be, with the log's time
+//! between frames as the time step; the commands are scored by [`retarget::quality`] against
+//! the human keypoints with the project's own FK of the model. The station's gate and 25 Hz
+//! rate control are left out on purpose: every glove frame is scored, and the figures compare
+//! with other retargeters fed the same frames. Only the wall time per frame is measured here.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use clap::Args;
+use nalgebra::Point3;
+use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter};
+use serde::Serialize;
+
+use crate::calibrate::profile_file::{describe, load_profile};
+use crate::mcap_log::{LoggedMessage, TrialReader};
+use crate::resim::{keypoints, layout_for};
+use crate::sim::samples::Samples;
+use crate::station::station_config::StationConfig;
+
+/// `pomdar eval` options.
+#[derive(Debug, Args)]
+pub struct EvalArgs {
+    /// The recording (MCAP) whose glove keypoints are retargeted.
+    pub input: PathBuf,
+    /// Station configuration: keypoint topic and format, retargeting settings (default: the
+    /// built-in ETH lab preset, whose retargeting is the shipped default).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
+    /// configuration's `calibration_profile`. Default: the configuration's, else none
+    /// (identity: scale 1, no rotation).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// Print the report as JSON on stdout instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What `pomdar eval --json` prints.
+#[derive(Debug, Clone, Serialize)]
+pub struct EvalOutput {
+    /// The recording.
+    pub input: String,
+    /// Keypoint messages read.
+    pub messages: usize,
+    /// Frames whose keypoints changed (the ones measured, unless rejected).
+    pub distinct_frames: usize,
+    /// Distinct frames the retargeter refused as malformed (not measured).
+    pub rejected_frames: usize,
+    /// The keypoint layout used.
+    pub layout: String,
+    /// The embodiment retargeted to.
+    pub embodiment: String,
+    /// The calibration profile applied, if any.
+    pub profile: Option<String>,
+    /// The metrics (definitions in `retarget::quality`).
+    #[serde(flatten)]
+    pub quality: QualityReport,
+    /// Wall time of one frame's retargeting, microseconds: p50.
+    pub time_per_frame_us_p50: Option<f64>,
+    /// Wall time of one frame's retargeting, microseconds: p99.
+    pub time_per_frame_us_p99: Option<f64>,
+}
+
+/// `pomdar eval`.
+pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
+    let mut config = match &args.config {
+        Some(path) => StationConfig::from_file(path)?,
+        None => StationConfig::default(),
+    };
+    if args.profile.is_some() {
+        config.calibration_profile = args.profile.clone();
+    }
+    let reader = TrialReader::open(&args.input)?;
+    let output = evaluate(&reader, &config, HandModel::orca_v1_right())?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&output)?);
+    } else {
+        print!("{}", table(&output));
+    }
+    Ok(())
+}
+
+/// The quality of the station's retargeting configured by `config` on `reader`'s keypoints.
+pub fn evaluate(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+) -> anyhow::Result<EvalOutput> {
+    let input = &config.input;
+    let mut messages: Vec<&LoggedMessage> = reader
+        .messages()
+        .filter(|m| m.topic == input.keypoints_topic)
+        .collect();
+    messages.sort_by_key(|m| m.log_time_ns); // stable: file order within equal times
+    let mut frames: Vec<(i64, Vec<Point3<f64>>)> = Vec::new();
+    for message in &messages {
+        let points = keypoints(message, input.keypoints_format)
+            .with_context(|| format!("keypoints at log time {} ns", message.log_time_ns))?
+            .points();
+        if frames.last().is_none_or(|(_, last)| *last != points) {
+            frames.push((message.log_time_ns, points));
+        }
+    }
+    if frames.is_empty() {
+        anyhow::bail!(
+            "{}: no keypoint messages on {}",
+            reader.path().display(),
+            input.keypoints_topic
+        );
+    }
+    let mut retarget_config = config.retarget.clone();
+    retarget_config.layout = layout_for(config, frames.first().map(|(_, p)| p.len()));
+    let layout = retarget_config.layout;
+    let profile = match &config.calibration_profile {
+        Some(path) => Some((path, load_profile(path, &model, layout)?)),
+        None => None,
+    };
+    let embodiment = retarget_config.embodiment.clone();
+    let mut retargeter = Retargeter::new(
+        model.clone(),
+        retarget_config,
+        &EmbodimentCatalog::builtin(),
+    )
+    .context("retargeter")?;
+    if let Some((_, profile)) = &profile {
+        retargeter
+            .set_calibration(profile.parameters)
+            .context("calibration profile")?;
+        eprintln!("{}", describe(profile));
+    }
+    let first_dt_s = 1.0 / config.control.rate_hz;
+    let mut recorder = QualityRecorder::new(model, layout);
+    let mut time_us = Samples::default();
+    let mut rejected = 0;
+    let mut previous_ns = None;
+    for (t_ns, points) in &frames {
+        let dt_s = previous_ns.map_or(first_dt_s, |p: i64| (t_ns - p) as f64 * 1e-9);
+        let started = Instant::now();
+        let solved = retargeter.retarget(points, dt_s);
+        let elapsed_us = started.elapsed().as_secs_f64() * 1e6;
+        match solved {
+            Ok(solution) if recorder.push(points, &solution.q).is_ok() => {
+                time_us.push(elapsed_us);
+                previous_ns = Some(*t_ns);
+            }
+            _ => rejected += 1,
+        }
+    }
+    Ok(EvalOutput {
+        input: reader.path().display().to_string(),
+        messages: messages.len(),
+        distinct_frames: frames.len(),
+        rejected_frames: rejected,
+        layout: layout.name().to_string(),
+        embodiment,
+        profile: profile.map(|(path, _)| path.display().to_string()),
+        quality: recorder.report(),
+        time_per_frame_us_p50: time_us.percentile(0.5),
+        time_per_frame_us_p99: time_us.percentile(0.99),
+    })
+}
+
+fn opt(value: Option<f64>, precision: usize) -> String {
+    value.map_or("-".into(), |v| format!("{v:.precision$}"))
+}
+
+/// The report as a terminal table.
+pub fn table(o: &EvalOutput) -> String {
+    let q = &o.quality;
+    let mut out = format!(
+        "retargeting quality of {}\n  {} frames measured ({} distinct of {} messages, {} rejected), \
+         layout {}, embodiment {}, profile {}\n  global scale s* = {:.3} (robot ≈ s*·human)\n\n",
+        o.input,
+        q.frames,
+        o.distinct_frames,
+        o.messages,
+        o.rejected_frames,
+        o.layout,
+        o.embodiment,
+        o.profile.as_deref().unwrap_or("none"),
+        q.tip_scale
+    );
+    out += &format!(
+        "  {:<8} {:>13} {:>12} {:>8} {:>8} {:>11} {:>13}\n",
+        "", "tip mean mm", "tip p95 mm", "pinches", "closed", "jerk rad", "max step rad"
+    );
+    let closed = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.0} %"));
+    out += &format!(
+        "  {:<8} {:>13.1} {:>12.1} {:>8} {:>8} {:>11.4} {:>13.3}\n",
+        "overall",
+        q.tip_error_mean_mm,
+        q.tip_error_p95_mm,
+        q.pinch_frames,
+        closed(q.pinches_closed_pct),
+        q.jerk_rad,
+        q.max_step_rad
+    );
+    for d in &q.per_digit {
+        out += &format!(
+            "  {:<8} {:>13} {:>12} {:>8} {:>8} {:>11} {:>13}\n",
+            d.digit,
+            opt(d.tip_error_mean_mm, 1),
+            opt(d.tip_error_p95_mm, 1),
+            d.pinch_frames,
+            closed(d.pinches_closed_pct),
+            opt(d.jerk_rad, 4),
+            opt(d.max_step_rad, 3)
+        );
+    }
+    out += &format!(
+        "\n  pinch gap (robot thumb to pinched fingertip) mean {} mm; limit violations: {} frames\n  \
+         time per frame: p50 {} µs, p99 {} µs\n",
+        opt(q.pinch_gap_mean_mm, 1),
+        q.limit_violation_frames,
+        opt(o.time_per_frame_us_p50, 1),
+        opt(o.time_per_frame_us_p99, 1)
+    );
+    out
+}
