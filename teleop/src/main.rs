@@ -15,8 +15,8 @@ use teleop::model_report;
 /// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
 /// glove, mock robot nodes, the all-in-one demo, hand model inspection, the per-user glove
 /// calibration, scoring trial logs against a human baseline, the Rokoko Studio glove
-/// ingress, and a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md). The
-/// operator console arrives in a later issue.
+/// ingress, a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md), and a
+/// retargeting quality report for a recording. The operator console arrives in a later issue.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
