@@ -59,3 +59,21 @@ fn build() -> Result<PathBuf, String> {
 pub fn pomdar_binary() -> Result<PathBuf, String> {
     BINARY.get_or_init(build).clone()
 }
+
+/// Run the built `pomdar` with `args`, wait for it, and print the command line with its
+/// stdout and stderr (shown when a test fails). Panics when the binary cannot be built or run.
+#[allow(clippy::expect_used)] // a test helper: a panic is the failure report
+pub fn run_pomdar(args: &[&str]) -> std::process::Output {
+    let binary = pomdar_binary().expect("the pomdar binary builds");
+    let output = Command::new(binary)
+        .args(args)
+        .output()
+        .expect("pomdar runs");
+    println!(
+        "$ pomdar {}\n--- stdout\n{}--- stderr\n{}",
+        args.join(" "),
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}

@@ -8,13 +8,13 @@
 
 use std::io::{BufRead as _, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
 use calibration::CalibrationProfile;
 use msgs::Float32MultiArray;
 use pomdar_tests::interop::{assert_readers_decode_as_we_do, independent_readers_with_values};
-use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar as pomdar};
 use pomdar_tests::station_harness::test_domain;
 use teleop::calibrate::session_events::capture_windows;
 use teleop::mcap_log::{LoggedMessage, TrialReader, TrialWriter, TrialWriterOptions};
@@ -26,18 +26,6 @@ fn scratch() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pomdar-calibrate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn pomdar(args: &[&str]) -> Output {
-    let binary = pomdar_binary().unwrap();
-    let output = Command::new(binary).args(args).output().unwrap();
-    println!(
-        "$ pomdar {}\n{}{}",
-        args.join(" "),
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
 }
 
 fn path_arg(p: &Path) -> &str {

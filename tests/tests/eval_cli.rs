@@ -5,28 +5,13 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use msgs::Float32MultiArray;
 use pomdar_tests::interop::reference_file;
-use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::pomdar_binary::run_pomdar as pomdar;
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, RetargetConfig, Retargeter};
 use serde_json::Value;
 use teleop::mcap_log::{TrialWriter, TrialWriterOptions};
-
-fn pomdar(args: &[&str]) -> Output {
-    let output = Command::new(pomdar_binary().unwrap())
-        .args(args)
-        .output()
-        .unwrap();
-    println!(
-        "$ pomdar {}\n--- stdout\n{}--- stderr\n{}",
-        args.join(" "),
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
-}
 
 fn eval_json(input: &Path) -> Value {
     let output = pomdar(&["eval", input.to_str().unwrap(), "--json"]);

@@ -8,10 +8,10 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::OnceLock;
 
-use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::pomdar_binary::run_pomdar as pomdar;
 use serde_json::{Value, json};
 use teleop::score::synthetic_trial::{SyntheticTrial, write_synthetic_trial};
 
@@ -21,20 +21,6 @@ fn scratch() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pomdar-score-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn pomdar(args: &[&str]) -> Output {
-    let output = Command::new(pomdar_binary().unwrap())
-        .args(args)
-        .output()
-        .unwrap();
-    println!(
-        "$ pomdar {}\n--- stdout\n{}--- stderr\n{}",
-        args.join(" "),
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
 }
 
 fn s(p: &Path) -> &str {
