@@ -105,6 +105,17 @@ fn same_stamp(a: i64, b: i64) -> bool {
     (a - b).abs() < 1_000
 }
 
+/// The stamps of the joint targets that were computed from a frame of `burst`, in arrival
+/// order (a held command repeats its frame's stamp).
+fn burst_stamps_driven(heard: &Heard, burst: &[i64]) -> Vec<i64> {
+    heard
+        .targets
+        .iter()
+        .map(|(_, m)| stamp_ns(m))
+        .filter(|s| burst.iter().any(|b| same_stamp(*b, *s)))
+        .collect()
+}
+
 /// The latest status counters, once `condition` holds on them (at most 5 s).
 async fn counters_when(
     h: &Harness,
@@ -393,12 +404,7 @@ async fn a_burst_on_timer_control_is_judged_whole_and_only_the_newest_frame_is_d
         assert!(window <= 13, "{window} targets in 400 ms at 25 Hz");
         // A tick without a new frame repeats the last command with its stamp: stamps never go
         // back, and few burst frames are ever driven.
-        let from_burst: Vec<i64> = heard
-            .targets
-            .iter()
-            .map(|(_, m)| stamp_ns(m))
-            .filter(|s| burst.iter().any(|b| same_stamp(*b, *s)))
-            .collect();
+        let from_burst = burst_stamps_driven(&heard, &burst);
         assert!(
             from_burst.windows(2).all(|w| w[0] <= w[1]),
             "an older frame after a newer one"
@@ -434,12 +440,7 @@ async fn a_burst_on_every_frame_control_is_coalesced_and_the_newest_frame_wins()
 
     {
         let heard = h.heard.lock().unwrap();
-        let from_burst: Vec<i64> = heard
-            .targets
-            .iter()
-            .map(|(_, m)| stamp_ns(m))
-            .filter(|s| burst.iter().any(|b| same_stamp(*b, *s)))
-            .collect();
+        let from_burst = burst_stamps_driven(&heard, &burst);
         println!("{} of 200 burst frames driven", from_burst.len());
         assert!(
             !from_burst.is_empty() && from_burst.len() < 200,
