@@ -97,6 +97,18 @@ where
 }
 
 impl Harness {
+    /// The joint positions of every joint target heard so far, in arrival order.
+    #[allow(clippy::unwrap_used)] // a poisoned lock means a test thread already panicked
+    pub fn target_positions(&self) -> Vec<Vec<f64>> {
+        self.heard
+            .lock()
+            .unwrap()
+            .targets
+            .iter()
+            .map(|(_, m)| m.position.clone())
+            .collect()
+    }
+
     /// Start a station with `config` (its network replaced by loopback on `domain`) and a test
     /// node, and wait until the glove topics and outputs are matched.
     pub async fn start(mut config: StationConfig, domain: u16) -> anyhow::Result<Harness> {

@@ -64,14 +64,7 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
             heard.targets.len() >= expected.len()
         })
         .await;
-    let live: Vec<Vec<f64>> = h
-        .heard
-        .lock()
-        .unwrap()
-        .targets
-        .iter()
-        .map(|(_, m)| m.position.clone())
-        .collect();
+    let live = h.target_positions();
     h.stop().await.unwrap();
 
     // Match frame for frame (each target names its frame by its stamp: the glove frame's

@@ -391,14 +391,7 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
     })
     .await
     .unwrap();
-    let live: Vec<Vec<f64>> = h
-        .heard
-        .lock()
-        .unwrap()
-        .targets
-        .iter()
-        .map(|(_, m)| m.position.clone())
-        .collect();
+    let live = h.target_positions();
     let summary = h.stop().await.unwrap();
     ingress.shutdown.send(true).unwrap();
     ingress.task.await.unwrap().unwrap();
