@@ -10,6 +10,7 @@ pub mod atomic_file;
 pub mod calibrate;
 pub mod cli;
 pub mod clock;
+pub mod console;
 pub mod demo;
 pub mod eval_command;
 pub mod hand_source;

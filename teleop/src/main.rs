@@ -15,8 +15,8 @@ use teleop::model_report;
 /// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
 /// glove, mock robot nodes, the all-in-one demo, hand model inspection, the per-user glove
 /// calibration, scoring trial logs against a human baseline, the Rokoko Studio glove
-/// ingress, a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md), and a
-/// retargeting quality report for a recording. The operator console arrives in a later issue.
+/// ingress, a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md), a
+/// retargeting quality report for a recording, and the operator console for timed trials.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -132,6 +132,44 @@ enum Command {
     ///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
     #[command(verbatim_doc_comment)]
     Calibrate(teleop::calibrate::calibrate_command::CalibrateArgs),
+    /// The operator console for timed trials: practice, then a recorded series, per task.
+    ///
+    /// Runs the station in this process and shows, full-screen: the task and what to mark,
+    /// the embodiment, the calibration profile, live health (glove rate, input age, latency,
+    /// engaged/held, watchdog, rejected frames, arm), the countdown and the running timer, and
+    /// after each trial its time, correctness, score (with a baseline) and the series' mean ±
+    /// std. Each trial is its own MCAP log in the session directory
+    /// (<out>/<user>/<embodiment>/<task>), with session.json (the manifest) written after
+    /// every change and report/ (as `pomdar score --out`) when the plan is done. Run the same
+    /// command again to resume an interrupted session: a trial cut short by quit, Ctrl-C or a
+    /// crash is kept aside (*.interrupted) and run again.
+    ///
+    /// Keys: e engage / clutch out · space start (after the countdown) / stop · + one notch or
+    /// curve · - take one back · p type a value (degrees, mm, grasp level 0 / 0.5 / 1) · d drop
+    /// · a abort (scored as aborted) · r redo (abort and run again, or set the last trial
+    /// aside) · n note · q quit (twice during a trial) · Ctrl-C quit now. A trial does not
+    /// start while the station is not engaged, the glove input is stale or slower than
+    /// --min-glove-rate.
+    ///
+    /// Without a terminal (or with --plain) it prints a line per change and reads commands
+    /// from stdin, one per line: engage, disengage, start, stop, progress [V], unmark, drop,
+    /// abort, redo, note TEXT, quit. --script FILE plays timed commands instead:
+    ///   # seconds since the start, or +S after the previous line
+    ///   1.0  engage
+    ///   wait ready 10        # wait (at most 10 s) for a state: waiting_engage, ready,
+    ///   +0.5 start           #   countdown, running, finishing, summary, complete
+    ///   wait running 10
+    ///   +2   progress
+    ///   +1   stop
+    ///   wait summary 10
+    /// Exit status: 0 when the console ends normally, 130 after Ctrl-C or SIGTERM, 1 on an
+    /// error (a script's wait timing out, a bad file).
+    ///
+    /// Examples:
+    ///   pomdar trial --task V1 --embodiment orca_full --user alice --operator bob --profile profiles/alice.toml --baseline baselines/eth_2026.toml
+    ///   pomdar trial --task G2 --user sim --operator me --simulate --practice 1 --trials 3
+    #[command(verbatim_doc_comment)]
+    Trial(teleop::console::trial_command::TrialArgs),
     /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
     /// embodiment.
     ///
@@ -232,6 +270,9 @@ fn main() -> ExitCode {
         Command::Score(args) => return exit_code(teleop::score::score_command::score(args)),
         Command::Baseline(args) => {
             return exit_code(teleop::score::baseline_command::baseline(args));
+        }
+        Command::Trial(args) => {
+            return exit_code(cli::run_async(teleop::console::trial_command::trial(args)));
         }
         Command::Demo(args) => cli::run_async(cli::demo(args)),
         Command::Calibrate(args) => teleop::calibrate::calibrate_command::calibrate(args),

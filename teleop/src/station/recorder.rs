@@ -43,6 +43,7 @@ pub fn config_digest(config: &StationConfig) -> String {
 /// The recorder of one run.
 pub struct StationRecorder {
     writer: TrialWriter,
+    path: PathBuf,
     failed: bool,
 }
 
@@ -87,6 +88,7 @@ impl StationRecorder {
         writer.write_event(now_ns, &json!({ "event": "start" }))?;
         Ok(StationRecorder {
             writer,
+            path: options.path.clone(),
             failed: false,
         })
     }
@@ -149,6 +151,11 @@ impl StationRecorder {
     pub fn tick(&mut self, now_ns: i64) {
         let result = self.writer.flush_if_due(now_ns).map(|_| ());
         self.check(result);
+    }
+
+    /// The log's final path (written as `.part` until finished).
+    pub fn path(&self) -> &std::path::Path {
+        &self.path
     }
 
     /// Whether any write failed.

@@ -54,6 +54,61 @@ pub enum OperatorCommand {
     StopTrial,
 }
 
+/// What a running station reports to the process that runs it (the operator console), besides
+/// its ROS topics. Without hooks the messages go to stderr.
+#[derive(Debug, Default)]
+pub struct StationHooks {
+    /// The status JSON, as published on the status topic, at the status rate.
+    pub status: Option<watch::Sender<Option<serde_json::Value>>>,
+    /// Trial log starts and ends, and messages for the operator.
+    pub events: Option<mpsc::UnboundedSender<StationEvent>>,
+}
+
+/// A station event for the process that runs it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StationEvent {
+    /// A trial log was created (its final path).
+    TrialStarted(std::path::PathBuf),
+    /// A trial log could not be created.
+    TrialStartFailed {
+        /// The log that was asked for.
+        path: std::path::PathBuf,
+        /// Why.
+        error: String,
+    },
+    /// A trial log was finished and renamed to its final path.
+    TrialFinished(std::path::PathBuf),
+    /// A trial log could not be finished (its `.part` stays for `pomdar recover`).
+    TrialFinishFailed {
+        /// The log.
+        path: std::path::PathBuf,
+        /// Why.
+        error: String,
+    },
+    /// A warning or error for the operator.
+    Message(String),
+}
+
+impl StationHooks {
+    fn send(&self, event: StationEvent) {
+        match &self.events {
+            Some(tx) => {
+                tx.send(event).ok();
+            }
+            None => match event {
+                StationEvent::TrialStartFailed { path, error } => {
+                    eprintln!("error: cannot start recording {}: {error}", path.display());
+                }
+                StationEvent::TrialFinishFailed { error, .. } => {
+                    eprintln!("error: cannot finish the trial log: {error}");
+                }
+                StationEvent::Message(text) => eprintln!("{text}"),
+                StationEvent::TrialStarted(_) | StationEvent::TrialFinished(_) => {}
+            },
+        }
+    }
+}
+
 /// Totals when the station stops.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StationSummary {
@@ -107,9 +162,31 @@ pub async fn run_station(
     config: StationConfig,
     model: HandModel,
     clock: StationClock,
+    shutdown: watch::Receiver<bool>,
+    operator: mpsc::UnboundedReceiver<OperatorCommand>,
+    recording: Option<RecordingOptions>,
+) -> anyhow::Result<StationSummary> {
+    run_station_observed(
+        config,
+        model,
+        clock,
+        shutdown,
+        operator,
+        recording,
+        StationHooks::default(),
+    )
+    .await
+}
+
+/// [`run_station`], reporting its status and trial logs through `hooks`.
+pub async fn run_station_observed(
+    config: StationConfig,
+    model: HandModel,
+    clock: StationClock,
     mut shutdown: watch::Receiver<bool>,
     mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
     recording: Option<RecordingOptions>,
+    hooks: StationHooks,
 ) -> anyhow::Result<StationSummary> {
     // The core first: a bad profile or configuration fails before any log is created.
     let mut core = station_core(&config, model.clone())?;
@@ -229,16 +306,22 @@ pub async fn run_station(
                     }
                     OperatorCommand::StartTrial(options) => {
                         if let Some(r) = recorder.take() {
-                            finish_trial(r, now, &core, &mut summary);
+                            finish_trial(r, now, &core, &mut summary, &hooks);
                         }
                         match StationRecorder::start(&options, &config, now) {
-                            Ok(r) => recorder = Some(r),
-                            Err(e) => eprintln!("error: cannot start recording {}: {e:#}", options.path.display()),
+                            Ok(r) => {
+                                recorder = Some(r);
+                                hooks.send(StationEvent::TrialStarted(options.path.clone()));
+                            }
+                            Err(e) => hooks.send(StationEvent::TrialStartFailed {
+                                path: options.path.clone(),
+                                error: format!("{e:#}"),
+                            }),
                         }
                     }
                     OperatorCommand::StopTrial => {
                         if let Some(r) = recorder.take() {
-                            finish_trial(r, now, &core, &mut summary);
+                            finish_trial(r, now, &core, &mut summary, &hooks);
                         }
                     }
                 }
@@ -297,8 +380,10 @@ pub async fn run_station(
                 if let Some(monitor) = &arm_monitor {
                     let publishers = monitor.get_publisher_count(node.node());
                     if publishers > 1 && !second_publisher {
-                        eprintln!("warning: {} publishers on {}: refusing to drive the arm until the other stops",
-                            publishers, config.output.arm_target_topic);
+                        hooks.send(StationEvent::Message(format!(
+                            "warning: {} publishers on {}: refusing to drive the arm until the other stops",
+                            publishers, config.output.arm_target_topic
+                        )));
                     }
                     second_publisher = publishers > 1;
                     summary.second_publisher_seen |= second_publisher;
@@ -320,6 +405,9 @@ pub async fn run_station(
                         "constraint": stage.arm().constraint(),
                     },
                 });
+                if let Some(tx) = &hooks.status {
+                    tx.send(Some(status.clone())).ok();
+                }
                 let status = StringMsg { data: status.to_string() };
                 if let Some(r) = recorder.as_mut() {
                     r.output(&config.output.status_topic, now, &status);
@@ -375,7 +463,7 @@ pub async fn run_station(
     }
     summary.counters = core.counters().clone();
     if let Some(r) = recorder {
-        finish_trial(r, clock.now_ns(), &core, &mut summary);
+        finish_trial(r, clock.now_ns(), &core, &mut summary, &hooks);
     }
     Ok(summary)
 }
@@ -386,14 +474,22 @@ fn finish_trial(
     now_ns: i64,
     core: &StationCore,
     summary: &mut StationSummary,
+    hooks: &StationHooks,
 ) {
     let totals = json!({
         "frames_new": core.counters().frames_new,
         "hand_commands": summary.hand_commands,
         "arm_targets": summary.arm_targets,
     });
+    let path = recorder.path().to_path_buf();
     match recorder.finish(now_ns, totals) {
-        Ok(finished) => summary.recorded.push(finished.path),
-        Err(e) => eprintln!("error: cannot finish the trial log: {e:#}"),
+        Ok(finished) => {
+            hooks.send(StationEvent::TrialFinished(finished.path.clone()));
+            summary.recorded.push(finished.path);
+        }
+        Err(e) => hooks.send(StationEvent::TrialFinishFailed {
+            path,
+            error: format!("{e:#}"),
+        }),
     }
 }

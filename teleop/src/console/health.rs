@@ -1,0 +1,184 @@
+//! The station's health as the console shows it, read from the station's status (the JSON it
+//! publishes on its status topic), and whether a trial may start.
+
+use serde_json::Value;
+
+/// The limits a trial start is held to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StartLimits {
+    /// Lowest rate of new glove frames, Hz.
+    pub min_glove_rate_hz: f64,
+    /// Oldest the last glove frame may be, milliseconds.
+    pub max_input_age_ms: f64,
+    /// Oldest the station's status may be, milliseconds (else the station is not reporting).
+    pub max_status_age_ms: f64,
+}
+
+impl Default for StartLimits {
+    fn default() -> Self {
+        StartLimits {
+            min_glove_rate_hz: 20.0,
+            max_input_age_ms: 200.0,
+            max_status_age_ms: 1500.0,
+        }
+    }
+}
+
+/// The station's health at one status.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Health {
+    /// When the console received this status (console clock, ns); `None` before any.
+    pub received_ns: Option<i64>,
+    /// `engaged`, `held` or `disengaged`.
+    pub state: String,
+    /// New glove frames per second.
+    pub glove_rate_hz: f64,
+    /// Age of the last new glove frame, ms.
+    pub input_age_ms: Option<f64>,
+    /// Frame received → command published, ms (the last one).
+    pub latency_ms: Option<f64>,
+    /// Hand commands per second.
+    pub output_rate_hz: f64,
+    /// Frames rejected so far (all reasons).
+    pub rejected: u64,
+    /// Whether the arm is engaged (driven).
+    pub arm_engaged: bool,
+    /// A second publisher on the arm command topic (the station refuses to drive the arm).
+    pub second_publisher: bool,
+}
+
+impl Health {
+    /// Reads the station's status JSON received at `received_ns`; missing fields stay empty.
+    pub fn from_status(status: &Value, received_ns: i64) -> Health {
+        let number = |v: &Value| v.as_f64();
+        let rejected = status
+            .pointer("/counters/rejected")
+            .and_then(Value::as_object)
+            .map_or(0, |m| m.values().filter_map(Value::as_u64).sum());
+        Health {
+            received_ns: Some(received_ns),
+            state: status
+                .get("state")
+                .and_then(Value::as_str)
+                .unwrap_or("unknown")
+                .to_string(),
+            glove_rate_hz: status.get("input_rate_hz").and_then(number).unwrap_or(0.0),
+            input_age_ms: status.get("input_age_ms").and_then(number),
+            latency_ms: status.get("processing_latency_ms").and_then(number),
+            output_rate_hz: status.get("output_rate_hz").and_then(number).unwrap_or(0.0),
+            rejected,
+            arm_engaged: status
+                .pointer("/arm/engaged")
+                .and_then(Value::as_bool)
+                .unwrap_or(false),
+            second_publisher: status
+                .pointer("/arm/second_publisher")
+                .and_then(Value::as_bool)
+                .unwrap_or(false),
+        }
+    }
+
+    /// Whether the station drives the robot.
+    pub fn engaged(&self) -> bool {
+        self.state == "engaged"
+    }
+
+    /// Age of the glove input at `now_ns`: the status's age plus the input age it reported.
+    pub fn input_age_at(&self, now_ns: i64) -> Option<f64> {
+        let received = self.received_ns?;
+        Some(self.input_age_ms? + (now_ns - received) as f64 * 1e-6)
+    }
+
+    /// Why a trial may not start at `now_ns`, if it may not.
+    pub fn refuse_start(&self, limits: &StartLimits, now_ns: i64) -> Option<String> {
+        let Some(received) = self.received_ns else {
+            return Some("the station has not reported yet".to_string());
+        };
+        let status_age = (now_ns - received) as f64 * 1e-6;
+        if status_age > limits.max_status_age_ms {
+            return Some(format!(
+                "the station has not reported for {:.1} s",
+                status_age / 1e3
+            ));
+        }
+        match self.input_age_at(now_ns) {
+            None => return Some("no glove input yet: is the glove streaming?".to_string()),
+            Some(age) if age > limits.max_input_age_ms => {
+                return Some(format!(
+                    "glove input is stale: last frame {age:.0} ms ago (limit {:.0} ms)",
+                    limits.max_input_age_ms
+                ));
+            }
+            Some(_) => {}
+        }
+        if self.glove_rate_hz < limits.min_glove_rate_hz {
+            return Some(format!(
+                "glove rate {:.1} Hz is below the minimum {:.1} Hz (--min-glove-rate)",
+                self.glove_rate_hz, limits.min_glove_rate_hz
+            ));
+        }
+        if !self.engaged() {
+            return Some(format!("the station is {}: press e to engage", self.state));
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+
+    const MS: i64 = 1_000_000;
+
+    fn status(state: &str, rate: f64, age_ms: Option<f64>) -> Value {
+        json!({
+            "state": state, "input_rate_hz": rate, "input_age_ms": age_ms,
+            "processing_latency_ms": 0.4, "output_rate_hz": 25.0,
+            "counters": {"rejected": {"jump": 2, "non_finite": 1}},
+            "arm": {"engaged": true, "second_publisher": false},
+        })
+    }
+
+    #[test]
+    fn reads_the_station_status() {
+        let h = Health::from_status(&status("engaged", 99.0, Some(5.0)), 0);
+        assert!(h.engaged());
+        assert_eq!(h.rejected, 3);
+        assert_eq!(h.latency_ms, Some(0.4));
+        assert!(h.arm_engaged);
+    }
+
+    #[test]
+    fn a_start_is_refused_for_stale_slow_or_disengaged_input() {
+        let limits = StartLimits::default();
+        let ok = Health::from_status(&status("engaged", 99.0, Some(5.0)), 0);
+        assert_eq!(ok.refuse_start(&limits, 10 * MS), None);
+        // The status itself goes old: input age grows with it.
+        assert!(
+            ok.refuse_start(&limits, 400 * MS)
+                .is_some_and(|r| r.contains("stale"))
+        );
+        assert!(
+            ok.refuse_start(&limits, 2000 * MS)
+                .is_some_and(|r| r.contains("not reported"))
+        );
+        let slow = Health::from_status(&status("engaged", 12.0, Some(5.0)), 0);
+        assert!(
+            slow.refuse_start(&limits, 0)
+                .is_some_and(|r| r.contains("12.0 Hz"))
+        );
+        let none = Health::from_status(&status("disengaged", 0.0, None), 0);
+        assert!(
+            none.refuse_start(&limits, 0)
+                .is_some_and(|r| r.contains("no glove input"))
+        );
+        let off = Health::from_status(&status("disengaged", 99.0, Some(5.0)), 0);
+        assert!(
+            off.refuse_start(&limits, 0)
+                .is_some_and(|r| r.contains("engage"))
+        );
+        assert!(Health::default().refuse_start(&limits, 0).is_some());
+    }
+}

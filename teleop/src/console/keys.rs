@@ -1,0 +1,179 @@
+//! The operator's actions, and the words and keys that give them: the same actions come from
+//! the keyboard, a `--script` file or a line on stdin.
+
+/// One thing the operator asks of the console.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// Engage if disengaged, disengage (clutch out) if engaged.
+    ToggleEngage,
+    /// Engage: drive the hand and arm once glove input is fresh.
+    Engage,
+    /// Disengage (clutch out): the arm stops where it is, the hand holds.
+    Disengage,
+    /// Start the next trial (with the countdown) when idle; stop the running trial.
+    StartStop,
+    /// Start the next trial (with the countdown).
+    Start,
+    /// Stop the running trial: the task is finished.
+    Stop,
+    /// A progress mark: `None` is one unit (one notch or curve), `Some(v)` a value in the
+    /// task's unit (degrees, millimetres, or a grasp level 0 / 0.5 / 1).
+    Progress(Option<f64>),
+    /// Take back one unit of progress (a mark given by mistake).
+    Unmark,
+    /// Ask for a progress value (the console prompts for it).
+    PromptProgress,
+    /// The object fell.
+    Drop,
+    /// Abort the running trial (it is logged and scored as aborted), or cancel the countdown.
+    Abort,
+    /// Redo: abort the running trial, or set the last finished one aside, and run it again.
+    Redo,
+    /// A note: for the running trial's log, else for the session manifest.
+    Note(String),
+    /// Ask for a note (the console prompts for it).
+    PromptNote,
+    /// Quit (a running trial is aborted and set aside; the session resumes later).
+    Quit,
+    /// Ctrl-C: quit at once (a running trial is aborted and set aside).
+    Interrupt,
+}
+
+/// The words of `--script` lines and stdin commands, with what they do (for `--help` and
+/// errors).
+pub const ACTION_WORDS: &[(&str, &str)] = &[
+    (
+        "engage",
+        "engage (drive the robot once glove input is fresh)",
+    ),
+    ("disengage", "disengage / clutch out (the robot holds)"),
+    ("start", "start the next trial after the countdown"),
+    ("stop", "stop the running trial (task finished)"),
+    (
+        "progress [V]",
+        "a progress mark: one notch/curve, or V degrees / mm / grasp level",
+    ),
+    ("unmark", "take back one notch/curve"),
+    ("drop", "the object fell"),
+    (
+        "abort",
+        "abort the running trial (scored as aborted) or cancel the countdown",
+    ),
+    (
+        "redo",
+        "abort the running trial, or set the last one aside, and run it again",
+    ),
+    (
+        "note TEXT",
+        "a note for the trial log (or the session manifest between trials)",
+    ),
+    (
+        "quit",
+        "quit; a running trial is set aside and redone when the session resumes",
+    ),
+];
+
+/// The keys of the full-screen console, as shown in its key bar.
+pub const KEY_HELP: &str = "e engage/clutch · space start/stop · + mark · - unmark · p value · d drop · a abort · r redo · n note · q quit";
+
+/// Parses a command word with its argument (`progress 30`, `note glove slipped`).
+pub fn parse_action(text: &str) -> Result<Action, String> {
+    let text = text.trim();
+    let (word, rest) = match text.split_once(char::is_whitespace) {
+        Some((w, r)) => (w, r.trim()),
+        None => (text, ""),
+    };
+    let no_argument = |action: Action| {
+        if rest.is_empty() {
+            Ok(action)
+        } else {
+            Err(format!("'{word}' takes no argument (got '{rest}')"))
+        }
+    };
+    match word {
+        "engage" => no_argument(Action::Engage),
+        "disengage" | "clutch" => no_argument(Action::Disengage),
+        "start" => no_argument(Action::Start),
+        "stop" => no_argument(Action::Stop),
+        "progress" | "mark" => {
+            if rest.is_empty() {
+                return Ok(Action::Progress(None));
+            }
+            let value: f64 = rest
+                .parse()
+                .map_err(|_| format!("progress value '{rest}' is not a number"))?;
+            if !value.is_finite() {
+                return Err(format!("progress value '{rest}' is not finite"));
+            }
+            Ok(Action::Progress(Some(value)))
+        }
+        "unmark" => no_argument(Action::Unmark),
+        "drop" => no_argument(Action::Drop),
+        "abort" => no_argument(Action::Abort),
+        "redo" => no_argument(Action::Redo),
+        "note" => {
+            if rest.is_empty() {
+                Err("'note' needs a text: note TEXT".to_string())
+            } else {
+                Ok(Action::Note(rest.to_string()))
+            }
+        }
+        "quit" => no_argument(Action::Quit),
+        other => Err(format!(
+            "unknown command '{other}' (known: {})",
+            ACTION_WORDS
+                .iter()
+                .map(|(w, _)| w.split(' ').next().unwrap_or(w))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// The action of a key of the full-screen console (outside a prompt).
+pub fn key_action(key: char) -> Option<Action> {
+    Some(match key {
+        'e' | 'E' => Action::ToggleEngage,
+        ' ' => Action::StartStop,
+        '+' | '=' => Action::Progress(None),
+        '-' => Action::Unmark,
+        'p' | 'P' => Action::PromptProgress,
+        'd' | 'D' => Action::Drop,
+        'a' | 'A' => Action::Abort,
+        'r' | 'R' => Action::Redo,
+        'n' | 'N' => Action::PromptNote,
+        'q' | 'Q' => Action::Quit,
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn words_parse_with_their_arguments_and_errors_name_the_word() {
+        assert_eq!(parse_action("progress"), Ok(Action::Progress(None)));
+        assert_eq!(
+            parse_action(" progress 0.5 "),
+            Ok(Action::Progress(Some(0.5)))
+        );
+        assert_eq!(
+            parse_action("note glove slipped"),
+            Ok(Action::Note("glove slipped".into()))
+        );
+        assert!(parse_action("progress x").is_err_and(|e| e.contains("'x'")));
+        assert!(parse_action("progress inf").is_err());
+        assert!(parse_action("stop now").is_err_and(|e| e.contains("'stop'")));
+        assert!(parse_action("jump").is_err_and(|e| e.contains("unknown command 'jump'")));
+        assert!(parse_action("note").is_err());
+    }
+
+    #[test]
+    fn every_key_in_the_key_bar_has_an_action() {
+        for key in ['e', ' ', '+', '-', 'p', 'd', 'a', 'r', 'n', 'q'] {
+            assert!(key_action(key).is_some(), "{key:?}");
+        }
+        assert_eq!(key_action('x'), None);
+    }
+}

@@ -1,0 +1,16 @@
+//! The operator console: `pomdar trial` (timed trials, issue 8). The session logic, the
+//! health, the manifest and the script are plain data and state machines; the terminal, the
+//! station and the files are handled by the command.
+
+pub mod health;
+pub mod keys;
+pub mod manifest;
+pub mod plain_output;
+pub mod screen;
+pub mod script;
+pub mod script_player;
+pub mod session_dir;
+pub mod terminal;
+pub mod trial_command;
+pub mod trial_flow;
+pub mod view;

@@ -1,0 +1,117 @@
+//! The terminal: full-screen mode (raw input, alternate screen, restored on every exit
+//! including a panic), the keyboard read on its own thread, and stdin lines for the line
+//! console.
+
+use std::io::BufRead as _;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use ratatui::crossterm::event::{self, Event, KeyCode, KeyEventKind, KeyModifiers};
+use tokio::sync::mpsc;
+
+/// Input from the operator.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Input {
+    /// A character key.
+    Char(char),
+    /// Enter.
+    Enter,
+    /// Escape.
+    Escape,
+    /// Backspace.
+    Backspace,
+    /// Ctrl-C.
+    CtrlC,
+    /// A line typed on stdin (line console).
+    Line(String),
+    /// stdin was closed (line console).
+    Closed,
+}
+
+/// The full-screen terminal; restores the terminal when dropped.
+pub struct FullScreen {
+    terminal: ratatui::DefaultTerminal,
+    stop_keys: Arc<AtomicBool>,
+}
+
+impl std::fmt::Debug for FullScreen {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("FullScreen")
+    }
+}
+
+impl FullScreen {
+    /// Enters full-screen mode and starts reading keys into `keys`.
+    pub fn enter(keys: mpsc::UnboundedSender<Input>) -> anyhow::Result<FullScreen> {
+        // ratatui::init restores the terminal on a panic as well.
+        let terminal = ratatui::try_init().map_err(|e| {
+            anyhow::anyhow!("cannot open the full-screen console: {e} (use --plain)")
+        })?;
+        let stop_keys = Arc::new(AtomicBool::new(false));
+        let stop = stop_keys.clone();
+        std::thread::Builder::new()
+            .name("console-keys".into())
+            .spawn(move || read_keys(&keys, &stop))?;
+        Ok(FullScreen {
+            terminal,
+            stop_keys,
+        })
+    }
+
+    /// Draws a frame.
+    pub fn draw(&mut self, render: impl FnOnce(&mut ratatui::Frame<'_>)) -> anyhow::Result<()> {
+        self.terminal.draw(render)?;
+        Ok(())
+    }
+}
+
+impl Drop for FullScreen {
+    fn drop(&mut self) {
+        self.stop_keys.store(true, Ordering::Relaxed);
+        ratatui::restore();
+    }
+}
+
+fn read_keys(keys: &mpsc::UnboundedSender<Input>, stop: &AtomicBool) {
+    while !stop.load(Ordering::Relaxed) {
+        match event::poll(Duration::from_millis(100)) {
+            Ok(true) => {}
+            Ok(false) => continue,
+            Err(_) => return,
+        }
+        let Ok(Event::Key(key)) = event::read() else {
+            continue;
+        };
+        if key.kind == KeyEventKind::Release {
+            continue;
+        }
+        let input = match key.code {
+            KeyCode::Char('c') if key.modifiers.contains(KeyModifiers::CONTROL) => Input::CtrlC,
+            KeyCode::Char(c) => Input::Char(c),
+            KeyCode::Enter => Input::Enter,
+            KeyCode::Esc => Input::Escape,
+            KeyCode::Backspace => Input::Backspace,
+            _ => continue,
+        };
+        if keys.send(input).is_err() {
+            return;
+        }
+    }
+}
+
+/// Reads stdin lines into `lines` on a thread (the line console); [`Input::Closed`] at the end.
+pub fn read_stdin_lines(lines: mpsc::UnboundedSender<Input>) -> anyhow::Result<()> {
+    std::thread::Builder::new()
+        .name("console-stdin".into())
+        .spawn(move || {
+            for line in std::io::stdin().lock().lines() {
+                let Ok(line) = line else { break };
+                if lines.send(Input::Line(line)).is_err() {
+                    return;
+                }
+            }
+            lines.send(Input::Closed).ok();
+        })?;
+    Ok(())
+}

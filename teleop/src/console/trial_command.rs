@@ -1,0 +1,668 @@
+//! `pomdar trial`: the operator console for timed trials. Runs the station in this process,
+//! shows the task, the health and the timer full-screen (or as lines without a terminal),
+//! takes the operator's keys (or a `--script`), logs one MCAP per trial, keeps the session
+//! manifest, scores each trial as it ends and writes the session's report when the plan is
+//! done.
+
+use std::collections::BTreeMap;
+use std::io::IsTerminal as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use anyhow::Context as _;
+use clap::Args;
+use retarget::HandModel;
+use scoring::{ArmConstraint, ReportInputs, ScoreReport, TrialScore, score_trial};
+use tokio::sync::{mpsc, watch};
+
+use crate::arm::Constraint;
+use crate::calibrate::utc_date::{compact_utc, now_unix_s};
+use crate::cli::NodeArgs;
+use crate::clock::StationClock;
+use crate::demo::default_domain_id;
+use crate::ros::NetworkConfig;
+use crate::score::load_trial::load_trial_log;
+use crate::score::report_files::write_report_files;
+use crate::score::score_command::reason;
+use crate::score::score_inputs::ScoringInputs;
+use crate::sim::mock_franka::{MockFrankaConfig, run_mock_franka};
+use crate::sim::mock_hand::{MockHandConfig, run_mock_hand};
+use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::station::recorder::{RecordingOptions, config_digest};
+use crate::station::ros_station::{
+    OperatorCommand, StationEvent, StationHooks, run_station_observed, station_core,
+};
+use crate::station::station_config::StationConfig;
+
+use super::health::{Health, StartLimits};
+use super::keys::{Action, key_action, parse_action};
+use super::manifest::{MANIFEST_FILE, TrialStatus};
+use super::plain_output::PlainOutput;
+use super::screen::draw;
+use super::script::load_script;
+use super::script_player::ScriptPlayer;
+use super::session_dir::{SessionPlan, check_name, open_session, session_dir};
+use super::terminal::{FullScreen, Input, read_stdin_lines};
+use super::trial_flow::{Effect, Phase, TrialFlow};
+use super::view::{ConsoleView, Screen, SessionInfo};
+
+/// Exit status after Ctrl-C (or SIGTERM).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// `pomdar trial` options.
+#[derive(Debug, Args)]
+pub struct TrialArgs {
+    /// The task ID (V1–V3, H1–H5, C1–C4, G1–G6; the catalog's IDs).
+    #[arg(long, value_name = "ID")]
+    pub task: String,
+    /// The embodiment being benchmarked (the station's embodiment catalog).
+    #[arg(long, value_name = "NAME", default_value = "orca_full")]
+    pub embodiment: String,
+    /// The user wearing the glove (names the session directory and goes into every log).
+    #[arg(long, value_name = "NAME")]
+    pub user: String,
+    /// The operator running the session.
+    #[arg(long, value_name = "NAME")]
+    pub operator: String,
+    /// Recorded trials in the series (the POMDAR protocol: 20).
+    #[arg(long, value_name = "N", default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=200))]
+    pub trials: u32,
+    /// Practice trials first (the POMDAR protocol: 5; not in the series' mean).
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(0..=50))]
+    pub practice: u32,
+    /// Sessions directory; this session's is <DIR>/<user>/<embodiment>/<task>, holding one
+    /// MCAP per trial, session.json (the manifest) and report/ when the plan is done. A
+    /// session found there resumes where it stopped.
+    #[arg(long, value_name = "DIR", default_value = "sessions")]
+    pub out: PathBuf,
+    /// Station configuration (default: the built-in ETH lab preset). The task sets the arm
+    /// constraint.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// The user's calibration profile (from `pomdar calibrate`); overrides the configuration's.
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// Human baseline table (from `pomdar baseline`): with it each trial shows its score,
+    /// without it correctness only.
+    #[arg(long, value_name = "FILE")]
+    pub baseline: Option<PathBuf>,
+    /// Task catalog (default: the built-in 18 POMDAR tasks).
+    #[arg(long, value_name = "FILE")]
+    pub catalog: Option<PathBuf>,
+    /// Scoring rules (default: weights 0.8 / 0.2, no time limit).
+    #[arg(long, value_name = "FILE")]
+    pub rules: Option<PathBuf>,
+    /// Countdown before a trial starts, seconds (0–30).
+    #[arg(long, value_name = "S", default_value_t = 3.0)]
+    pub countdown: f64,
+    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
+    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
+    pub min_glove_rate: f64,
+    /// Refuse to start a trial while the last glove frame is older than this, ms.
+    #[arg(long, value_name = "MS", default_value_t = 200.0)]
+    pub max_input_age: f64,
+    /// Timed operator actions from a file instead of (or besides) the keyboard; see
+    /// `pomdar trial --help` for the format.
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// Print lines instead of the full-screen console (the default without a terminal);
+    /// without --script, commands are read from stdin, one per line.
+    #[arg(long)]
+    pub plain: bool,
+    /// Run a simulated glove, a mock hand and a mock Franka in this process, on loopback
+    /// (domain 150–229 from the process id unless --domain-id): a demo or a rehearsal.
+    #[arg(long)]
+    pub simulate: bool,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+fn station_constraint(arm: ArmConstraint) -> Constraint {
+    match arm {
+        ArmConstraint::Fixed => Constraint::Fixed,
+        ArmConstraint::VerticalAxis => Constraint::VerticalAxis,
+        ArmConstraint::HorizontalAxis => Constraint::HorizontalAxis,
+        ArmConstraint::Free => Constraint::Free,
+    }
+}
+
+fn check_range(flag: &str, value: f64, low: f64, high: f64, unit: &str) -> anyhow::Result<()> {
+    if !(value.is_finite() && value >= low && value <= high) {
+        anyhow::bail!("{flag} {value} is outside the allowed range [{low}, {high}] {unit}");
+    }
+    Ok(())
+}
+
+/// Where the console's actions come from and where it shows itself.
+enum Display {
+    Full(FullScreen),
+    Plain(PlainOutput),
+}
+
+/// A prompt being typed in the full-screen console.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Prompt {
+    Progress,
+    Note,
+}
+
+/// `pomdar trial`.
+pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
+    check_name("--user", &args.user)?;
+    check_name("--operator", &args.operator)?;
+    check_name("--embodiment", &args.embodiment)?;
+    check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
+    check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
+    check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
+    let inputs = ScoringInputs::load(
+        args.catalog.as_deref(),
+        args.rules.as_deref(),
+        args.baseline.as_deref(),
+    )?;
+    let task = inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
+        anyhow::anyhow!(
+            "--task {:?} is not in the {} ({})",
+            args.task,
+            inputs.catalog.origin,
+            inputs.catalog.ids()
+        )
+    })?;
+    let mut config = match &args.config {
+        Some(path) => StationConfig::from_file(path)?,
+        None => StationConfig::default(),
+    };
+    if args.profile.is_some() {
+        config.calibration_profile.clone_from(&args.profile);
+    }
+    config.network = args.node.network(&config.network);
+    if args.simulate {
+        config.network = NetworkConfig {
+            domain_id: Some(args.node.domain_id.unwrap_or_else(default_domain_id)),
+            interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
+        };
+    }
+    config.retarget.embodiment.clone_from(&args.embodiment);
+    config.arm.constraint = station_constraint(task.arm);
+    config.control.auto_engage = false;
+    config.validate()?;
+    let model = HandModel::orca_v1_right();
+    // The profile and the embodiment are checked before any log or node exists.
+    station_core(&config, model.clone())?;
+    let script = args.script.as_deref().map(load_script).transpose()?;
+
+    let plan = SessionPlan {
+        task: task.id.clone(),
+        embodiment: args.embodiment.clone(),
+        user: args.user.clone(),
+        operator: args.operator.clone(),
+        practice: args.practice,
+        trials: args.trials,
+        calibration_profile: config
+            .calibration_profile
+            .as_ref()
+            .map(|p| p.display().to_string()),
+        config_digest: config_digest(&config),
+        baseline: args.baseline.as_ref().map(|p| p.display().to_string()),
+    };
+    let dir = session_dir(&args.out, &plan);
+    let (manifest, opened) = open_session(&dir, &plan)?;
+    let limits = StartLimits {
+        min_glove_rate_hz: args.min_glove_rate,
+        max_input_age_ms: args.max_input_age,
+        ..StartLimits::default()
+    };
+    let mut flow = TrialFlow::new(manifest, task.correctness, args.countdown, limits);
+    for line in opened {
+        flow.say(line);
+    }
+    let baseline_s = inputs
+        .baseline
+        .as_ref()
+        .and_then(|b| b.get(&task.id))
+        .map(|b| b.mean_s);
+    let info = SessionInfo {
+        setup: vec![
+            ("user".into(), args.user.clone()),
+            ("operator".into(), args.operator.clone()),
+            ("embodiment".into(), args.embodiment.clone()),
+            (
+                "profile".into(),
+                plan.calibration_profile
+                    .clone()
+                    .unwrap_or_else(|| "none (scale 1, no rotation)".into()),
+            ),
+            (
+                "baseline".into(),
+                match baseline_s {
+                    Some(b) => format!("{b:.1} s ({})", plan.baseline.clone().unwrap_or_default()),
+                    None => "none for this task: correctness only".into(),
+                },
+            ),
+            (
+                "plan".into(),
+                format!("{} practice + {} recorded", args.practice, args.trials),
+            ),
+            ("session".into(), dir.display().to_string()),
+            (
+                "domain".into(),
+                format!(
+                    "{}{}",
+                    crate::ros::domain_id(config.network.domain_id)?,
+                    if args.simulate {
+                        " (simulated glove and robot)"
+                    } else {
+                        ""
+                    }
+                ),
+            ),
+        ],
+        task,
+        baseline_s,
+        limits,
+    };
+
+    // The station (and, with --simulate, the glove and the robot).
+    let clock = StationClock::new();
+    let (shutdown_tx, shutdown_rx) = watch::channel(false);
+    let (operator_tx, operator_rx) = mpsc::unbounded_channel();
+    let (status_tx, mut status_rx) = watch::channel(None);
+    let (events_tx, mut events_rx) = mpsc::unbounded_channel();
+    let mut station = tokio::spawn(run_station_observed(
+        config.clone(),
+        model.clone(),
+        clock,
+        shutdown_rx.clone(),
+        operator_rx,
+        None,
+        StationHooks {
+            status: Some(status_tx),
+            events: Some(events_tx),
+        },
+    ));
+    let mut simulated = Vec::new();
+    if args.simulate {
+        simulated = spawn_simulation(&config, &model, clock, &shutdown_rx)?;
+    }
+
+    let (input_tx, mut input_rx) = mpsc::unbounded_channel();
+    let full_screen =
+        !args.plain && std::io::stdin().is_terminal() && std::io::stdout().is_terminal();
+    let mut display = if full_screen {
+        Display::Full(FullScreen::enter(input_tx.clone())?)
+    } else {
+        if script.is_none() {
+            read_stdin_lines(input_tx.clone())?;
+            eprintln!(
+                "pomdar trial: line console; type commands, one per line: {}",
+                super::keys::ACTION_WORDS
+                    .iter()
+                    .map(|(w, _)| *w)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+        Display::Plain(PlainOutput::default())
+    };
+    let mut player = script.map(|s| ScriptPlayer::new(s, Instant::now()));
+    let scripted = player.is_some();
+    let started = Instant::now();
+
+    let mut terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
+        .context("cannot watch SIGTERM")?;
+    let mut health = Health::default();
+    let mut prompt: Option<(Prompt, String)> = None;
+    let mut tick = tokio::time::interval(Duration::from_millis(50));
+    let mut interrupted = false;
+    let mut failure: Option<anyhow::Error> = None;
+    let mut report_written = false;
+    let manifest_path = dir.join(MANIFEST_FILE);
+
+    loop {
+        let mut actions: Vec<Action> = Vec::new();
+        let mut effects: Vec<Effect> = Vec::new();
+        tokio::select! {
+            _ = tick.tick() => {}
+            Ok(()) = status_rx.changed() => {
+                if let Some(status) = status_rx.borrow_and_update().as_ref() {
+                    health = Health::from_status(status, clock.now_ns());
+                }
+            }
+            Some(input) = input_rx.recv() => match input {
+                Input::CtrlC => actions.push(Action::Interrupt),
+                Input::Line(line) if !line.trim().is_empty() => match parse_action(&line) {
+                    Ok(action) => actions.push(action),
+                    Err(e) => flow.say(e),
+                },
+                Input::Line(_) => {}
+                Input::Closed => {
+                    flow.say("stdin closed: quitting (a running trial is set aside)");
+                    actions.push(Action::Interrupt);
+                }
+                key => {
+                    if let Some(action) = typed(&mut prompt, key) {
+                        actions.push(action);
+                    }
+                }
+            },
+            Some(event) = events_rx.recv() => match event {
+                StationEvent::TrialStarted(path) => flow.say(format!("recording {}", path.display())),
+                StationEvent::TrialStartFailed { path, error } => {
+                    effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
+                }
+                StationEvent::TrialFinished(path) => {
+                    effects.extend(flow.trial_logged(score_log(&path, &inputs)));
+                }
+                StationEvent::TrialFinishFailed { path, error } => {
+                    effects.extend(flow.trial_logged(Err(format!(
+                        "the log {} could not be finished: {error} (its .part is kept for pomdar recover)",
+                        path.display()
+                    ))));
+                }
+                StationEvent::Message(text) => flow.say(text),
+            },
+            result = &mut station => {
+                let error = match result {
+                    Ok(Ok(_)) => anyhow::anyhow!("the station stopped unexpectedly"),
+                    Ok(Err(e)) => e.context("the station stopped"),
+                    Err(e) => anyhow::anyhow!("the station task failed: {e}"),
+                };
+                drop(display);
+                return Err(error);
+            }
+            _ = tokio::signal::ctrl_c() => actions.push(Action::Interrupt),
+            _ = terminate.recv() => actions.push(Action::Interrupt),
+        }
+        let now = clock.now_ns();
+        let screen_now = Screen::of(&flow, &health);
+        if let Some(p) = player.as_mut() {
+            match p.next(screen_now, Instant::now()) {
+                Ok(Some(action)) => actions.push(action),
+                Ok(None) => {}
+                Err(e) => {
+                    flow.say(e.clone());
+                    failure = Some(anyhow::anyhow!(e));
+                    actions.push(Action::Interrupt);
+                }
+            }
+        }
+        for action in actions {
+            if action == Action::Interrupt {
+                interrupted = true;
+            }
+            match action {
+                Action::PromptProgress => prompt = Some((Prompt::Progress, String::new())),
+                Action::PromptNote => prompt = Some((Prompt::Note, String::new())),
+                other => effects.extend(flow.act(other, &health, now)),
+            }
+        }
+        effects.extend(flow.tick(&health, now));
+        let mut quit = false;
+        for effect in effects {
+            match effect {
+                Effect::Engage => send(&operator_tx, OperatorCommand::Engage),
+                Effect::Disengage => send(&operator_tx, OperatorCommand::Disengage),
+                Effect::TrialEvent(event) => send(&operator_tx, OperatorCommand::TrialEvent(event)),
+                Effect::StopTrial => send(&operator_tx, OperatorCommand::StopTrial),
+                Effect::StartTrial { file, slot } => {
+                    let metadata = BTreeMap::from([
+                        ("task".to_string(), flow.manifest.task.clone()),
+                        ("user".to_string(), flow.manifest.user.clone()),
+                        ("operator".to_string(), flow.manifest.operator.clone()),
+                        (
+                            "calibration_profile".to_string(),
+                            flow.manifest
+                                .calibration_profile
+                                .clone()
+                                .unwrap_or_else(|| "none".into()),
+                        ),
+                        ("trial_index".to_string(), slot.index.to_string()),
+                        ("practice".to_string(), slot.practice.to_string()),
+                        ("session".to_string(), dir.display().to_string()),
+                        ("source".to_string(), "pomdar trial".to_string()),
+                    ]);
+                    send(
+                        &operator_tx,
+                        OperatorCommand::StartTrial(RecordingOptions {
+                            path: dir.join(&file),
+                            metadata,
+                        }),
+                    );
+                }
+                Effect::SaveManifest => {
+                    flow.manifest.updated_utc = compact_utc(now_unix_s());
+                    if let Err(e) = flow.manifest.save(&manifest_path) {
+                        flow.say(format!("error: cannot save the manifest: {e:#}"));
+                    }
+                }
+                Effect::SetAside { from, to } => {
+                    if let Err(e) = std::fs::rename(dir.join(&from), dir.join(&to)) {
+                        flow.say(format!("error: cannot rename {from} to {to}: {e}"));
+                    }
+                }
+                Effect::Quit => quit = true,
+            }
+        }
+        if *flow.phase() == Phase::Complete && !report_written {
+            report_written = true;
+            match write_session_report(&dir, &flow, &inputs) {
+                Ok(path) => flow.say(format!("session complete: report in {}", path.display())),
+                Err(e) => flow.say(format!("error: cannot write the session report: {e:#}")),
+            }
+            // Without a keyboard to say q, a finished plan ends the console.
+            if !full_screen && (!scripted || player.as_ref().is_some_and(ScriptPlayer::finished)) {
+                quit = true;
+            }
+        }
+        if *flow.phase() == Phase::Complete
+            && scripted
+            && !full_screen
+            && player.as_ref().is_some_and(ScriptPlayer::finished)
+        {
+            quit = true;
+        }
+        let view = ConsoleView::build(&flow, &health, &info, now);
+        match &mut display {
+            Display::Full(screen) => {
+                let typed_text = prompt.as_ref().map(|(kind, text)| match kind {
+                    Prompt::Progress => {
+                        format!("progress ({}): {text}", flow.kind().progress_unit())
+                    }
+                    Prompt::Note => format!("note: {text}"),
+                });
+                screen.draw(|frame| draw(frame, &view, typed_text.as_deref()))?;
+            }
+            Display::Plain(out) => out.update(&view, flow.said(), started.elapsed().as_secs_f64()),
+        }
+        if quit {
+            break;
+        }
+    }
+
+    // The station stops commanding: the robot holds its last target.
+    send(&operator_tx, OperatorCommand::Disengage);
+    shutdown_tx.send(true).ok();
+    let summary = station.await.context("station task")??;
+    for task in simulated {
+        task.await.ok();
+    }
+    drop(display);
+    let m = &flow.manifest;
+    println!(
+        "session {}: {} of {} practice and {} of {} recorded trials done; manifest {}",
+        dir.display(),
+        m.done(true),
+        m.practice_planned,
+        m.done(false),
+        m.trials_planned,
+        manifest_path.display()
+    );
+    for trial in m.trials.iter().filter(|t| t.status != TrialStatus::Scored) {
+        println!("  {}: {:?}", trial.file, trial.status);
+    }
+    if m.next_slot().is_some() {
+        println!("not complete: run the same command again to resume");
+    }
+    if summary.counters.frames_new == 0 {
+        eprintln!("note: the station received no glove frames");
+    }
+    if let Some(error) = failure {
+        return Err(error);
+    }
+    Ok(if interrupted {
+        ExitCode::from(EXIT_INTERRUPTED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn send(tx: &mpsc::UnboundedSender<OperatorCommand>, command: OperatorCommand) {
+    tx.send(command).ok();
+}
+
+/// A key in the full-screen console: typed into the prompt if one is open.
+fn typed(prompt: &mut Option<(Prompt, String)>, key: Input) -> Option<Action> {
+    let Some((kind, text)) = prompt.as_mut() else {
+        return match key {
+            Input::Char(c) => key_action(c),
+            _ => None,
+        };
+    };
+    match key {
+        Input::Char(c) => {
+            text.push(c);
+            None
+        }
+        Input::Backspace => {
+            text.pop();
+            None
+        }
+        Input::Escape => {
+            *prompt = None;
+            None
+        }
+        Input::Enter => {
+            let (kind, text) = (*kind, text.trim().to_string());
+            *prompt = None;
+            if text.is_empty() {
+                return None;
+            }
+            match kind {
+                Prompt::Note => Some(Action::Note(text)),
+                // A value that is not a number becomes a progress mark the session refuses
+                // with a message, so a typo is seen, not dropped.
+                Prompt::Progress => Some(
+                    parse_action(&format!("progress {text}"))
+                        .unwrap_or(Action::Progress(Some(f64::NAN))),
+                ),
+            }
+        }
+        _ => None,
+    }
+}
+
+/// Reads a finished trial log back and scores it.
+fn score_log(path: &Path, inputs: &ScoringInputs) -> Result<TrialScore, String> {
+    let log = load_trial_log(path)?;
+    score_trial(
+        &log,
+        &inputs.catalog,
+        inputs.baseline.as_ref(),
+        &inputs.rules,
+    )
+    .map_err(reason)
+}
+
+/// Scores the session's counted trials and writes the report into `DIR/report`.
+fn write_session_report(
+    dir: &Path,
+    flow: &TrialFlow,
+    inputs: &ScoringInputs,
+) -> anyhow::Result<PathBuf> {
+    let mut scores = Vec::new();
+    let mut rejected = Vec::new();
+    for trial in flow
+        .manifest
+        .trials
+        .iter()
+        .filter(|t| t.status == TrialStatus::Scored)
+    {
+        let path = dir.join(&trial.file);
+        match score_log(&path, inputs) {
+            Ok(score) => scores.push(score),
+            Err(reason) => rejected.push(scoring::FileProblem {
+                file: path.display().to_string(),
+                reason,
+            }),
+        }
+    }
+    let mut report = ScoreReport::build(ReportInputs {
+        catalog: &inputs.catalog,
+        baseline: inputs.baseline.as_ref(),
+        rules: &inputs.rules,
+        rules_origin: &inputs.rules_origin,
+        dof: &inputs.dof,
+        scores,
+        rejected,
+        skipped: Vec::new(),
+    });
+    let out = dir.join("report");
+    write_report_files(&out, &mut report)?;
+    Ok(out.join("report.md"))
+}
+
+/// `--simulate`: a simulated glove, a mock hand and a mock Franka on the station's loopback
+/// domain, until `shutdown`.
+fn spawn_simulation(
+    config: &StationConfig,
+    model: &HandModel,
+    clock: StationClock,
+    shutdown: &watch::Receiver<bool>,
+) -> anyhow::Result<Vec<tokio::task::JoinHandle<anyhow::Result<()>>>> {
+    let network = config.network.clone();
+    let hand = tokio::spawn(run_mock_hand(
+        model.clone(),
+        MockHandConfig {
+            targets_topic: config.output.joint_targets_topic.clone(),
+            ..MockHandConfig::default()
+        },
+        network.clone(),
+        clock,
+        Arc::new(Mutex::new(Default::default())),
+        shutdown.clone(),
+    ));
+    let start = config
+        .arm
+        .start_pose_isometry()
+        .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
+    let arm = tokio::spawn(run_mock_franka(
+        MockFrankaConfig {
+            command_topic: config.output.arm_target_topic.clone(),
+            pose_topic: config.input.arm_feedback_topic.clone(),
+            start,
+            max_speed_m_s: 0.5,
+            max_rate_rad_s: 1.0,
+            rate_hz: 100.0,
+        },
+        network.clone(),
+        clock,
+        Arc::new(Mutex::new(Default::default())),
+        shutdown.clone(),
+    ));
+    let glove_config = SimGloveConfig {
+        keypoints_topic: config.input.keypoints_topic.clone(),
+        wrist_topic: config.input.wrist_topic.clone(),
+        layout: config.retarget.layout,
+        ..SimGloveConfig::default()
+    };
+    let glove = tokio::spawn({
+        let shutdown = shutdown.clone();
+        async move {
+            run_sim_glove(glove_config, network, clock, shutdown).await?;
+            Ok(())
+        }
+    });
+    Ok(vec![hand, arm, glove])
+}

@@ -1,0 +1,383 @@
+//! What the console shows, as plain data built from the session and the station's health: the
+//! full-screen console draws it ([`super::screen`]), the line console prints its changes
+//! ([`super::plain_output`]).
+
+use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
+
+use super::health::{Health, StartLimits};
+use super::manifest::ManifestTrial;
+use super::trial_flow::{Phase, Slot, TrialFlow};
+
+/// The console's main states.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Screen {
+    /// Between trials, the station not engaged.
+    WaitingEngage,
+    /// Between trials, engaged: the next trial may start.
+    Ready,
+    /// Counting down to a trial's start.
+    Countdown,
+    /// A trial runs.
+    Running,
+    /// A trial's log is being finished and scored.
+    Finishing,
+    /// The last trial's result, between trials.
+    Summary,
+    /// Every planned trial is done.
+    Complete,
+}
+
+impl Screen {
+    /// Every state, in the order of a trial.
+    pub const ALL: [Screen; 7] = [
+        Screen::WaitingEngage,
+        Screen::Ready,
+        Screen::Countdown,
+        Screen::Running,
+        Screen::Finishing,
+        Screen::Summary,
+        Screen::Complete,
+    ];
+
+    /// The name scripts use (`wait running`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Screen::WaitingEngage => "waiting_engage",
+            Screen::Ready => "ready",
+            Screen::Countdown => "countdown",
+            Screen::Running => "running",
+            Screen::Finishing => "finishing",
+            Screen::Summary => "summary",
+            Screen::Complete => "complete",
+        }
+    }
+
+    /// The state of a name.
+    pub fn from_name(name: &str) -> Option<Screen> {
+        Screen::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// The banner of the full-screen console.
+    pub fn banner(self) -> &'static str {
+        match self {
+            Screen::WaitingEngage => "WAITING FOR ENGAGE",
+            Screen::Ready => "READY",
+            Screen::Countdown => "COUNTING DOWN",
+            Screen::Running => "RUNNING",
+            Screen::Finishing => "SAVING THE TRIAL",
+            Screen::Summary => "TRIAL SUMMARY",
+            Screen::Complete => "SESSION COMPLETE",
+        }
+    }
+
+    /// The state the session and the health make.
+    pub fn of(flow: &TrialFlow, health: &Health) -> Screen {
+        match flow.phase() {
+            Phase::Countdown { .. } => Screen::Countdown,
+            Phase::Running { .. } => Screen::Running,
+            Phase::Finishing { .. } | Phase::Quitting => Screen::Finishing,
+            Phase::Complete => Screen::Complete,
+            Phase::Idle if flow.last_trial().is_some() => Screen::Summary,
+            Phase::Idle if health.engaged() => Screen::Ready,
+            Phase::Idle => Screen::WaitingEngage,
+        }
+    }
+}
+
+/// How a health value reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Level {
+    /// Fine.
+    Ok,
+    /// Look at it.
+    Warn,
+    /// A trial may not start.
+    Bad,
+}
+
+/// The setting that does not change during a session.
+#[derive(Debug, Clone)]
+pub struct SessionInfo {
+    /// The task.
+    pub task: TaskSpec,
+    /// The user, operator, embodiment, profile, baseline (label, value).
+    pub setup: Vec<(String, String)>,
+    /// The baseline's mean time for the task, s.
+    pub baseline_s: Option<f64>,
+    /// Trial start limits.
+    pub limits: StartLimits,
+}
+
+/// One frame of the console.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConsoleView {
+    /// The state.
+    pub screen: Screen,
+    /// Task line.
+    pub title: String,
+    /// What the operator does in this task.
+    pub instruction: String,
+    /// (label, value) of the session's setting.
+    pub setup: Vec<(String, String)>,
+    /// (label, value, level) of the live health.
+    pub health: Vec<(String, String, Level)>,
+    /// The banner with its clock: `RUNNING  00:12.4`.
+    pub banner: String,
+    /// Lines under the banner: the trial, its marks, what to press.
+    pub detail: Vec<String>,
+    /// The last trial and the series so far.
+    pub results: Vec<String>,
+    /// Recent messages, oldest first.
+    pub messages: Vec<String>,
+}
+
+/// The task's instruction for the operator: what to mark and how the arm moves.
+pub fn instruction(task: &TaskSpec) -> String {
+    let marks = match task.correctness {
+        CorrectnessKind::Notches { count } => {
+            format!("press + at each of the {count} notches passed (- takes one back)")
+        }
+        CorrectnessKind::Curves { count } => {
+            format!("press + at each of the {count} curves cleared (- takes one back)")
+        }
+        CorrectnessKind::Rotation { full_deg } => {
+            format!("press p and type the degrees turned (full: {full_deg}°)")
+        }
+        CorrectnessKind::Distance { full_mm } => {
+            format!("press p and type the millimetres slid (full: {full_mm} mm)")
+        }
+        CorrectnessKind::Grasp {} => {
+            "press p and type the level: 1 relocated, 0.5 lifted then dropped, 0 not lifted; d marks a drop".to_string()
+        }
+    };
+    let arm = match task.arm {
+        ArmConstraint::Fixed => "arm fixed",
+        ArmConstraint::VerticalAxis => "arm moves on the vertical axis only",
+        ArmConstraint::HorizontalAxis => "arm moves on the horizontal axis only",
+        ArmConstraint::Free => "arm free",
+    };
+    format!("{}: {marks}; {arm}.", task.name)
+}
+
+fn clock(seconds: f64) -> String {
+    let seconds = seconds.max(0.0);
+    let minutes = (seconds / 60.0).floor();
+    format!("{:02}:{:04.1}", minutes as u64, seconds - minutes * 60.0)
+}
+
+fn fmt_opt(value: Option<f64>, decimals: usize) -> String {
+    value.map_or("-".to_string(), |v| format!("{v:.decimals$}"))
+}
+
+/// One trial's result in a line.
+pub fn trial_result_line(trial: &ManifestTrial, baseline_s: Option<f64>) -> String {
+    let which = if trial.practice {
+        format!("practice {}", trial.index)
+    } else {
+        format!("trial {}", trial.index)
+    };
+    let score = match (trial.score, baseline_s) {
+        (Some(s), Some(b)) => format!("score {s:.3} (baseline {b:.1} s)"),
+        _ => "score - (no baseline for this task)".to_string(),
+    };
+    format!(
+        "{which}: {} · time {} s · correctness {} · {score} · {}",
+        trial.outcome.as_deref().unwrap_or("not scored"),
+        fmt_opt(trial.time_s, 1),
+        fmt_opt(trial.correctness, 3),
+        trial.file
+    )
+}
+
+impl ConsoleView {
+    /// The view at `now_ns`.
+    pub fn build(
+        flow: &TrialFlow,
+        health: &Health,
+        info: &SessionInfo,
+        now_ns: i64,
+    ) -> ConsoleView {
+        let screen = Screen::of(flow, health);
+        let manifest = &flow.manifest;
+        let title = format!(
+            "{} {} · {} · {}",
+            info.task.id,
+            info.task.name,
+            info.task.correctness.describe(),
+            manifest.embodiment
+        );
+        let mut detail = Vec::new();
+        let banner = match flow.phase() {
+            Phase::Countdown { slot, ends_ns } => {
+                detail.push(format!(
+                    "{} starts in a moment: a aborts the countdown",
+                    slot.label(manifest)
+                ));
+                format!(
+                    "{}  {:.0}",
+                    screen.banner(),
+                    ((ends_ns - now_ns) as f64 * 1e-9).max(0.0).ceil()
+                )
+            }
+            Phase::Running {
+                slot,
+                started_ns,
+                file,
+            } => {
+                let (progress, drops) = flow.marks();
+                detail.push(format!("{} → {file}", slot.label(manifest)));
+                detail.push(format!(
+                    "marked: {progress} {} · drops {drops}",
+                    flow.kind().progress_unit()
+                ));
+                detail.push("space stops · a aborts · r aborts and redoes".to_string());
+                format!(
+                    "{}  {}",
+                    screen.banner(),
+                    clock((now_ns - started_ns) as f64 * 1e-9)
+                )
+            }
+            Phase::Finishing { slot, time_s, .. } => {
+                detail.push(format!(
+                    "{} stopped at {}: finishing and scoring its log",
+                    slot.label(manifest),
+                    clock(*time_s)
+                ));
+                screen.banner().to_string()
+            }
+            _ => screen.banner().to_string(),
+        };
+        match (flow.phase(), manifest.next_slot()) {
+            (Phase::Idle, Some((practice, index))) => {
+                let slot = Slot { practice, index };
+                let next = format!("next: {}", slot.label(manifest));
+                detail.push(if health.engaged() {
+                    format!("{next} · space starts it (countdown)")
+                } else {
+                    format!("{next} · press e to engage")
+                });
+            }
+            (Phase::Complete, _) => detail.push(format!(
+                "all {} practice and {} recorded trials done · q quits",
+                manifest.practice_planned, manifest.trials_planned
+            )),
+            _ => {}
+        }
+        let mut results = Vec::new();
+        if let Some(last) = flow.last_trial() {
+            results.push(format!("last {}", trial_result_line(last, info.baseline_s)));
+        }
+        let series = manifest.series();
+        let what = if info.baseline_s.is_some() {
+            "score"
+        } else {
+            "correctness"
+        };
+        results.push(match MeanStd::of(&series) {
+            Some(m) => format!(
+                "recorded trials: {}/{} done · {what} {}",
+                series.len(),
+                manifest.trials_planned,
+                m.format(3)
+            ),
+            None => format!("recorded trials: 0/{} done", manifest.trials_planned),
+        });
+        ConsoleView {
+            screen,
+            title,
+            instruction: instruction(&info.task),
+            setup: info.setup.clone(),
+            health: health_lines(health, &info.limits, now_ns),
+            banner,
+            detail,
+            results,
+            messages: flow.messages().map(str::to_string).collect(),
+        }
+    }
+}
+
+fn health_lines(
+    health: &Health,
+    limits: &StartLimits,
+    now_ns: i64,
+) -> Vec<(String, String, Level)> {
+    if health.received_ns.is_none() {
+        return vec![("station".into(), "starting…".into(), Level::Warn)];
+    }
+    let age = health.input_age_at(now_ns);
+    let state_level = match health.state.as_str() {
+        "engaged" => Level::Ok,
+        "held" => Level::Warn,
+        _ => Level::Bad,
+    };
+    let age_level = match age {
+        Some(a) if a <= limits.max_input_age_ms => Level::Ok,
+        _ => Level::Bad,
+    };
+    let rate_level = if health.glove_rate_hz >= limits.min_glove_rate_hz {
+        Level::Ok
+    } else {
+        Level::Bad
+    };
+    vec![
+        ("drive".into(), health.state.clone(), state_level),
+        (
+            "glove".into(),
+            format!(
+                "{:.0} Hz (min {:.0})",
+                health.glove_rate_hz, limits.min_glove_rate_hz
+            ),
+            rate_level,
+        ),
+        (
+            "input age".into(),
+            age.map_or("no input".to_string(), |a| format!("{a:.0} ms")),
+            age_level,
+        ),
+        (
+            "latency".into(),
+            health
+                .latency_ms
+                .map_or("-".to_string(), |l| format!("{l:.2} ms")),
+            Level::Ok,
+        ),
+        (
+            "commands".into(),
+            format!("{:.0} /s", health.output_rate_hz),
+            Level::Ok,
+        ),
+        (
+            "watchdog".into(),
+            match health.state.as_str() {
+                "engaged" => "ok".to_string(),
+                "held" => "holding (input stale)".to_string(),
+                _ => "disengaged".to_string(),
+            },
+            state_level,
+        ),
+        (
+            "rejected".into(),
+            health.rejected.to_string(),
+            if health.rejected == 0 {
+                Level::Ok
+            } else {
+                Level::Warn
+            },
+        ),
+        (
+            "arm".into(),
+            if health.second_publisher {
+                "second publisher: not driven".to_string()
+            } else if health.arm_engaged {
+                "engaged".to_string()
+            } else {
+                "holding".to_string()
+            },
+            if health.second_publisher {
+                Level::Bad
+            } else {
+                Level::Ok
+            },
+        ),
+    ]
+}
