@@ -310,8 +310,11 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     let scripted = player.is_some();
     let started = Instant::now();
 
+    // Listening from the start, so a signal between two turns of the loop is not missed.
     let mut terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
         .context("cannot watch SIGTERM")?;
+    let mut interrupt = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::interrupt())
+        .context("cannot watch SIGINT")?;
     let mut health = Health::default();
     let mut prompt: Option<(Prompt, String)> = None;
     let mut tick = tokio::time::interval(Duration::from_millis(50));
@@ -372,7 +375,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
                 drop(display);
                 return Err(error);
             }
-            _ = tokio::signal::ctrl_c() => actions.push(Action::Interrupt),
+            _ = interrupt.recv() => actions.push(Action::Interrupt),
             _ = terminate.recv() => actions.push(Action::Interrupt),
         }
         let now = clock.now_ns();

@@ -1,0 +1,318 @@
+//! Ctrl-C and a killed console mid-trial: no finished trial is lost, the station stops
+//! commanding (the robot hears nothing more and holds its last target), and the session
+//! resumes where it stopped. The glove is a `pomdar sim-glove` process, the console a
+//! `pomdar trial` line console driven through its stdin, the robot's command listener is in
+//! this process; all on loopback DDS.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+use std::io::{BufRead as _, BufReader, Write as _};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use futures::StreamExt;
+use msgs::JointState;
+use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
+use pomdar_tests::station_harness::{loopback, test_domain};
+use teleop::mcap_log::read_trial_events;
+use teleop::ros::{QosConfig, RosNode};
+
+/// A child process, killed when dropped so a failing test leaves nothing running.
+struct Process(Child);
+
+impl Drop for Process {
+    fn drop(&mut self) {
+        self.0.kill().ok();
+        self.0.wait().ok();
+    }
+}
+
+/// A line console: its stdin, and its stderr collected as it comes.
+struct LineConsole {
+    process: Process,
+    stderr: Arc<Mutex<String>>,
+}
+
+impl LineConsole {
+    fn start(args: &[String]) -> LineConsole {
+        let mut child = Command::new(pomdar_binary().unwrap())
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let stderr = Arc::new(Mutex::new(String::new()));
+        let sink = stderr.clone();
+        let pipe = child.stderr.take().unwrap();
+        std::thread::spawn(move || {
+            for line in BufReader::new(pipe).lines() {
+                let Ok(line) = line else { break };
+                sink.lock().unwrap().push_str(&(line + "\n"));
+            }
+        });
+        LineConsole {
+            process: Process(child),
+            stderr,
+        }
+    }
+
+    fn say(&mut self, command: &str) {
+        let stdin = self.process.0.stdin.as_mut().unwrap();
+        writeln!(stdin, "{command}").unwrap();
+        stdin.flush().unwrap();
+    }
+
+    fn wait_for(&self, text: &str, timeout_s: f64) {
+        let start = Instant::now();
+        while !self.stderr.lock().unwrap().contains(text) {
+            assert!(
+                start.elapsed().as_secs_f64() < timeout_s,
+                "waited {timeout_s} s for {text:?}; the console printed:\n{}",
+                self.stderr.lock().unwrap()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn pid(&self) -> String {
+        self.process.0.id().to_string()
+    }
+}
+
+fn console_args(dir: &Path, domain: u16) -> Vec<String> {
+    [
+        "trial",
+        "--task",
+        "V1",
+        "--user",
+        "kill",
+        "--operator",
+        "ci",
+        "--practice",
+        "0",
+        "--trials",
+        "3",
+        "--plain",
+        "--countdown",
+        "0.3",
+        "--interface",
+        "127.0.0.1",
+        "--domain-id",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain([
+        domain.to_string(),
+        "--out".to_string(),
+        dir.display().to_string(),
+    ])
+    .collect()
+}
+
+fn event_names(path: &Path) -> Vec<String> {
+    read_trial_events(path)
+        .unwrap()
+        .events
+        .iter()
+        .map(|(_, text)| {
+            serde_json::from_str::<serde_json::Value>(text).unwrap()["event"]
+                .as_str()
+                .unwrap()
+                .to_string()
+        })
+        .collect()
+}
+
+fn manifest(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("session.json")).unwrap()).unwrap()
+}
+
+fn statuses(dir: &Path) -> Vec<(String, String)> {
+    manifest(dir)["trials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            (
+                t["file"].as_str().unwrap().to_string(),
+                t["status"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect()
+}
+
+/// Joint targets the robot heard: receive times.
+type Heard = Arc<Mutex<Vec<Instant>>>;
+
+/// Asserts the robot heard commands before `stopped` and none from `grace` after it.
+fn assert_silent_after(heard: &Heard, stopped: Instant, what: &str) {
+    std::thread::sleep(Duration::from_millis(1500));
+    let times = heard.lock().unwrap().clone();
+    let before = times.iter().filter(|t| **t < stopped).count();
+    let late: Vec<f64> = times
+        .iter()
+        .filter(|t| **t > stopped + Duration::from_millis(300))
+        .map(|t| t.duration_since(stopped).as_secs_f64())
+        .collect();
+    assert!(
+        before > 20,
+        "{what}: only {before} joint targets before the stop"
+    );
+    assert!(
+        late.is_empty(),
+        "{what}: the robot still heard {} commands, at {late:?} s",
+        late.len()
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds() {
+    let domain = test_domain(3);
+    let root =
+        std::env::temp_dir().join(format!("pomdar-console-interrupt-{}", std::process::id()));
+    std::fs::remove_dir_all(&root).ok();
+    std::fs::create_dir_all(&root).unwrap();
+    let dir = root.join("kill/orca_full/V1");
+
+    // The robot's ear and the glove.
+    let context = loopback(domain).context().unwrap();
+    let mut node = RosNode::new(&context, "/", "robot").unwrap();
+    let sub = node
+        .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(50))
+        .unwrap();
+    let heard: Heard = Arc::default();
+    let ear = heard.clone();
+    let listener = tokio::spawn(async move {
+        let mut stream = Box::pin(sub.async_stream());
+        while let Some(item) = stream.next().await {
+            if item.is_ok() {
+                ear.lock().unwrap().push(Instant::now());
+            }
+        }
+    });
+    let _glove = Process(
+        Command::new(pomdar_binary().unwrap())
+            .args([
+                "sim-glove",
+                "--interface",
+                "127.0.0.1",
+                "--domain-id",
+                &domain.to_string(),
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+
+    // 1. Ctrl-C during trial 2: trial 1 stays scored, trial 2 is logged as aborted
+    //    ("interrupted") and set aside; exit status 130; the station stops commanding.
+    let mut console = LineConsole::start(&console_args(&root, domain));
+    console.wait_for("WAITING FOR ENGAGE", 30.0);
+    console.say("engage");
+    console.wait_for("engaged", 15.0);
+    console.say("start");
+    console.wait_for("RUNNING · trial 1/3", 10.0);
+    console.say("progress");
+    console.say("progress");
+    std::thread::sleep(Duration::from_millis(1000));
+    console.say("stop");
+    console.wait_for("last trial 1: completed", 10.0);
+    console.say("start");
+    console.wait_for("RUNNING · trial 2/3", 10.0);
+    console.say("progress");
+    std::thread::sleep(Duration::from_millis(1000));
+    let status = Command::new("kill")
+        .args(["-INT", &console.pid()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let code = console.process.0.wait().unwrap().code();
+    let stopped = Instant::now();
+    assert_eq!(code, Some(130), "{}", console.stderr.lock().unwrap());
+    assert_silent_after(&heard, stopped, "after Ctrl-C");
+    assert_eq!(
+        statuses(&dir),
+        [
+            ("V1-t01.mcap".to_string(), "scored".to_string()),
+            (
+                "V1-t02.mcap.interrupted".to_string(),
+                "interrupted".to_string()
+            )
+        ]
+    );
+    assert_eq!(
+        event_names(&dir.join("V1-t01.mcap")),
+        ["start", "progress", "progress", "stop"]
+    );
+    assert_eq!(
+        event_names(&dir.join("V1-t02.mcap.interrupted")),
+        ["start", "progress", "abort", "stop"]
+    );
+    assert_eq!(manifest(&dir)["trials"][0]["progress"], 2.0);
+
+    // 2. Resumed at trial 2, then SIGKILL mid-trial: the manifest still holds everything
+    //    finished, the running trial's log is a .part, the robot hears nothing more.
+    let mut console = LineConsole::start(&console_args(&root, domain));
+    console.wait_for("resumed", 30.0);
+    console.say("engage");
+    console.wait_for("engaged", 15.0);
+    console.say("start");
+    console.wait_for("RUNNING · trial 2/3", 10.0);
+    console.say("progress");
+    std::thread::sleep(Duration::from_millis(1500));
+    console.process.0.kill().unwrap();
+    console.process.0.wait().unwrap();
+    let stopped = Instant::now();
+    assert_silent_after(&heard, stopped, "after SIGKILL");
+    assert!(dir.join("V1-t02-a2.mcap.part").exists());
+    assert_eq!(
+        statuses(&dir).len(),
+        2,
+        "the manifest is as the Ctrl-C left it"
+    );
+    assert_eq!(
+        event_names(&dir.join("V1-t01.mcap")),
+        ["start", "progress", "progress", "stop"]
+    );
+
+    // 3. Resumed by a script: the .part is recovered and set aside, trials 2 and 3 run.
+    let script = root.join("finish.script");
+    std::fs::write(
+        &script,
+        "engage\nwait ready 20\nstart\nwait running 20\n+1 progress\n+1 stop\nwait summary 20\nstart\nwait running 20\n+1 stop\nwait complete 20\n",
+    )
+    .unwrap();
+    let mut args = console_args(&root, domain);
+    args.extend(["--script".to_string(), script.display().to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let out = run_pomdar(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("V1-t02-a2.mcap.part: interrupted"),
+        "{stderr}"
+    );
+    assert_eq!(
+        statuses(&dir),
+        [
+            ("V1-t01.mcap", "scored"),
+            ("V1-t02.mcap.interrupted", "interrupted"),
+            ("V1-t02-a2.mcap.interrupted", "interrupted"),
+            ("V1-t02-a3.mcap", "scored"),
+            ("V1-t03.mcap", "scored"),
+        ]
+        .map(|(f, s)| (f.to_string(), s.to_string()))
+    );
+    // The recovered log keeps what was flushed before the kill: the start and the mark.
+    let recovered = event_names(&dir.join("V1-t02-a2.mcap.interrupted"));
+    assert_eq!(&recovered[..2], ["start", "progress"], "{recovered:?}");
+    assert!(!dir.join("V1-t02-a2.mcap.part").exists());
+    assert_eq!(manifest(&dir)["runs"], 3);
+    assert!(dir.join("report/report.md").exists());
+    listener.abort();
+    std::fs::remove_dir_all(&root).ok();
+}
