@@ -1,7 +1,7 @@
 //! # teleop: the POMDAR station application
 //!
-//! The one crate that does I/O: files, ROS 2 (ros2-client + tokio) and MCAP logs; the
-//! operator console arrives with issue 8. The pure crates (`retarget`, `calibration`,
+//! The one crate that does I/O: files, ROS 2 (ros2-client + tokio), MCAP logs and the
+//! operator console (`console`: `pomdar trial`). The pure crates (`retarget`, `calibration`,
 //! `scoring`, `msgs`) compute; this crate reads, writes and talks (`score`: the trial files
 //! and reports of `pomdar score` and `pomdar baseline`).
 
