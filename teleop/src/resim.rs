@@ -103,6 +103,9 @@ impl Replayer<'_> {
             self.robot_pose,
             false,
         );
+        for warning in self.stage.take_warnings() {
+            eprintln!("{warning}");
+        }
         if outputs.fresh_hand {
             self.step_ms.push(started.elapsed().as_secs_f64() * 1e3);
         }

@@ -32,7 +32,7 @@ use crate::sim::mock_hand::{MockHandConfig, run_mock_hand};
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station::recorder::{RecordingOptions, config_digest};
 use crate::station::ros_station::{
-    OperatorCommand, StationEvent, StationHooks, run_station_observed, station_core,
+    OperatorCommand, StationEvent, StationHooks, run_station_observed, station_core_described,
 };
 use crate::station::station_config::StationConfig;
 
@@ -190,7 +190,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     config.validate()?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
-    station_core(&config, model.clone())?;
+    station_core_described(&config, model.clone())?;
     let script = args.script.as_deref().map(load_script).transpose()?;
 
     let plan = SessionPlan {

@@ -40,9 +40,16 @@ pub struct OutputStage {
     /// Engaged, but the arm clutch still waits for the first glove wrist pose.
     arm_engage_pending: bool,
     last_published_frame_ns: i64,
+    /// Warnings for the operator, taken by [`OutputStage::take_warnings`].
+    warnings: Vec<String>,
 }
 
 impl OutputStage {
+    /// Warnings since the last call (the caller shows them: stderr or the operator console).
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.warnings)
+    }
+
     /// The stage for a configuration and hand model.
     pub fn new(config: &StationConfig, model: &HandModel) -> anyhow::Result<OutputStage> {
         let policy = if config.policy_output.topic.is_empty() {
@@ -61,6 +68,7 @@ impl OutputStage {
             mode: config.control.mode,
             previous_state: DriveState::Disengaged,
             arm_engage_pending: false,
+            warnings: Vec::new(),
             last_published_frame_ns: i64::MIN,
         })
     }
@@ -152,7 +160,7 @@ impl OutputStage {
                 None => self.arm.engage_at_start_pose(wrist),
             };
             if let Err(e) = engaged {
-                eprintln!("warning: arm not engaged: {e}");
+                self.warnings.push(format!("warning: arm not engaged: {e}"));
             }
         }
     }

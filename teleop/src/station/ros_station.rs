@@ -134,6 +134,18 @@ pub struct StationSummary {
 /// (errors name the file and the key), checked against the model and the layout, applied, and
 /// described in one line on stderr.
 pub fn station_core(config: &StationConfig, model: HandModel) -> anyhow::Result<StationCore> {
+    let (core, description) = station_core_described(config, model)?;
+    if let Some(line) = description {
+        eprintln!("{line}");
+    }
+    Ok(core)
+}
+
+/// [`station_core`], returning the profile's one-line description instead of printing it.
+pub fn station_core_described(
+    config: &StationConfig,
+    model: HandModel,
+) -> anyhow::Result<(StationCore, Option<String>)> {
     let profile = match &config.calibration_profile {
         Some(path) => Some(load_profile(path, &model, config.retarget.layout)?),
         None => None,
@@ -144,16 +156,19 @@ pub fn station_core(config: &StationConfig, model: HandModel) -> anyhow::Result<
         &EmbodimentCatalog::builtin(),
     )
     .context("retargeter")?;
+    let description = profile.as_ref().map(describe);
     if let Some(profile) = profile {
         retargeter
             .set_calibration(profile.parameters)
             .context("calibration profile")?;
-        eprintln!("{}", describe(&profile));
     }
-    Ok(StationCore::new(
-        retargeter,
-        FrameGate::new(config.retarget.layout, config.gate.clone()),
-        Watchdog::new(config.watchdog.clone()),
+    Ok((
+        StationCore::new(
+            retargeter,
+            FrameGate::new(config.retarget.layout, config.gate.clone()),
+            Watchdog::new(config.watchdog.clone()),
+        ),
+        description,
     ))
 }
 
@@ -189,7 +204,10 @@ pub async fn run_station_observed(
     hooks: StationHooks,
 ) -> anyhow::Result<StationSummary> {
     // The core first: a bad profile or configuration fails before any log is created.
-    let mut core = station_core(&config, model.clone())?;
+    let (mut core, description) = station_core_described(&config, model.clone())?;
+    if let Some(line) = description {
+        hooks.send(StationEvent::Message(line));
+    }
     let mut recorder = match &recording {
         Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
         None => None,
@@ -436,6 +454,9 @@ pub async fn run_station_observed(
             robot_pose,
             second_publisher,
         );
+        for warning in stage.take_warnings() {
+            hooks.send(StationEvent::Message(warning));
+        }
         if let Some(message) = outputs.joint_state {
             if let Some(r) = recorder.as_mut() {
                 r.output(&config.output.joint_targets_topic, now, &message);
