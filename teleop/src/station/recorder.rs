@@ -4,8 +4,8 @@
 //!
 //! The log is written as `NAME.mcap.part`, flushed at least once a second and on every event,
 //! and renamed when the run ends; `pomdar recover` repairs a `.part` left by a crash. A write
-//! failure is reported once and recording continues where it can: the hand is never stopped
-//! for the log's sake.
+//! failure is reported once (the station takes it with `take_error`) and recording continues
+//! where it can: the hand is never stopped for the log's sake.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -45,6 +45,8 @@ pub struct StationRecorder {
     writer: TrialWriter,
     path: PathBuf,
     failed: bool,
+    /// The first write error, until taken by [`StationRecorder::take_error`].
+    error: Option<String>,
 }
 
 impl std::fmt::Debug for StationRecorder {
@@ -90,15 +92,16 @@ impl StationRecorder {
             writer,
             path: options.path.clone(),
             failed: false,
+            error: None,
         })
     }
 
     fn check(&mut self, result: Result<(), crate::mcap_log::LogError>) {
         if let Err(e) = result {
             if !self.failed {
-                eprintln!(
+                self.error = Some(format!(
                     "error: recording: {e} (the station keeps running; the log may be incomplete)"
-                );
+                ));
             }
             self.failed = true;
         }
@@ -156,6 +159,11 @@ impl StationRecorder {
     /// The log's final path (written as `.part` until finished).
     pub fn path(&self) -> &std::path::Path {
         &self.path
+    }
+
+    /// The first write error, once (the station reports it: stderr or the operator console).
+    pub fn take_error(&mut self) -> Option<String> {
+        self.error.take()
     }
 
     /// Whether any write failed.

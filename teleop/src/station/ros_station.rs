@@ -430,6 +430,9 @@ pub async fn run_station_observed(
                 if let Some(r) = recorder.as_mut() {
                     r.output(&config.output.status_topic, now, &status);
                     r.tick(now);
+                    if let Some(error) = r.take_error() {
+                        hooks.send(StationEvent::Message(error));
+                    }
                 }
                 status_pub.async_publish(status).await.ok();
             }
@@ -502,6 +505,10 @@ fn finish_trial(
         "hand_commands": summary.hand_commands,
         "arm_targets": summary.arm_targets,
     });
+    let mut recorder = recorder;
+    if let Some(error) = recorder.take_error() {
+        hooks.send(StationEvent::Message(error));
+    }
     let path = recorder.path().to_path_buf();
     match recorder.finish(now_ns, totals) {
         Ok(finished) => {
