@@ -153,6 +153,10 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         15.0,
     );
     assert!(s.contains("next: trial 2/2"), "{s}");
+    assert!(
+        s.contains("hand 1 listening"),
+        "the mock hand is the one listener: {s}"
+    );
     // q between trials quits; the session is not complete and says how to resume.
     console.press("q");
     let status = console.child.wait().unwrap();

@@ -45,6 +45,10 @@ pub struct Health {
     pub arm_engaged: bool,
     /// A second publisher on the arm command topic (the station refuses to drive the arm).
     pub second_publisher: bool,
+    /// Subscribers matched to the hand's joint targets (the robot hand listening).
+    pub hand_listeners: Option<u64>,
+    /// Subscribers matched to the arm targets, besides the station's own monitor.
+    pub arm_listeners: Option<u64>,
 }
 
 impl Health {
@@ -75,6 +79,8 @@ impl Health {
                 .pointer("/arm/second_publisher")
                 .and_then(Value::as_bool)
                 .unwrap_or(false),
+            hand_listeners: status.pointer("/listeners/hand").and_then(Value::as_u64),
+            arm_listeners: status.pointer("/listeners/arm").and_then(Value::as_u64),
         }
     }
 
@@ -138,6 +144,7 @@ mod tests {
             "processing_latency_ms": 0.4, "output_rate_hz": 25.0,
             "counters": {"rejected": {"jump": 2, "non_finite": 1}},
             "arm": {"engaged": true, "second_publisher": false},
+            "listeners": {"hand": 1, "arm": 0},
         })
     }
 
@@ -148,6 +155,7 @@ mod tests {
         assert_eq!(h.rejected, 3);
         assert_eq!(h.latency_ms, Some(0.4));
         assert!(h.arm_engaged);
+        assert_eq!((h.hand_listeners, h.arm_listeners), (Some(1), Some(0)));
     }
 
     #[test]

@@ -345,6 +345,9 @@ impl TrialFlow {
         if let Some(why) = health.refuse_start(&self.limits, now_ns) {
             return self.refuse(&format!("cannot start: {why}"));
         }
+        if health.hand_listeners == Some(0) {
+            self.say("warning: no robot hand is listening to the joint targets (the trial is logged all the same)");
+        }
         self.phase = Phase::Countdown {
             slot: Slot { practice, index },
             ends_ns: now_ns + self.countdown_ns,

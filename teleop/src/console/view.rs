@@ -365,6 +365,20 @@ fn health_lines(
             },
         ),
         (
+            "robot".into(),
+            match (health.hand_listeners, health.arm_listeners) {
+                (Some(0), _) => "no hand listening to the targets".to_string(),
+                (Some(h), Some(a)) => format!("hand {h} listening · arm {a}"),
+                (Some(h), None) => format!("hand {h} listening"),
+                (None, _) => "-".to_string(),
+            },
+            if health.hand_listeners == Some(0) {
+                Level::Bad
+            } else {
+                Level::Ok
+            },
+        ),
+        (
             "arm".into(),
             if health.second_publisher {
                 "second publisher: not driven".to_string()

@@ -416,6 +416,11 @@ pub async fn run_station_observed(
                     "processing_latency_ms": if last_latency_ms.is_finite() { Some(last_latency_ms) } else { None },
                     "counters": core.counters(),
                     "wrist_rejected": summary.wrist_rejected,
+                    // Matched readers of the commands (the station's own arm monitor is one).
+                    "listeners": {
+                        "hand": joint_pub.get_subscription_count(node.node()),
+                        "arm": arm_pub.as_ref().map(|p| p.get_subscription_count(node.node()).saturating_sub(1)),
+                    },
                     "arm": {
                         "enabled": arm_enabled,
                         "engaged": stage.arm().is_engaged(),
