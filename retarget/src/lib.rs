@@ -107,6 +107,13 @@
 //! - `λ` (`regularisation.previous_command`) smooths without the lag of an output filter;
 //!   `μ` (`regularisation.rest_posture`) keeps abduction joints near a rest posture when the
 //!   key vectors leave them free.
+//! - Residual-adaptive smoothing ([`SmoothingConfig`]): each frame is solved once with `λ`;
+//!   with `ē` the mean palm → fingertip residual of that solve and `x = (ē / r₀)²`
+//!   (`smoothing.residual_m`), it is solved again from the same `q₋` with
+//!   `λ' = λ + λ_s x / (1 + x)` (`smoothing.previous_command`). A frame the robot reproduces
+//!   (`ē ≈ 0`) is tracked without lag; one it cannot (glove noise, a hand outside the robot's
+//!   range, where the optimum is ill determined and noise moves it most) is pulled toward the
+//!   previous command. The command depends only on `q₋`, the frame and `dt`: no hidden state.
 //!
 //! Units: residuals in metres, weights dimensionless per m², `λ`, `μ` per rad².
 //!
@@ -166,7 +173,8 @@ pub use model_spec::{FrameSpec, ModelSpec};
 pub use palm_frame::{MIN_PALM_AXIS_M, PalmFrame, PalmLandmarks};
 pub use quality::{DigitQuality, QualityRecorder, QualityReport};
 pub use retarget_config::{
-    KeyVectorWeights, PinchConfig, QpMethod, Regularisation, RetargetConfig, SolverConfig,
+    KeyVectorWeights, PinchConfig, QpMethod, Regularisation, RetargetConfig, SmoothingConfig,
+    SolverConfig,
 };
 pub use retargeter::{Retargeter, Solution, SolveStatus};
 pub use urdf_import::{UrdfImport, spec_from_urdf};

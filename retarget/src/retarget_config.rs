@@ -26,6 +26,8 @@ pub struct RetargetConfig {
     pub huber_delta_m: f64,
     /// Regularisers.
     pub regularisation: Regularisation,
+    /// Extra pull toward the previous command on frames the robot cannot reproduce.
+    pub smoothing: SmoothingConfig,
     /// Per-frame solver settings.
     pub solver: SolverConfig,
     /// Rest posture of abduction joints, radians, by joint name; the `rest_posture`
@@ -77,6 +79,26 @@ pub struct Regularisation {
     pub damping: f64,
 }
 
+/// Residual-adaptive smoothing: on a frame whose fingertips the robot cannot reach (glove
+/// noise, a hand shape outside the robot's range), the solution is ill determined and noise
+/// moves it from frame to frame; there the pull toward the previous command grows. A frame
+/// the robot can reproduce gets none of it, so reachable motion is tracked without lag.
+///
+/// Each frame is first solved with `regularisation.previous_command`; with `ē` the mean
+/// palm → fingertip residual of that solve and `x = (ē / residual_m)²`, it is solved again
+/// from the same previous command with the pull raised by `smoothing.previous_command ·
+/// x / (1 + x)`.
+/// The command still depends only on the previous command and the frame (no hidden state).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SmoothingConfig {
+    /// Extra weight toward the previous command at full effect (per rad²); 0 disables the
+    /// second solve.
+    pub previous_command: f64,
+    /// Mean fingertip residual at which half of the extra weight applies, metres.
+    pub residual_m: f64,
+}
+
 /// Per-frame Gauss–Newton settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -118,6 +140,7 @@ impl Default for RetargetConfig {
             pinch: PinchConfig::default(),
             huber_delta_m: 0.02,
             regularisation: Regularisation::default(),
+            smoothing: SmoothingConfig::default(),
             solver: SolverConfig::default(),
             rest_posture_rad: BTreeMap::from([
                 ("thumb_mcp".to_string(), 0.0),
@@ -136,7 +159,7 @@ impl Default for KeyVectorWeights {
         KeyVectorWeights {
             palm_to_tip: 1.0,
             tip_to_tip: 0.5,
-            palm_to_mid: 0.2,
+            palm_to_mid: 1.0,
         }
     }
 }
@@ -160,6 +183,15 @@ impl Default for Regularisation {
             previous_command: 1e-4,
             rest_posture: 1e-5,
             damping: 1e-6,
+        }
+    }
+}
+
+impl Default for SmoothingConfig {
+    fn default() -> Self {
+        SmoothingConfig {
+            previous_command: 2e-2,
+            residual_m: 0.012,
         }
     }
 }
@@ -235,6 +267,9 @@ impl RetargetConfig {
         )?;
         range("regularisation.rest_posture", r.rest_posture, 0.0, 10.0)?;
         range("regularisation.damping", r.damping, 1e-12, 1.0)?;
+        let sm = &self.smoothing;
+        range("smoothing.previous_command", sm.previous_command, 0.0, 10.0)?;
+        range("smoothing.residual_m", sm.residual_m, 1e-4, 1.0)?;
         let s = &self.solver;
         range(
             "solver.steps_per_frame",
@@ -295,6 +330,13 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("steps"), "{err}");
+        let err = RetargetConfig::from_toml_str("[smoothing]\nresidual_m = 0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("smoothing.residual_m") && err.contains("[0.0001, 1]"),
+            "{err}"
+        );
         let err = RetargetConfig::from_toml_str("layout = \"mano\"\n")
             .unwrap_err()
             .to_string();

@@ -68,6 +68,9 @@ pub struct Solution {
     pub qp_time_s: f64,
     /// Mean over the 5 palm → fingertip key vectors of ‖robot − target‖, metres.
     pub tip_error_m: f64,
+    /// Weight of the pull toward the previous command in the returned solve (per rad²):
+    /// `regularisation.previous_command` plus the residual-adaptive smoothing.
+    pub prior_weight: f64,
 }
 
 /// The retargeter for one hand model, configuration and calibration.
@@ -118,6 +121,8 @@ pub struct Retargeter {
     upper_step: Vec<f64>,
     trial: Vec<f64>,
     qp: BoxQp,
+    /// The pull toward the previous command in this frame's energy (per rad²).
+    prior: f64,
 }
 
 impl Retargeter {
@@ -189,6 +194,7 @@ impl Retargeter {
             trial: neutral.clone(),
             qp: BoxQp::new(n, config.solver.qp_max_iterations, config.solver.qp_method),
             command: neutral.clone(),
+            prior: config.regularisation.previous_command,
             neutral,
             free,
             rest,
@@ -269,7 +275,25 @@ impl Retargeter {
         }
         let human = human_key_vectors(self.config.layout, keypoints, &self.transform)?;
         let targets = key_vector_targets(&human, &self.config);
-        Ok(self.solve(&targets, dt_s))
+        let base = self.config.regularisation.previous_command;
+        let smoothing = &self.config.smoothing;
+        let (extra, residual_m) = (smoothing.previous_command, smoothing.residual_m);
+        if extra <= 0.0 {
+            return Ok(self.solve(&targets, dt_s, base));
+        }
+        let previous = self.command.clone();
+        let first = self.solve(&targets, dt_s, base);
+        let x = (first.tip_error_m / residual_m).powi(2);
+        let prior = base + extra * x / (1.0 + x);
+        if prior <= base {
+            return Ok(first);
+        }
+        self.command.copy_from_slice(&previous);
+        let mut second = self.solve(&targets, dt_s, prior);
+        second.steps += first.steps;
+        second.qp_iterations += first.qp_iterations;
+        second.qp_time_s += first.qp_time_s;
+        Ok(second)
     }
 
     /// Fingertips of the robot at `q`, in the robot palm frame, metres.
@@ -287,7 +311,9 @@ impl Retargeter {
             .map(|l| palm.point_to_palm(&self.fk.position(l))))
     }
 
-    fn solve(&mut self, targets: &[KeyVector; KEY_VECTORS], dt_s: f64) -> Solution {
+    /// Minimise the energy with pull `prior` toward the previous command, from it.
+    fn solve(&mut self, targets: &[KeyVector; KEY_VECTORS], dt_s: f64, prior: f64) -> Solution {
+        self.prior = prior;
         let reach =
             self.config.solver.max_joint_speed_rad_s * dt_s.min(self.config.solver.max_rate_dt_s);
         for (k, &dof) in self.free.iter().enumerate() {
@@ -353,6 +379,7 @@ impl Retargeter {
             cost_after: cost,
             qp_time_s,
             tip_error_m,
+            prior_weight: prior,
         }
     }
 
@@ -392,7 +419,7 @@ impl Retargeter {
         let reg = &self.config.regularisation;
         let mut energy = key_vector_energy(targets, &points, self.config.huber_delta_m);
         for &dof in &self.free {
-            energy += 0.5 * reg.previous_command * (q[dof] - self.command[dof]).powi(2);
+            energy += 0.5 * self.prior * (q[dof] - self.command[dof]).powi(2);
         }
         for &(k, rest) in &self.rest {
             energy += 0.5 * reg.rest_posture * (q[self.free[k]] - rest).powi(2);
@@ -402,9 +429,10 @@ impl Retargeter {
 
     /// Assemble `H` and `g` at `q`.
     fn normal_equations(&mut self, targets: &[KeyVector; KEY_VECTORS], q: &[f64]) {
-        let (previous_command, rest_posture, damping) = {
+        let previous_command = self.prior;
+        let (rest_posture, damping) = {
             let r = &self.config.regularisation;
-            (r.previous_command, r.rest_posture, r.damping)
+            (r.rest_posture, r.damping)
         };
         self.H.fill(0.0);
         self.g.fill(0.0);

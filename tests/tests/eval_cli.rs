@@ -75,31 +75,24 @@ fn eval_reports_the_reference_recording() {
 }
 
 #[test]
-fn the_smooth_preset_meets_the_smoothness_targets_on_the_reference_recording() {
+fn the_defaults_meet_the_smoothness_targets_on_the_reference_recording() {
     let Some(input) = reference_file("rokoko_orca_2024-11-20.mcap") else {
         return;
     };
-    let config = pomdar_tests::workspace_root().join("launch_configs/station/eth_lab_smooth.toml");
-    let output = pomdar(&[
-        "eval",
-        input.to_str().unwrap(),
-        "--config",
-        config.to_str().unwrap(),
-        "--json",
-    ]);
-    assert!(output.status.success());
-    let json: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let json = eval_json(&input);
     assert_eq!(number(&json, "frames"), 727.0);
     assert_eq!(number(&json, "limit_violation_frames"), 0.0);
+    // Issue 12's targets; dex-retargeting 0.5.0: 0.019 rad unfiltered, 0.0026 rad with its
+    // output filter (α 0.2) at 26.1 mm and no pinch closed.
     let jerk = number(&json, "jerk_rad");
     assert!(jerk <= 0.005, "jerk {jerk} rad");
     let step = number(&json, "max_step_rad");
     assert!(step <= 0.3, "max step {step} rad");
     let closed = number(&json, "pinches_closed_pct");
     assert!(closed >= 90.0, "{closed} % of pinches closed");
-    // dex-retargeting 0.5.0 with its output filter: 26.1 mm at 0.0026 rad of jerk.
+    // Issue 12 asks for 22 mm; the defaults measure 23.6 mm (README "Retargeting quality").
     let tip = number(&json, "tip_error_mean_mm");
-    assert!(tip < 26.1, "tip error {tip} mm");
+    assert!(tip < 24.9, "tip error {tip} mm");
 }
 
 /// A smooth 4 s motion of the robot from its neutral pose (25 Hz), as lab 22-point keypoints
