@@ -44,10 +44,10 @@ enum Command {
     ///
     /// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
     /// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
-    /// (launch_configs/station/*.toml). --engage engages once glove input is fresh (`pomdar
-    /// trial`, the operator console, runs its own station and engages on the operator's key); --record
-    /// logs the run (inputs, outputs, status, events) to an MCAP file; --profile applies a
-    /// user's calibration (from `pomdar calibrate`).
+    /// (launch_configs/station/*.toml). --engage engages once glove input is fresh
+    /// (`pomdar trial`, the operator console, runs its own station and engages on the
+    /// operator's key); --record logs the run (inputs, outputs, status, events) to an MCAP
+    /// file; --profile applies a user's calibration (from `pomdar calibrate`).
     ///
     /// Example:
     ///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap --profile profiles/alice.toml
