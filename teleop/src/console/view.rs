@@ -230,7 +230,14 @@ impl ConsoleView {
                     "marked: {progress} {} · drops {drops}",
                     flow.kind().progress_unit()
                 ));
-                detail.push("space stops · a aborts · r aborts and redoes".to_string());
+                detail.push(if health.engaged() {
+                    "space stops · a aborts · r aborts and redoes".to_string()
+                } else {
+                    format!(
+                        "WARNING: the station is {}: the robot holds (the timer runs; a aborts, r redoes)",
+                        health.state
+                    )
+                });
                 format!(
                     "{}  {}",
                     screen.banner(),
@@ -394,4 +401,76 @@ fn health_lines(
             },
         ),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use scoring::TaskCatalog;
+    use serde_json::json;
+
+    use super::*;
+    use crate::console::keys::Action;
+    use crate::console::manifest::{MANIFEST_FORMAT, Manifest};
+
+    const S: i64 = 1_000_000_000;
+
+    fn flow(task: &str) -> (TrialFlow, SessionInfo) {
+        let spec = TaskCatalog::builtin().get(task).cloned().unwrap_or_else(|| panic!("{task}"));
+        let manifest = Manifest {
+            format: MANIFEST_FORMAT.into(),
+            task: task.into(),
+            embodiment: "orca_full".into(),
+            user: "u".into(),
+            operator: "o".into(),
+            practice_planned: 0,
+            trials_planned: 2,
+            calibration_profile: None,
+            config_digest: String::new(),
+            baseline: None,
+            created_utc: String::new(),
+            updated_utc: String::new(),
+            runs: 1,
+            trials: vec![],
+            notes: vec![],
+        };
+        let info = SessionInfo {
+            task: spec.clone(),
+            setup: vec![],
+            baseline_s: None,
+            limits: StartLimits::default(),
+        };
+        (TrialFlow::new(manifest, spec.correctness, 1.0, StartLimits::default()), info)
+    }
+
+    fn health(state: &str, at: i64) -> Health {
+        Health::from_status(&json!({"state": state, "input_rate_hz": 100.0, "input_age_ms": 2.0}), at)
+    }
+
+    #[test]
+    fn the_screen_follows_the_session_and_the_health() {
+        let (mut flow, info) = flow("V1");
+        assert_eq!(Screen::of(&flow, &health("disengaged", 0)), Screen::WaitingEngage);
+        assert_eq!(Screen::of(&flow, &health("engaged", 0)), Screen::Ready);
+        flow.act(Action::Start, &health("engaged", 0), 0);
+        let view = ConsoleView::build(&flow, &health("engaged", 0), &info, S / 2);
+        assert_eq!(view.screen, Screen::Countdown);
+        assert_eq!(view.banner, "COUNTING DOWN  1");
+        flow.tick(&health("engaged", S), S);
+        let view = ConsoleView::build(&flow, &health("held", S), &info, S + 12 * S + S / 2);
+        assert_eq!(view.banner, "RUNNING  00:12.5");
+        assert!(view.detail.iter().any(|d| d.contains("WARNING: the station is held")), "{:?}", view.detail);
+        assert!(view.health.iter().any(|(k, _, level)| k == "drive" && *level == Level::Warn));
+        for name in Screen::ALL.map(Screen::name) {
+            assert_eq!(Screen::from_name(name).map(Screen::name), Some(name));
+        }
+    }
+
+    #[test]
+    fn instructions_say_what_to_mark_and_how_the_arm_moves() {
+        let catalog = TaskCatalog::builtin();
+        let text = |id: &str| instruction(catalog.get(id).unwrap_or_else(|| panic!("{id}")));
+        assert!(text("V1").contains("6 notches") && text("V1").contains("vertical axis"));
+        assert!(text("G2").contains("0.5 lifted then dropped"));
+        assert!(text("C1").contains("degrees") || text("C1").contains("millimetres"), "{}", text("C1"));
+    }
 }
