@@ -3,7 +3,6 @@
 //! own domain id, with a live status line and a summary.
 
 use std::collections::BTreeMap;
-use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use anyhow::Context as _;
@@ -14,8 +13,9 @@ use tokio::sync::{mpsc, watch};
 use crate::arm::Constraint;
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
-use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
-use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
+use crate::sim::mock_franka::MockFrankaReport;
+use crate::sim::mock_hand::MockHandReport;
+use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station::recorder::RecordingOptions;
 use crate::station::ros_station::run_station;
@@ -113,37 +113,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (_operator_tx, operator_rx) = mpsc::unbounded_channel();
 
-    let hand_report = Arc::new(Mutex::new(MockHandReport::default()));
-    let arm_report = Arc::new(Mutex::new(MockFrankaReport::default()));
-    let hand = tokio::spawn(run_mock_hand(
-        model.clone(),
-        MockHandConfig {
-            targets_topic: station.output.joint_targets_topic.clone(),
-            ..MockHandConfig::default()
-        },
-        network.clone(),
-        clock,
-        hand_report.clone(),
-        shutdown_rx.clone(),
-    ));
-    let start = station
-        .arm
-        .start_pose_isometry()
-        .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
-    let arm = tokio::spawn(run_mock_franka(
-        MockFrankaConfig {
-            command_topic: station.output.arm_target_topic.clone(),
-            pose_topic: station.input.arm_feedback_topic.clone(),
-            start,
-            max_speed_m_s: 0.5,
-            max_rate_rad_s: 1.0,
-            rate_hz: 100.0,
-        },
-        network.clone(),
-        clock,
-        arm_report.clone(),
-        shutdown_rx.clone(),
-    ));
+    let robot = spawn_mock_robot(&station, &model, clock, &shutdown_rx)?;
     let recording = match &options.out {
         Some(dir) => {
             std::fs::create_dir_all(dir)
@@ -186,7 +156,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
         let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
         if options.live && elapsed as u64 > seconds {
             seconds = elapsed as u64;
-            if let Ok(report) = hand_report.lock() {
+            if let Ok(report) = robot.hand_report.lock() {
                 let recent = report
                     .receive_times_ns
                     .iter()
@@ -208,11 +178,19 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     shutdown_tx.send(true).ok();
     let station_summary = station_task.await.context("station task")??;
     let summary = &station_summary;
-    hand.await.context("mock hand task")??;
-    arm.await.context("mock arm task")??;
+    robot.hand.await.context("mock hand task")??;
+    robot.arm.await.context("mock arm task")??;
     let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
-    let hand_report = hand_report.lock().map(|r| r.clone()).unwrap_or_default();
-    let arm_report = arm_report.lock().map(|r| r.clone()).unwrap_or_default();
+    let hand_report = robot
+        .hand_report
+        .lock()
+        .map(|r| r.clone())
+        .unwrap_or_default();
+    let arm_report = robot
+        .arm_report
+        .lock()
+        .map(|r| r.clone())
+        .unwrap_or_default();
     let summary = DemoSummary {
         duration_s: elapsed,
         domain_id: options.domain_id,

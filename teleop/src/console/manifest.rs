@@ -165,6 +165,28 @@ impl Manifest {
     }
 }
 
+/// An empty manifest for `task` with `practice` + `trials` planned (tests).
+#[cfg(test)]
+pub(crate) fn test_manifest(task: &str, practice: u32, trials: u32) -> Manifest {
+    Manifest {
+        format: MANIFEST_FORMAT.into(),
+        task: task.into(),
+        embodiment: "orca_full".into(),
+        user: "u".into(),
+        operator: "o".into(),
+        practice_planned: practice,
+        trials_planned: trials,
+        calibration_profile: None,
+        config_digest: String::new(),
+        baseline: None,
+        created_utc: String::new(),
+        updated_utc: String::new(),
+        runs: 1,
+        trials: vec![],
+        notes: vec![],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -186,21 +208,8 @@ mod tests {
 
     fn manifest(trials: Vec<ManifestTrial>) -> Manifest {
         Manifest {
-            format: MANIFEST_FORMAT.into(),
-            task: "V1".into(),
-            embodiment: "orca_full".into(),
-            user: "u".into(),
-            operator: "o".into(),
-            practice_planned: 1,
-            trials_planned: 2,
-            calibration_profile: None,
-            config_digest: String::new(),
-            baseline: None,
-            created_utc: String::new(),
-            updated_utc: String::new(),
-            runs: 1,
             trials,
-            notes: vec![],
+            ..test_manifest("V1", 1, 2)
         }
     }
 

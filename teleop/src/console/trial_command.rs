@@ -8,7 +8,6 @@ use std::collections::BTreeMap;
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
@@ -27,8 +26,7 @@ use crate::score::load_trial::load_trial_log;
 use crate::score::report_files::write_report_files;
 use crate::score::score_command::reason;
 use crate::score::score_inputs::ScoringInputs;
-use crate::sim::mock_franka::{MockFrankaConfig, run_mock_franka};
-use crate::sim::mock_hand::{MockHandConfig, run_mock_hand};
+use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station::recorder::{RecordingOptions, config_digest};
 use crate::station::ros_station::{
@@ -624,42 +622,14 @@ fn spawn_simulation(
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
 ) -> anyhow::Result<Vec<tokio::task::JoinHandle<anyhow::Result<()>>>> {
-    let network = config.network.clone();
-    let hand = tokio::spawn(run_mock_hand(
-        model.clone(),
-        MockHandConfig {
-            targets_topic: config.output.joint_targets_topic.clone(),
-            ..MockHandConfig::default()
-        },
-        network.clone(),
-        clock,
-        Arc::new(Mutex::new(Default::default())),
-        shutdown.clone(),
-    ));
-    let start = config
-        .arm
-        .start_pose_isometry()
-        .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
-    let arm = tokio::spawn(run_mock_franka(
-        MockFrankaConfig {
-            command_topic: config.output.arm_target_topic.clone(),
-            pose_topic: config.input.arm_feedback_topic.clone(),
-            start,
-            max_speed_m_s: 0.5,
-            max_rate_rad_s: 1.0,
-            rate_hz: 100.0,
-        },
-        network.clone(),
-        clock,
-        Arc::new(Mutex::new(Default::default())),
-        shutdown.clone(),
-    ));
+    let robot = spawn_mock_robot(config, model, clock, shutdown)?;
     let glove_config = SimGloveConfig {
         keypoints_topic: config.input.keypoints_topic.clone(),
         wrist_topic: config.input.wrist_topic.clone(),
         layout: config.retarget.layout,
         ..SimGloveConfig::default()
     };
+    let network = config.network.clone();
     let glove = tokio::spawn({
         let shutdown = shutdown.clone();
         async move {
@@ -667,5 +637,5 @@ fn spawn_simulation(
             Ok(())
         }
     });
-    Ok(vec![hand, arm, glove])
+    Ok(vec![robot.hand, robot.arm, glove])
 }

@@ -2,28 +2,12 @@ use scoring::{Outcome, TrialScore};
 use serde_json::json;
 
 use super::*;
-use crate::console::manifest::MANIFEST_FORMAT;
+use crate::console::manifest::test_manifest;
 
 const S: i64 = 1_000_000_000;
 
 fn manifest(practice: u32, trials: u32) -> Manifest {
-    Manifest {
-        format: MANIFEST_FORMAT.into(),
-        task: "V1".into(),
-        embodiment: "orca_full".into(),
-        user: "u".into(),
-        operator: "o".into(),
-        practice_planned: practice,
-        trials_planned: trials,
-        calibration_profile: None,
-        config_digest: String::new(),
-        baseline: None,
-        created_utc: String::new(),
-        updated_utc: String::new(),
-        runs: 1,
-        trials: vec![],
-        notes: vec![],
-    }
+    test_manifest("V1", practice, trials)
 }
 
 fn healthy(now_ns: i64) -> Health {

@@ -410,46 +410,42 @@ mod tests {
 
     use super::*;
     use crate::console::keys::Action;
-    use crate::console::manifest::{MANIFEST_FORMAT, Manifest};
+    use crate::console::manifest::test_manifest;
 
     const S: i64 = 1_000_000_000;
 
     fn flow(task: &str) -> (TrialFlow, SessionInfo) {
-        let spec = TaskCatalog::builtin().get(task).cloned().unwrap_or_else(|| panic!("{task}"));
-        let manifest = Manifest {
-            format: MANIFEST_FORMAT.into(),
-            task: task.into(),
-            embodiment: "orca_full".into(),
-            user: "u".into(),
-            operator: "o".into(),
-            practice_planned: 0,
-            trials_planned: 2,
-            calibration_profile: None,
-            config_digest: String::new(),
-            baseline: None,
-            created_utc: String::new(),
-            updated_utc: String::new(),
-            runs: 1,
-            trials: vec![],
-            notes: vec![],
-        };
+        let spec = TaskCatalog::builtin()
+            .get(task)
+            .cloned()
+            .unwrap_or_else(|| panic!("{task}"));
+        let manifest = test_manifest(task, 0, 2);
         let info = SessionInfo {
             task: spec.clone(),
             setup: vec![],
             baseline_s: None,
             limits: StartLimits::default(),
         };
-        (TrialFlow::new(manifest, spec.correctness, 1.0, StartLimits::default()), info)
+        (
+            TrialFlow::new(manifest, spec.correctness, 1.0, StartLimits::default()),
+            info,
+        )
     }
 
     fn health(state: &str, at: i64) -> Health {
-        Health::from_status(&json!({"state": state, "input_rate_hz": 100.0, "input_age_ms": 2.0}), at)
+        Health::from_status(
+            &json!({"state": state, "input_rate_hz": 100.0, "input_age_ms": 2.0}),
+            at,
+        )
     }
 
     #[test]
     fn the_screen_follows_the_session_and_the_health() {
         let (mut flow, info) = flow("V1");
-        assert_eq!(Screen::of(&flow, &health("disengaged", 0)), Screen::WaitingEngage);
+        assert_eq!(
+            Screen::of(&flow, &health("disengaged", 0)),
+            Screen::WaitingEngage
+        );
         assert_eq!(Screen::of(&flow, &health("engaged", 0)), Screen::Ready);
         flow.act(Action::Start, &health("engaged", 0), 0);
         let view = ConsoleView::build(&flow, &health("engaged", 0), &info, S / 2);
@@ -458,8 +454,18 @@ mod tests {
         flow.tick(&health("engaged", S), S);
         let view = ConsoleView::build(&flow, &health("held", S), &info, S + 12 * S + S / 2);
         assert_eq!(view.banner, "RUNNING  00:12.5");
-        assert!(view.detail.iter().any(|d| d.contains("WARNING: the station is held")), "{:?}", view.detail);
-        assert!(view.health.iter().any(|(k, _, level)| k == "drive" && *level == Level::Warn));
+        assert!(
+            view.detail
+                .iter()
+                .any(|d| d.contains("WARNING: the station is held")),
+            "{:?}",
+            view.detail
+        );
+        assert!(
+            view.health
+                .iter()
+                .any(|(k, _, level)| k == "drive" && *level == Level::Warn)
+        );
         for name in Screen::ALL.map(Screen::name) {
             assert_eq!(Screen::from_name(name).map(Screen::name), Some(name));
         }
@@ -471,6 +477,10 @@ mod tests {
         let text = |id: &str| instruction(catalog.get(id).unwrap_or_else(|| panic!("{id}")));
         assert!(text("V1").contains("6 notches") && text("V1").contains("vertical axis"));
         assert!(text("G2").contains("0.5 lifted then dropped"));
-        assert!(text("C1").contains("degrees") || text("C1").contains("millimetres"), "{}", text("C1"));
+        assert!(
+            text("C1").contains("degrees") || text("C1").contains("millimetres"),
+            "{}",
+            text("C1")
+        );
     }
 }

@@ -4,5 +4,6 @@
 
 pub mod mock_franka;
 pub mod mock_hand;
+pub mod mock_robot;
 pub mod samples;
 pub mod sim_glove_node;
