@@ -213,16 +213,16 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     let mut console = LineConsole::start(&console_args(&root, domain));
     console.wait_for("WAITING FOR ENGAGE", 30.0);
     console.say("engage");
-    console.wait_for("engaged", 15.0);
+    console.wait_for("engaged", 30.0);
     console.say("start");
-    console.wait_for("RUNNING · trial 1/3", 10.0);
+    console.wait_for("RUNNING · trial 1/3", 30.0);
     console.say("progress");
     console.say("progress");
     std::thread::sleep(Duration::from_millis(1000));
     console.say("stop");
-    console.wait_for("last trial 1: completed", 10.0);
+    console.wait_for("last trial 1: completed", 30.0);
     console.say("start");
-    console.wait_for("RUNNING · trial 2/3", 10.0);
+    console.wait_for("RUNNING · trial 2/3", 30.0);
     console.say("progress");
     std::thread::sleep(Duration::from_millis(1000));
     let status = Command::new("kill")
@@ -259,9 +259,9 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     let mut console = LineConsole::start(&console_args(&root, domain));
     console.wait_for("resumed", 30.0);
     console.say("engage");
-    console.wait_for("engaged", 15.0);
+    console.wait_for("engaged", 30.0);
     console.say("start");
-    console.wait_for("RUNNING · trial 2/3", 10.0);
+    console.wait_for("RUNNING · trial 2/3", 30.0);
     console.say("progress");
     std::thread::sleep(Duration::from_millis(1500));
     console.process.0.kill().unwrap();
@@ -283,7 +283,7 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     let script = root.join("finish.script");
     std::fs::write(
         &script,
-        "engage\nwait ready 20\nstart\nwait running 20\n+1 progress\n+1 stop\nwait summary 20\nstart\nwait running 20\n+1 stop\nwait complete 20\n",
+        "engage\nwait ready 60\nstart\nwait running 60\n+1 progress\n+1 stop\nwait summary 60\nstart\nwait running 60\n+1 stop\nwait complete 60\n",
     )
     .unwrap();
     let mut args = console_args(&root, domain);

@@ -16,6 +16,8 @@ use pomdar_tests::station_harness::test_domain;
 
 const ROWS: u16 = 30;
 const COLS: u16 = 110;
+/// Longest wait for a screen (an upper bound for a loaded machine; a pass takes a second).
+const WAIT_S: f64 = 30.0;
 
 /// The console's process, killed when dropped so a failing test leaves nothing running.
 struct Console {
@@ -80,7 +82,7 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     let command = format!(
-        "stty rows {ROWS} cols {COLS} && exec '{}' trial --task V2 --user pty --operator ci --practice 0 --trials 2 --simulate --domain-id {} --countdown 2 --out '{}'",
+        "stty rows {ROWS} cols {COLS} && exec '{}' trial --task V2 --user pty --operator ci --practice 0 --trials 2 --simulate --domain-id {} --countdown 3 --out '{}'",
         binary.display(),
         test_domain(2),
         dir.join("sessions").display()
@@ -120,7 +122,7 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
             "e engage/clutch",
             "input age",
         ],
-        30.0,
+        2.0 * WAIT_S,
     );
     assert!(
         s.contains("POMDAR trial console") && s.contains("Health") && s.contains("glove"),
@@ -128,20 +130,20 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
     );
     // A start is refused before engaging.
     console.press(" ");
-    console.wait_for(&["cannot start: "], 10.0);
+    console.wait_for(&["cannot start: "], WAIT_S);
     console.press("e");
-    console.wait_for(&["READY", "drive", "engaged", "trial 1/2"], 15.0);
+    console.wait_for(&["READY", "drive", "engaged", "trial 1/2"], WAIT_S);
     console.press(" ");
-    console.wait_for(&["COUNTING DOWN"], 5.0);
-    let s = console.wait_for(&["RUNNING", "V2-t01.mcap"], 10.0);
+    console.wait_for(&["COUNTING DOWN"], WAIT_S);
+    let s = console.wait_for(&["RUNNING", "V2-t01.mcap"], WAIT_S);
     assert!(s.contains("00:0"), "the running timer: {s}");
     console.press("++");
-    console.wait_for(&["marked: 2 notches"], 5.0);
+    console.wait_for(&["marked: 2 notches"], WAIT_S);
     // A note typed into the prompt.
     console.press("n");
-    console.wait_for(&["note: "], 5.0);
+    console.wait_for(&["note: "], WAIT_S);
     console.press("wheel stiff\r");
-    console.wait_for(&["note logged: wheel stiff"], 5.0);
+    console.wait_for(&["note logged: wheel stiff"], WAIT_S);
     console.press(" ");
     let s = console.wait_for(
         &[

@@ -67,7 +67,7 @@ fn session(
 
 /// One scripted trial: start, marks one second apart, stop, wait for its summary.
 fn trial_lines(marks: &[&str]) -> String {
-    let mut text = String::from("start\nwait running 20\n");
+    let mut text = String::from("start\nwait running 60\n");
     for mark in marks {
         text.push_str(&format!("+1 {mark}\n"));
     }
@@ -107,25 +107,25 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
 
     // V1: practice (1 notch), trial 1 (3 notches), trial 2 redone after its stop, trial 2
     // again (6 notches, one taken back), trial 3 (2 notches and a drop).
-    let mut v1 = String::from("engage\nwait ready 20\n");
+    let mut v1 = String::from("engage\nwait ready 60\n");
     v1.push_str(&trial_lines(&["progress"]));
-    v1.push_str("wait summary 20\n");
+    v1.push_str("wait summary 60\n");
     v1.push_str(&trial_lines(&["progress", "progress", "progress"]));
-    v1.push_str("wait summary 20\n");
+    v1.push_str("wait summary 60\n");
     v1.push_str(&trial_lines(&["progress"]));
-    v1.push_str("wait summary 20\nredo\nnote trial 2 redone: the wheel was not reset\n");
+    v1.push_str("wait summary 60\nredo\nnote trial 2 redone: the wheel was not reset\n");
     v1.push_str(&trial_lines(&[
         "progress", "progress", "progress", "progress", "progress", "progress", "progress",
         "unmark",
     ]));
-    v1.push_str("wait summary 20\n");
+    v1.push_str("wait summary 60\n");
     v1.push_str(&trial_lines(&[
         "progress",
         "drop",
         "progress",
         "note glove slipped",
     ]));
-    v1.push_str("wait complete 20\n");
+    v1.push_str("wait complete 60\n");
     let out = session(&root, "V1", 1, 3, &v1, &baseline, test_domain(0));
     assert!(out.status.success(), "V1 session failed: {:?}", out.status);
 
@@ -295,9 +295,9 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
     );
 
     // A grasp trial: levels are checked (0.7 refused), the last level counts, a drop is 0.5.
-    let mut g2 = String::from("engage\nwait ready 20\n");
+    let mut g2 = String::from("engage\nwait ready 60\n");
     g2.push_str(&trial_lines(&["progress 0.7", "progress 1", "drop"]));
-    g2.push_str("wait complete 20\n");
+    g2.push_str("wait complete 60\n");
     let out = session(&root, "G2", 0, 1, &g2, &baseline, test_domain(1));
     assert!(out.status.success(), "G2 session failed");
     let stderr = String::from_utf8_lossy(&out.stderr);
