@@ -139,7 +139,12 @@ pub struct TrialFlow {
     said: u64,
     /// An engage asked for before the input was fresh: (asked at, last sent), ns.
     engage_pending: Option<(i64, i64)>,
+    /// A start asked for while engaging or while the glove rate settles: asked at, ns.
+    start_pending: Option<i64>,
 }
+
+/// How long a start waits for the station to be ready, ns.
+const START_WAIT_NS: i64 = 10_000_000_000;
 
 /// How long an engage waits for fresh glove input, ns.
 const ENGAGE_WAIT_NS: i64 = 10_000_000_000;
@@ -172,6 +177,7 @@ impl TrialFlow {
             messages: VecDeque::new(),
             said: 0,
             engage_pending: None,
+            start_pending: None,
         }
     }
 
@@ -255,6 +261,10 @@ impl TrialFlow {
                 vec![Effect::TrialEvent(json!({"event": "drop"}))]
             }
             Action::Drop => self.refuse("no trial is running: drop not marked"),
+            Action::Abort if self.start_pending.is_some() => {
+                self.start_pending = None;
+                self.refuse("start cancelled")
+            }
             Action::Abort => match self.phase {
                 Phase::Countdown { .. } => {
                     self.phase = Phase::Idle;
@@ -343,8 +353,19 @@ impl TrialFlow {
             return vec![];
         };
         if let Some(why) = health.refuse_start(&self.limits, now_ns) {
-            return self.refuse(&format!("cannot start: {why}"));
+            if !health.engaged() && self.engage_pending.is_none() {
+                return self.refuse(&format!("cannot start: {why}"));
+            }
+            // Engaging, or the glove rate still settling: start once the station is ready.
+            if self.start_pending.is_none() {
+                self.start_pending = Some(now_ns);
+                self.say(format!(
+                    "start: waiting for the station ({why}); up to 10 s, a cancels"
+                ));
+            }
+            return vec![];
         }
+        self.start_pending = None;
         if health.hand_listeners == Some(0) {
             self.say("warning: no robot hand is listening to the joint targets (the trial is logged all the same)");
         }
@@ -358,6 +379,16 @@ impl TrialFlow {
     /// Advances time: the countdown ends into a running trial.
     pub fn tick(&mut self, health: &Health, now_ns: i64) -> Vec<Effect> {
         let mut effects = self.pending_engage(health, now_ns);
+        if let (Some(asked), Phase::Idle) = (self.start_pending, &self.phase) {
+            match health.refuse_start(&self.limits, now_ns) {
+                None => effects.extend(self.start(health, now_ns)),
+                Some(why) if now_ns - asked > START_WAIT_NS => {
+                    self.start_pending = None;
+                    effects.extend(self.refuse(&format!("cannot start: {why}")));
+                }
+                Some(_) => {}
+            }
+        }
         let Phase::Countdown { slot, ends_ns } = self.phase else {
             return effects;
         };

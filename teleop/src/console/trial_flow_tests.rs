@@ -249,3 +249,41 @@ fn an_engage_before_fresh_input_waits_for_it_then_gives_up() {
         vec![Effect::Disengage]
     );
 }
+
+#[test]
+fn a_start_while_the_glove_rate_settles_waits_for_it() {
+    let mut flow = TrialFlow::new(manifest(0, 1), notches(), 1.0, StartLimits::default());
+    let settling = Health::from_status(
+        &json!({"state": "engaged", "input_rate_hz": 9.0, "input_age_ms": 3.0}),
+        0,
+    );
+    assert!(flow.act(Action::Start, &settling, 0).is_empty());
+    assert_eq!(flow.phase(), &Phase::Idle);
+    assert!(
+        flow.messages()
+            .last()
+            .is_some_and(|m| m.contains("start: waiting for the station"))
+    );
+    assert!(flow.tick(&settling, S).is_empty());
+    flow.tick(&healthy(2 * S), 2 * S);
+    assert!(matches!(flow.phase(), Phase::Countdown { ends_ns, .. } if *ends_ns == 3 * S));
+    // One that never settles is given up, with the reason.
+    let mut flow = TrialFlow::new(manifest(0, 1), notches(), 1.0, StartLimits::default());
+    flow.act(Action::Start, &settling, 0);
+    let late = Health::from_status(
+        &json!({"state": "engaged", "input_rate_hz": 9.0, "input_age_ms": 3.0}),
+        11 * S,
+    );
+    flow.tick(&late, 11 * S);
+    assert_eq!(flow.phase(), &Phase::Idle);
+    assert!(
+        flow.messages()
+            .last()
+            .is_some_and(|m| m.contains("cannot start: glove rate 9.0 Hz"))
+    );
+    // Abort cancels a pending start.
+    flow.act(Action::Start, &settling, 12 * S);
+    flow.act(Action::Abort, &settling, 12 * S);
+    flow.tick(&healthy(13 * S), 13 * S);
+    assert_eq!(flow.phase(), &Phase::Idle);
+}
