@@ -1,6 +1,7 @@
 //! `pomdar calibrate`: its flags and the three ways it runs — a live session with the glove
 //! and the hand, a recorded session (`--from`), or a simulated user on loopback
-//! (`--simulate`).
+//! (`--simulate`). Live and simulated sessions run in the calibration console
+//! ([`super::calibration_console`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -12,10 +13,12 @@ use clap::Args;
 use retarget::HandModel;
 use tokio::sync::watch;
 
+use crate::calibrate::calibration_console::ConsoleFront;
+use crate::calibrate::calibration_script::load_calibration_script;
 use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
 use crate::calibrate::session_node::{SessionOptions, run_session};
 use crate::calibrate::simulated_user::{
-    SIMULATED_NOISE_M, record_simulated_session, synthetic_user, true_transform,
+    SIMULATED_NOISE_M, loopback, publish_simulated_user, synthetic_user, true_transform,
 };
 use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::clock::StationClock;
@@ -45,6 +48,18 @@ pub struct CalibrateArgs {
     /// --simulate: seed of the simulated keypoint noise (2 mm per axis).
     #[arg(long, value_name = "N", default_value_t = 1, requires = "simulate")]
     pub seed: u64,
+    /// --simulate: the simulated user shakes during the first capture of this pose (one of
+    /// pinch_index, pinch_middle, pinch_ring, pinch_little, open, open_spread, closed), so it
+    /// is judged bad and captured again.
+    #[arg(long, value_name = "POSE", requires = "simulate", value_parser = parse_pose)]
+    pub simulate_bad_pose: Option<String>,
+    /// Timed operator actions instead of keys (accept, retry, quit, wait STATE [TIMEOUT_S]);
+    /// see `pomdar calibrate --help`.
+    #[arg(long, value_name = "FILE", conflicts_with = "from")]
+    pub script: Option<PathBuf>,
+    /// The line console even on a terminal.
+    #[arg(long, conflicts_with = "from")]
+    pub plain: bool,
     /// The glove, free text for the profile (e.g. its model and serial; default
     /// "unspecified", or "simulated" with --simulate).
     #[arg(long, value_name = "TEXT")]
@@ -82,6 +97,17 @@ fn parse_rpy(text: &str) -> Result<[f64; 3], String> {
         .map_err(|e| format!("'{text}': {e} (expected R,P,Y in degrees, e.g. 10,-5,3)"))?;
     <[f64; 3]>::try_from(values)
         .map_err(|_| format!("'{text}': expected three angles R,P,Y in degrees, e.g. 10,-5,3"))
+}
+
+fn parse_pose(text: &str) -> Result<String, String> {
+    if calibration::POSE_NAMES.contains(&text) {
+        Ok(text.to_string())
+    } else {
+        Err(format!(
+            "unknown pose '{text}' (known: {})",
+            calibration::POSE_NAMES.join(", ")
+        ))
+    }
 }
 
 fn read_text(path: &Path, what: &str) -> anyhow::Result<String> {
@@ -161,16 +187,21 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
             args.glove_wait_s
         );
     }
+    let script = args
+        .script
+        .as_deref()
+        .map(load_calibration_script)
+        .transpose()?;
     let session = SessionOptions {
         station: station.clone(),
         schedule: CaptureSchedule::default(),
+        thresholds: fit.settings.capture,
         out: session_out.clone(),
         glove_wait: Duration::from_secs_f64(args.glove_wait_s),
         metadata: BTreeMap::from([
             ("user".to_string(), args.user.clone()),
             ("glove".to_string(), fit.glove.clone()),
         ]),
-        verbose: true,
     };
     let user = if args.simulate {
         Some(synthetic_user(
@@ -181,49 +212,10 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
     } else {
         None
     };
-    let report = crate::cli::run_async(async {
-        let shutdown = ctrl_c_shutdown();
-        match user {
-            Some(user) => {
-                let domain = args
-                    .domain_id
-                    .unwrap_or_else(crate::demo::default_domain_id);
-                eprintln!(
-                    "simulated user: hand scale {}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}; loopback DDS, domain {domain}",
-                    user.hand_scale,
-                    args.glove_rpy.unwrap_or([0.0; 3]),
-                    SIMULATED_NOISE_M,
-                    user.seed
-                );
-                record_simulated_session(user, session, domain, shutdown).await
-            }
-            None => {
-                let mut session = session;
-                if args.domain_id.is_some() {
-                    session.station.network.domain_id = args.domain_id;
-                }
-                eprintln!(
-                    "calibration session: stop the station first (both would drive the hand); recording to {}",
-                    session.out.display()
-                );
-                run_session(
-                    session,
-                    &HandModel::orca_v1_right(),
-                    StationClock::new(),
-                    None,
-                    shutdown,
-                )
-                .await
-            }
-        }
-    })?;
-    eprintln!(
-        "session recorded: {} ({} keypoint frames; per pose {:?})",
-        report.path.display(),
-        report.frames,
-        report.frames_per_pose
-    );
-    fit.session = report.path.clone();
+    let bad_pose = args
+        .simulate_bad_pose
+        .as_deref()
+        .and_then(|name| calibration::POSE_NAMES.iter().position(|p| *p == name));
     if let Some(user) = &user {
         let [r, p, y] = args.glove_rpy.unwrap_or([0.0; 3]);
         fit.source = Some(format!(
@@ -231,15 +223,123 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
             user.hand_scale,
             SIMULATED_NOISE_M,
             user.seed,
-            report.path.display()
+            session_out.display()
         ));
     }
-    let profile = fit_session(&fit).with_context(|| {
-        format!(
-            "the session is kept in {}: fit it again with --from once the problem is fixed",
-            report.path.display()
-        )
-    })?;
+    let domain = args
+        .domain_id
+        .unwrap_or_else(crate::demo::default_domain_id);
+    let mut setup = vec![
+        ("user".to_string(), args.user.clone()),
+        ("glove".to_string(), fit.glove.clone()),
+        ("profile".to_string(), out.display().to_string()),
+        ("log".to_string(), session_out.display().to_string()),
+    ];
+    match &user {
+        Some(user) => {
+            let intro = format!(
+                "simulated user: hand scale {}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}; loopback DDS, domain {domain}",
+                user.hand_scale,
+                args.glove_rpy.unwrap_or([0.0; 3]),
+                SIMULATED_NOISE_M,
+                user.seed,
+                args.simulate_bad_pose
+                    .as_deref()
+                    .map(|p| format!(", shaking at the first capture of {p}"))
+                    .unwrap_or_default()
+            );
+            eprintln!("{intro}");
+            setup.push(("mode".to_string(), format!("simulated (domain {domain})")));
+        }
+        None => {
+            eprintln!(
+                "calibration session: stop the station first (both would drive the hand); recording to {}",
+                session_out.display()
+            );
+            setup.push(("mode".to_string(), "live".to_string()));
+        }
+    }
+    let mut front = ConsoleFront::open(args.plain, script, setup)?;
+    let fit_in_console = FitOptions {
+        verbose: false,
+        ..fit.clone()
+    };
+    let report = crate::cli::run_async(async {
+        let shutdown = ctrl_c_shutdown();
+        let clock = StationClock::new();
+        let model = HandModel::orca_v1_right();
+        match user {
+            Some(user) => {
+                let mut session = session;
+                let network = loopback(domain);
+                session.station.network = network.clone();
+                let (cue_tx, cue_rx) = watch::channel(None);
+                let (stop_tx, stop_rx) = watch::channel(false);
+                let glove = tokio::spawn(publish_simulated_user(
+                    user,
+                    bad_pose,
+                    session.station.clone(),
+                    network,
+                    clock,
+                    cue_rx,
+                    stop_rx,
+                ));
+                let report = run_session(
+                    session,
+                    &model,
+                    clock,
+                    Some(cue_tx),
+                    &mut front,
+                    fit_in_console,
+                    shutdown,
+                )
+                .await;
+                stop_tx.send(true).ok();
+                glove.await.context("simulated glove task")??;
+                report
+            }
+            None => {
+                let mut session = session;
+                if args.domain_id.is_some() {
+                    session.station.network.domain_id = args.domain_id;
+                }
+                run_session(
+                    session,
+                    &model,
+                    clock,
+                    None,
+                    &mut front,
+                    fit_in_console,
+                    shutdown,
+                )
+                .await
+            }
+        }
+    });
+    // Leave the full screen before printing.
+    drop(front);
+    let report = report?;
+    let retried: Vec<String> = calibration::POSE_NAMES
+        .iter()
+        .zip(&report.captures_per_pose)
+        .filter(|(_, n)| **n > 1)
+        .map(|(p, n)| format!("{p} ×{n}"))
+        .collect();
+    eprintln!(
+        "session recorded: {} ({} keypoint frames; accepted capture frames per pose {:?}; {})",
+        report.path.display(),
+        report.frames,
+        report.frames_per_pose,
+        if retried.is_empty() {
+            "no pose captured again".to_string()
+        } else {
+            format!("captured again: {}", retried.join(", "))
+        }
+    );
+    for line in &report.fit.table {
+        println!("{line}");
+    }
+    let profile = report.fit.profile.clone();
     println!("wrote {} (user {})", out.display(), profile.user);
     if let Some(user) = &user {
         let truth = true_transform(user, &fit.station, &fit.settings)?;

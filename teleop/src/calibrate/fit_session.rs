@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 use calibration::{
-    CalibrationProfile, CalibrationSettings, FitInputs, PoseSet, ProfileHeader, calibrate,
-    capture_pose,
+    CalibrationProfile, CalibrationSettings, FitInputs, FitProgress, PoseSet, ProfileHeader,
+    calibrate, capture_pose,
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
@@ -41,8 +41,42 @@ pub struct FitOptions {
     pub verbose: bool,
 }
 
-/// Read the session, fit, report, write the profile; returns the profile written.
+/// A fit's result.
+#[derive(Debug, Clone)]
+pub struct FitOutcome {
+    /// The profile written.
+    pub profile: CalibrationProfile,
+    /// The per-pose errors before and after, as a table's lines.
+    pub table: Vec<String>,
+}
+
+/// Read the session, fit, report, write the profile; returns the profile written. With
+/// `verbose`, a progress bar on stderr and the table on stdout.
 pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
+    let mut bar = options.verbose.then(ProgressBar::new);
+    let outcome = fit_session_with(options, &mut |p| {
+        if let Some(bar) = bar.as_mut() {
+            bar.update(p);
+        }
+    });
+    if let Some(bar) = bar.as_mut() {
+        bar.finish();
+    }
+    let outcome = outcome?;
+    if options.verbose {
+        for line in &outcome.table {
+            println!("{line}");
+        }
+    }
+    Ok(outcome.profile)
+}
+
+/// Read the session, fit with `progress` after each evaluation, write the profile (nothing
+/// is printed).
+pub fn fit_session_with(
+    options: &FitOptions,
+    progress: &mut dyn FnMut(FitProgress),
+) -> anyhow::Result<FitOutcome> {
     let model = HandModel::orca_v1_right();
     let layout = options.station.retarget.layout;
     let reader = TrialReader::open(&options.session)?;
@@ -82,15 +116,7 @@ pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
         poses: &pose_set,
         settings: &options.settings,
     };
-    let mut bar = options.verbose.then(ProgressBar::new);
-    let fitted = calibrate(inputs, &captures, &mut |p| {
-        if let Some(bar) = bar.as_mut() {
-            bar.update(p);
-        }
-    });
-    if let Some(bar) = bar.as_mut() {
-        bar.finish();
-    }
+    let fitted = calibrate(inputs, &captures, &mut |p| progress(p));
     let fitted = fitted.map_err(|e| anyhow::anyhow!("{file}: calibration failed: {e}"))?;
     let header = ProfileHeader {
         user: options.user.clone(),
@@ -108,25 +134,29 @@ pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
     let text = profile
         .to_toml_string()
         .map_err(|e| anyhow::anyhow!("cannot write the profile as TOML: {e}"))?;
-    if options.verbose {
-        print_table(&profile, &captures);
-    }
     write_atomically(&options.out, &text)?;
-    Ok(profile)
+    let table = table_lines(&profile, &captures);
+    Ok(FitOutcome { profile, table })
 }
 
-fn print_table(profile: &CalibrationProfile, captures: &[calibration::CapturedPose]) {
+/// The per-pose errors before and after the fit, and the objective.
+fn table_lines(
+    profile: &CalibrationProfile,
+    captures: &[calibration::CapturedPose],
+) -> Vec<String> {
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
-    println!(
-        "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
-        "pose", "frames", "joint RMS", "joint RMS", "pinch gap err", "pinch gap err"
-    );
-    println!(
-        "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
-        "", "", "before (rad)", "after (rad)", "before (mm)", "after (mm)"
-    );
+    let mut lines = vec![
+        format!(
+            "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
+            "pose", "frames", "joint RMS", "joint RMS", "pinch gap err", "pinch gap err"
+        ),
+        format!(
+            "{:<14} {:>7} {:>13} {:>13} {:>14} {:>14}",
+            "", "", "before (rad)", "after (rad)", "before (mm)", "after (mm)"
+        ),
+    ];
     for (p, c) in profile.poses.iter().zip(captures) {
-        println!(
+        lines.push(format!(
             "{:<14} {:>7} {:>13.3} {:>13.3} {:>14} {:>14}",
             p.name,
             c.frames_used,
@@ -134,12 +164,13 @@ fn print_table(profile: &CalibrationProfile, captures: &[calibration::CapturedPo
             p.joint_rms_after_rad,
             mm(p.pinch_gap_before_mm),
             mm(p.pinch_gap_after_mm)
-        );
+        ));
     }
-    println!(
+    lines.push(format!(
         "objective: {:.3} rad before, {:.3} rad after ({} evaluations)",
         profile.objective.before_rad, profile.objective.after_rad, profile.objective.evaluations
-    );
+    ));
+    lines
 }
 
 /// `profiles/<user>.toml`, refusing user names that are not a plain file name.

@@ -15,7 +15,13 @@
 //! | `utc_date.rs` | ISO 8601 UTC dates |
 
 pub mod calibrate_command;
+pub mod calibration_console;
+pub mod calibration_screen;
+pub mod calibration_script;
+pub mod calibration_view;
+pub mod capture_quality;
 pub mod fit_session;
+pub mod pose_session;
 pub mod profile_file;
 pub mod progress_bar;
 pub mod session_events;

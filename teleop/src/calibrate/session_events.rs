@@ -3,14 +3,18 @@
 //!
 //! | event | meaning |
 //! |---|---|
-//! | `{"event":"start","session":"calibration"}` | the schedule's time origin |
-//! | `{"event":"calibration_pose","pose":P,"instruction":…}` | the hand was sent to pose P |
-//! | `{"event":"calibration_capture","pose":P,"phase":"start"}` | P's capture window opens |
-//! | `{"event":"calibration_capture","pose":P,"phase":"end"}` | P's capture window closes |
-//! | `{"event":"stop","summary":{…}}` | the session ended |
+//! | `{"event":"start","session":"calibration"}` | the session's time origin |
+//! | `{"event":"calibration_pose","pose":P,"instruction":…,"attempt":N}` | the hand was sent to pose P (again for a retry) |
+//! | `{"event":"calibration_capture","pose":P,"phase":"start","attempt":N}` | P's N-th capture window opens |
+//! | `{"event":"calibration_capture","pose":P,"phase":"end","attempt":N}` | … and closes |
+//! | `{"event":"calibration_capture_quality","pose":P,"attempt":N,"quality":"good"\|"poor"\|"bad",…}` | the capture's measures ([`super::capture_quality`]) |
+//! | `{"event":"calibration_capture_decision","pose":P,"attempt":N,"decision":"accepted"\|"retry","by":"auto"\|"operator"}` | what became of it |
+//! | `{"event":"abort","reason":…}` | the session was abandoned |
+//! | `{"event":"stop","summary":{…}}` | every pose has an accepted capture |
 //!
-//! A pose's captured frames are the keypoint messages whose log time lies in
-//! `[start, end)` of its capture events.
+//! A capture's frames are the keypoint messages whose log time lies in `[start, end)` of its
+//! capture events. The fit uses each pose's accepted capture. Logs written before captures
+//! were judged (no `attempt`, no decision events) have one capture per pose, which is used.
 
 use std::collections::BTreeMap;
 
@@ -29,6 +33,12 @@ pub const CAPTURE_EVENT: &str = "calibration_capture";
 /// Event name of a pose being commanded.
 pub const POSE_EVENT: &str = "calibration_pose";
 
+/// Event name of a capture's measured quality.
+pub const QUALITY_EVENT: &str = "calibration_capture_quality";
+
+/// Event name of the decision about a capture (accepted, or retried).
+pub const DECISION_EVENT: &str = "calibration_capture_decision";
+
 /// The event opening (`start = true`) or closing a pose's capture window.
 pub fn capture_event(pose: &str, start: bool) -> Value {
     json!({
@@ -43,38 +53,95 @@ pub fn pose_event(pose: &str, instruction: &str) -> Value {
     json!({ "event": POSE_EVENT, "pose": pose, "instruction": instruction })
 }
 
-/// Capture windows by pose, log-time nanoseconds `[start, end)`, from a session log's events.
-/// A pose whose window never closed (an interrupted session) has no entry.
-pub fn capture_windows(reader: &TrialReader) -> anyhow::Result<BTreeMap<String, (i64, i64)>> {
-    let mut open: BTreeMap<String, i64> = BTreeMap::new();
-    let mut windows = BTreeMap::new();
+/// One capture window of a session log and what became of it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaptureAttempt {
+    /// The pose.
+    pub pose: String,
+    /// 1-based attempt (1 in logs without attempts).
+    pub attempt: u64,
+    /// Log-time nanoseconds `[start, end)`.
+    pub window: (i64, i64),
+    /// The measured quality (`good`, `poor`, `bad`), if the log has it.
+    pub quality: Option<String>,
+    /// `accepted` or `retry`, if the log has a decision.
+    pub decision: Option<String>,
+}
+
+/// Every closed capture window of a session log, in log order, with its quality and
+/// decision. A window that never closed (an interrupted session) is left out.
+pub fn capture_attempts(reader: &TrialReader) -> anyhow::Result<Vec<CaptureAttempt>> {
+    let mut open: BTreeMap<(String, u64), i64> = BTreeMap::new();
+    let mut attempts: Vec<CaptureAttempt> = Vec::new();
     for message in reader.messages_on(TRIAL_EVENTS_TOPIC) {
         let text: StringMsg = message.decode()?;
         let Ok(event) = serde_json::from_str::<Value>(&text.data) else {
             continue;
         };
-        if event["event"] != CAPTURE_EVENT {
-            continue;
-        }
         let Some(pose) = event["pose"].as_str() else {
             continue;
         };
-        match event["phase"].as_str() {
-            Some("start") => {
-                open.insert(pose.to_string(), message.log_time_ns);
+        let attempt = event["attempt"].as_u64().unwrap_or(1);
+        let key = (pose.to_string(), attempt);
+        match event["event"].as_str() {
+            Some(CAPTURE_EVENT) => match event["phase"].as_str() {
+                Some("start") => {
+                    open.insert(key, message.log_time_ns);
+                }
+                Some("end") => {
+                    let Some(start) = open.remove(&key) else {
+                        bail!(
+                            "{}: capture of pose '{pose}' ends at {} ns without a start",
+                            reader.path().display(),
+                            message.log_time_ns
+                        );
+                    };
+                    attempts.push(CaptureAttempt {
+                        pose: pose.to_string(),
+                        attempt,
+                        window: (start, message.log_time_ns),
+                        quality: None,
+                        decision: None,
+                    });
+                }
+                _ => {}
+            },
+            Some(QUALITY_EVENT) => {
+                if let Some(a) = last_attempt(&mut attempts, pose, attempt) {
+                    a.quality = event["quality"].as_str().map(str::to_string);
+                }
             }
-            Some("end") => {
-                let Some(start) = open.remove(pose) else {
-                    bail!(
-                        "{}: capture of pose '{pose}' ends at {} ns without a start",
-                        reader.path().display(),
-                        message.log_time_ns
-                    );
-                };
-                windows.insert(pose.to_string(), (start, message.log_time_ns));
+            Some(DECISION_EVENT) => {
+                if let Some(a) = last_attempt(&mut attempts, pose, attempt) {
+                    a.decision = event["decision"].as_str().map(str::to_string);
+                }
             }
             _ => {}
         }
     }
-    Ok(windows)
+    Ok(attempts)
+}
+
+fn last_attempt<'a>(
+    attempts: &'a mut [CaptureAttempt],
+    pose: &str,
+    attempt: u64,
+) -> Option<&'a mut CaptureAttempt> {
+    attempts
+        .iter_mut()
+        .rev()
+        .find(|a| a.pose == pose && a.attempt == attempt)
+}
+
+/// The capture window the fit uses for each pose, log-time nanoseconds `[start, end)`: the
+/// accepted capture's, or in a log without decisions (written before captures were judged)
+/// the pose's last. A pose without one (an interrupted session) has no entry.
+pub fn capture_windows(reader: &TrialReader) -> anyhow::Result<BTreeMap<String, (i64, i64)>> {
+    let attempts = capture_attempts(reader)?;
+    let judged = attempts.iter().any(|a| a.decision.is_some());
+    Ok(attempts
+        .into_iter()
+        .filter(|a| !judged || a.decision.as_deref() == Some("accepted"))
+        .map(|a| (a.pose, a.window))
+        .collect())
 }

@@ -69,7 +69,7 @@ pub fn read_session(reader: &TrialReader) -> anyhow::Result<(SessionInfo, Vec<Po
     for pose in POSE_NAMES {
         let Some(&(start, end)) = windows.get(pose) else {
             anyhow::bail!(
-                "{file}: no capture window for pose '{pose}' (was the session interrupted?): record the session again"
+                "{file}: no accepted capture window for pose '{pose}' (was the session interrupted?): record the session again"
             );
         };
         let frames = reader

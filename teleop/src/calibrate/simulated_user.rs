@@ -1,8 +1,11 @@
 //! `pomdar calibrate --simulate`: a whole session on loopback DDS with a synthetic user
 //! ([`calibration::SyntheticUser`]: hand size, glove misalignment, 2 mm keypoint noise) whose
-//! simulated glove copies the poses on the session's schedule, its motion time starting at the
-//! session's start. The fit then runs on the recording exactly as `--from` would, and the
-//! recovered transform can be compared with the user's true one.
+//! simulated glove copies the pose the session is at: it moves to each pose when the hand is
+//! sent there and holds it for as long as the session stays (settling, capturing, review,
+//! retries). With `--simulate-bad-pose`, the first capture of that pose is taken with a
+//! shaking hand ([`SHAKING_NOISE_M`]), so the console flags it and the pose is captured again.
+//! The fit then runs on the recording exactly as `--from` would, and the recovered transform
+//! can be compared with the user's true one.
 
 use std::time::Duration;
 
@@ -10,13 +13,14 @@ use anyhow::{Context as _, bail};
 use calibration::{
     CalibrationSettings, CaptureSchedule, FitInputs, PoseSet, Study, SyntheticUser, human_copies,
 };
+use msgs::{Float32MultiArray, PoseStamped};
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel};
 use tokio::sync::watch;
 
-use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
+use crate::calibrate::session_node::PoseCue;
 use crate::clock::StationClock;
-use crate::ros::NetworkConfig;
-use crate::sim::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
+use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::station::station_config::{KeypointFormat, StationConfig};
 
 /// Keypoint noise of a simulated user, metres (standard deviation per axis).
@@ -69,56 +73,143 @@ pub fn true_transform(
     Ok(user.true_transform(study.reference()))
 }
 
-/// Record a session of `user` on loopback DDS (`session.station.network` is replaced by
-/// loopback on `domain_id`).
-pub async fn record_simulated_session(
-    user: SyntheticUser,
-    mut session: SessionOptions,
-    domain_id: u16,
-    shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<SessionReport> {
-    let network = NetworkConfig {
+/// Keypoint noise of the simulated user's bad capture (`--simulate-bad-pose`): a shaking hand,
+/// metres per axis (jitter over 30 mm in the palm frame, far above the 12 mm limit).
+pub const SHAKING_NOISE_M: f64 = 0.008;
+
+/// Fraction of a pose's slot the simulated hand takes to move to the pose (the
+/// calibration-poses motion: move 35 %, hold the rest); the hold starts a little later.
+const HOLD_FROM: f64 = 0.4;
+
+/// The simulated glove's motion time for `cue`, `elapsed_s` after the cue began: the motion of
+/// the pose's slot from its start (moving from the previous pose), then its hold repeated for
+/// as long as the session stays on the pose (a retry or a review holds the pose).
+pub fn motion_time_s(slot_s: f64, cue: PoseCue, elapsed_s: f64, retried: bool) -> f64 {
+    let start = cue.pose as f64 * slot_s;
+    let hold_start = start + HOLD_FROM * slot_s;
+    let hold_len = (1.0 - HOLD_FROM) * slot_s - 0.05;
+    let t = if retried {
+        hold_start + elapsed_s
+    } else {
+        start + elapsed_s
+    };
+    if t < hold_start {
+        t
+    } else {
+        hold_start + (t - hold_start).rem_euclid(hold_len)
+    }
+}
+
+/// The loopback network a simulated session runs on.
+pub fn loopback(domain_id: u16) -> NetworkConfig {
+    NetworkConfig {
         domain_id: Some(domain_id),
         interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
-    };
-    session.station.network = network.clone();
-    if session.station.input.keypoints_format != KeypointFormat::Float32MultiArray {
+    }
+}
+
+/// Publish `user`'s glove on the station's keypoint and wrist topics at 100 Hz, copying the
+/// pose the session is at (`cue`); the first capture of pose `bad_pose` (if any) is taken
+/// with a shaking hand. Until the session starts the hand holds the motion's first posture.
+/// Returns the frames published, after `stop`.
+pub async fn publish_simulated_user(
+    user: SyntheticUser,
+    bad_pose: Option<usize>,
+    station: StationConfig,
+    network: NetworkConfig,
+    clock: StationClock,
+    mut cue: watch::Receiver<Option<PoseCue>>,
+    mut stop: watch::Receiver<bool>,
+) -> anyhow::Result<u64> {
+    if station.input.keypoints_format != KeypointFormat::Float32MultiArray {
         bail!(
             "--simulate publishes Float32MultiArray keypoints: the station configuration must use input.keypoints_format = \"float32_multi_array\""
         );
     }
     let model = HandModel::orca_v1_right();
-    let schedule: CaptureSchedule = session.schedule;
-    let layout = session.station.retarget.layout;
+    let schedule = CaptureSchedule::default();
+    let layout = station.retarget.layout;
     let copies = human_copies(&model, &PoseSet::orca_v1())
         .map_err(|e| anyhow::anyhow!("the human copies of the poses: {e}"))?;
     let glove = user
         .glove(layout, &schedule, &copies)
         .map_err(|e| anyhow::anyhow!("simulated glove: {e}"))?;
-    let glove_config = SimGloveConfig {
-        rate_hz: SIMULATED_GLOVE_RATE_HZ,
-        layout,
-        keypoints_topic: session.station.input.keypoints_topic.clone(),
-        wrist_topic: session.station.input.wrist_topic.clone(),
-        ..SimGloveConfig::default()
-    };
-    let clock = StationClock::new();
-    let (origin_tx, origin_rx) = watch::channel(None);
-    let (stop_tx, stop_rx) = watch::channel(false);
-    let glove_task = tokio::spawn(async move {
-        publish_glove(
-            glove,
-            &glove_config,
-            network,
-            clock,
-            GloveOrigin::Shared(origin_rx),
-            stop_rx,
-        )
-        .await
-    });
-    session.glove_wait = session.glove_wait.max(Duration::from_secs(10));
-    let report = run_session(session, &model, clock, Some(origin_tx), shutdown).await;
-    stop_tx.send(true).ok();
-    glove_task.await.context("simulated glove task")??;
-    report
+    let shaking = SyntheticUser {
+        noise_sd_m: SHAKING_NOISE_M,
+        ..user
+    }
+    .glove(layout, &schedule, &copies)
+    .map_err(|e| anyhow::anyhow!("simulated glove: {e}"))?;
+    let context = network.context()?;
+    let mut node = RosNode::new(&context, "/", "pomdar_simulated_user")?;
+    let qos = QosConfig::best_effort(400);
+    let keypoints_pub = node.publisher::<Float32MultiArray>(&station.input.keypoints_topic, qos)?;
+    let wrist_pub = node.publisher::<PoseStamped>(&station.input.wrist_topic, qos)?;
+    let mut interval =
+        tokio::time::interval(Duration::from_secs_f64(1.0 / SIMULATED_GLOVE_RATE_HZ));
+    interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut since: Option<(PoseCue, i64)> = None;
+    let mut published = 0u64;
+    loop {
+        tokio::select! {
+            changed = stop.changed() => if changed.is_err() || *stop.borrow() { break },
+            Ok(()) = cue.changed() => {
+                if let Some(c) = *cue.borrow_and_update() {
+                    since = Some((c, clock.now_ns()));
+                }
+            }
+            _ = interval.tick() => {
+                let now = clock.now_ns();
+                let (glove, t_s) = match since {
+                    Some((c, at_ns)) => {
+                        let elapsed_s = (now - at_ns) as f64 * 1e-9;
+                        let t = motion_time_s(schedule.slot_s, c, elapsed_s, c.attempt > 1);
+                        let shakes = bad_pose == Some(c.pose) && c.attempt == 1;
+                        (if shakes { &shaking } else { &glove }, t)
+                    }
+                    // Before the session starts: the first posture, its noise varying.
+                    None => (&glove, (published % 100) as f64 * 1e-6),
+                };
+                let (points, wrist) = glove.frame(t_s);
+                let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
+                keypoints_pub.async_publish(Float32MultiArray::from_points(&rows)?).await.ok();
+                let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
+                wrist_pub.async_publish(pose).await.ok();
+                published += 1;
+            }
+        }
+    }
+    Ok(published)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_motion_moves_to_the_pose_then_holds_it_for_as_long_as_needed() {
+        let cue = PoseCue {
+            pose: 2,
+            attempt: 1,
+        };
+        let slot = 2.5;
+        assert_eq!(motion_time_s(slot, cue, 0.0, false), 5.0);
+        assert_eq!(motion_time_s(slot, cue, 0.5, false), 5.5);
+        let hold = (6.0, 7.45);
+        for elapsed in [1.0, 2.0, 3.3, 10.0, 100.0] {
+            let t = motion_time_s(slot, cue, elapsed, false);
+            assert!(t >= hold.0 && t < hold.1, "{elapsed}: {t}");
+        }
+        // A retry starts in the hold.
+        let t = motion_time_s(
+            slot,
+            PoseCue {
+                pose: 2,
+                attempt: 2,
+            },
+            0.0,
+            true,
+        );
+        assert_eq!(t, 6.0);
+    }
 }

@@ -1,0 +1,306 @@
+//! What the calibration console shows, as plain data built from the [`PoseSession`]: the
+//! full-screen console draws it ([`super::calibration_screen`]), the line console prints its
+//! changes ([`PlainCalibrationOutput`]).
+
+use crate::calibrate::capture_quality::QualityLevel;
+use crate::calibrate::pose_session::{Phase, Policy, PoseSession};
+use crate::console::view::Level;
+
+/// The console's states (the names `--script` waits on).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CalState {
+    /// Waiting for the glove's first frame.
+    WaitingGlove,
+    /// The hand shows a pose; the user copies it and settles.
+    Settling,
+    /// A capture runs.
+    Capturing,
+    /// A poor or bad capture waits for the operator.
+    Review,
+    /// The fit runs.
+    Fitting,
+    /// The profile is written.
+    Complete,
+    /// The session or the fit failed.
+    Failed,
+}
+
+impl CalState {
+    /// Every state, in session order.
+    pub const ALL: [CalState; 7] = [
+        CalState::WaitingGlove,
+        CalState::Settling,
+        CalState::Capturing,
+        CalState::Review,
+        CalState::Fitting,
+        CalState::Complete,
+        CalState::Failed,
+    ];
+
+    /// The name scripts use.
+    pub fn name(self) -> &'static str {
+        match self {
+            CalState::WaitingGlove => "waiting_glove",
+            CalState::Settling => "settling",
+            CalState::Capturing => "capturing",
+            CalState::Review => "review",
+            CalState::Fitting => "fitting",
+            CalState::Complete => "complete",
+            CalState::Failed => "failed",
+        }
+    }
+
+    /// The state of a name.
+    pub fn from_name(name: &str) -> Option<CalState> {
+        CalState::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// The banner.
+    pub fn banner(self) -> &'static str {
+        match self {
+            CalState::WaitingGlove => "WAITING FOR THE GLOVE",
+            CalState::Settling => "COPY THE POSE",
+            CalState::Capturing => "HOLD STILL: CAPTURING",
+            CalState::Review => "CAPTURE REVIEW",
+            CalState::Fitting => "FITTING",
+            CalState::Complete => "CALIBRATION COMPLETE",
+            CalState::Failed => "CALIBRATION FAILED",
+        }
+    }
+
+    /// The state of a session.
+    pub fn of(session: &PoseSession) -> CalState {
+        match session.phase() {
+            Phase::WaitingGlove => CalState::WaitingGlove,
+            Phase::Settling { .. } => CalState::Settling,
+            Phase::Capturing { .. } => CalState::Capturing,
+            Phase::Review { .. } => CalState::Review,
+            Phase::Fitting => CalState::Fitting,
+            Phase::Complete => CalState::Complete,
+            Phase::Failed(_) => CalState::Failed,
+        }
+    }
+}
+
+/// One frame of the console.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CalibrationView {
+    /// The state.
+    pub state: CalState,
+    /// The current pose's line: `[3/7] pinch_ring`.
+    pub title: String,
+    /// What the user does now.
+    pub instruction: String,
+    /// (label, value) of the session's setting.
+    pub setup: Vec<(String, String)>,
+    /// Each pose: name, status, level.
+    pub poses: Vec<(String, String, Level)>,
+    /// The banner with its clock.
+    pub banner: String,
+    /// Lines under the banner.
+    pub detail: Vec<String>,
+    /// The last capture's meter: fill in [0, 1], its line, its level.
+    pub meter: Option<(f64, String, Level)>,
+    /// The fit's progress: fraction done and its line.
+    pub progress: Option<(f64, String)>,
+    /// The fit's table and where the profile went.
+    pub results: Vec<String>,
+    /// Recent messages, oldest first.
+    pub messages: Vec<String>,
+}
+
+/// The level a capture quality reads as.
+pub fn quality_level(level: QualityLevel) -> Level {
+    match level {
+        QualityLevel::Good => Level::Ok,
+        QualityLevel::Poor => Level::Warn,
+        QualityLevel::Bad => Level::Bad,
+    }
+}
+
+impl CalibrationView {
+    /// The view at `now_ns`; `setup` is the session's setting, `results` the fit's lines.
+    pub fn build(
+        session: &PoseSession,
+        setup: &[(String, String)],
+        results: &[String],
+        now_ns: i64,
+    ) -> CalibrationView {
+        let state = CalState::of(session);
+        let poses = session.poses();
+        let n = poses.len();
+        let current = match *session.phase() {
+            Phase::Settling { pose, attempt, .. }
+            | Phase::Capturing { pose, attempt, .. }
+            | Phase::Review { pose, attempt } => Some((pose, attempt)),
+            _ => None,
+        };
+        let (title, instruction) = match current {
+            Some((k, attempt)) => (
+                format!(
+                    "[{}/{n}] {}{}",
+                    k + 1,
+                    poses[k].name,
+                    if attempt > 1 {
+                        format!(" · capture {attempt}")
+                    } else {
+                        String::new()
+                    }
+                ),
+                poses[k].instruction.clone(),
+            ),
+            None => (
+                "seven poses, then the fit".to_string(),
+                match state {
+                    CalState::WaitingGlove => "Put the glove on and start streaming.".to_string(),
+                    CalState::Fitting => "The fit runs: the user may rest.".to_string(),
+                    _ => String::new(),
+                },
+            ),
+        };
+        let mut detail = Vec::new();
+        let timing = session.timing();
+        let banner = match *session.phase() {
+            Phase::Settling { capture_ns, .. } => {
+                detail.push(format!(
+                    "the hand shows the pose: copy it and settle; capture of {:.1} s in a moment",
+                    timing.capture_s
+                ));
+                format!(
+                    "{}  {:.1} s",
+                    state.banner(),
+                    ((capture_ns - now_ns) as f64 * 1e-9).max(0.0)
+                )
+            }
+            Phase::Capturing { end_ns, .. } => {
+                detail.push("keep the pose still until the capture ends".to_string());
+                format!(
+                    "{}  {:.1} s",
+                    state.banner(),
+                    ((end_ns - now_ns) as f64 * 1e-9).max(0.0)
+                )
+            }
+            Phase::Review { .. } => {
+                let bad = current
+                    .and_then(|(k, _)| session.attempts()[k].last())
+                    .is_some_and(|a| a.quality.level == QualityLevel::Bad);
+                detail.push(if bad {
+                    "bad capture: r captures the pose again".to_string()
+                } else {
+                    "poor capture: space / Enter accepts it · r captures the pose again".to_string()
+                });
+                state.banner().to_string()
+            }
+            Phase::Failed(ref reason) => {
+                detail.push(reason.clone());
+                detail.push("q quits".to_string());
+                state.banner().to_string()
+            }
+            Phase::Complete => {
+                detail.push("q quits".to_string());
+                state.banner().to_string()
+            }
+            _ => state.banner().to_string(),
+        };
+        if let Policy::Automatic { max_attempts } = session.policy() {
+            detail.push(format!(
+                "no operator: poor captures are accepted, bad ones retried (at most {max_attempts} per pose)"
+            ));
+        }
+        let meter = session.last_capture().map(|(k, i)| {
+            let a = &session.attempts()[k][i];
+            (
+                a.quality.meter_fill(),
+                format!("{} capture {}: {}", poses[k].name, i + 1, a.quality.meter()),
+                quality_level(a.quality.level),
+            )
+        });
+        let pose_rows = poses
+            .iter()
+            .zip(session.attempts())
+            .enumerate()
+            .map(|(k, (p, attempts))| {
+                let history: Vec<&str> = attempts.iter().map(|a| a.quality.level.name()).collect();
+                let accepted = attempts.iter().find(|a| a.accepted);
+                let (status, level) = match (accepted, current) {
+                    (Some(a), _) => (
+                        format!("accepted ({})", history.join(", ")),
+                        quality_level(a.quality.level),
+                    ),
+                    (None, Some((c, _))) if c == k => (
+                        if history.is_empty() {
+                            "now".to_string()
+                        } else {
+                            format!("now (so far: {})", history.join(", "))
+                        },
+                        Level::Warn,
+                    ),
+                    _ => ("-".to_string(), Level::Ok),
+                };
+                (p.name.clone(), status, level)
+            })
+            .collect();
+        let progress = session.fit_progress().map(|p| {
+            (
+                if p.budget == 0 {
+                    0.0
+                } else {
+                    (p.done as f64 / p.budget as f64).min(1.0)
+                },
+                format!(
+                    "{}/{} evaluations · best {:.3} rad",
+                    p.done, p.budget, p.best
+                ),
+            )
+        });
+        CalibrationView {
+            state,
+            title,
+            instruction,
+            setup: setup.to_vec(),
+            poses: pose_rows,
+            banner,
+            detail,
+            meter,
+            progress,
+            results: results.to_vec(),
+            messages: session.messages().map(str::to_string).collect(),
+        }
+    }
+}
+
+/// The line console: a line for each change of state and each message, on stderr.
+#[derive(Debug, Default)]
+pub struct PlainCalibrationOutput {
+    state: Option<CalState>,
+    said: u64,
+}
+
+impl PlainCalibrationOutput {
+    /// Prints what changed since the last call, with the console's time `t_s`; `said` is the
+    /// number of messages said so far.
+    pub fn update(&mut self, view: &CalibrationView, said: u64, t_s: f64) {
+        let new = usize::try_from(said.saturating_sub(self.said)).unwrap_or(usize::MAX);
+        let shown = view.messages.len();
+        for message in &view.messages[shown.saturating_sub(new)..] {
+            eprintln!("[{t_s:7.1} s] {message}");
+        }
+        self.said = said;
+        if self.state != Some(view.state) {
+            if matches!(
+                view.state,
+                CalState::Capturing | CalState::Review | CalState::Fitting | CalState::Failed
+            ) {
+                eprintln!(
+                    "[{t_s:7.1} s]   {}{}",
+                    view.state.banner(),
+                    view.detail
+                        .first()
+                        .map(|d| format!(" · {d}"))
+                        .unwrap_or_default()
+                );
+            }
+            self.state = Some(view.state);
+        }
+    }
+}
