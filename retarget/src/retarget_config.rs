@@ -157,7 +157,7 @@ impl Default for RetargetConfig {
 impl Default for KeyVectorWeights {
     fn default() -> Self {
         KeyVectorWeights {
-            palm_to_tip: 1.0,
+            palm_to_tip: 2.0,
             tip_to_tip: 0.5,
             palm_to_mid: 1.0,
         }
@@ -190,8 +190,8 @@ impl Default for Regularisation {
 impl Default for SmoothingConfig {
     fn default() -> Self {
         SmoothingConfig {
-            previous_command: 2e-2,
-            residual_m: 0.012,
+            previous_command: 3e-2,
+            residual_m: 0.01,
         }
     }
 }

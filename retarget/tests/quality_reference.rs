@@ -43,14 +43,14 @@ fn the_defaults_on_the_reference_recording() {
     assert!(q.pinch_frames > 0);
     let closed = q.pinches_closed_pct.unwrap();
     assert!(closed >= 90.0, "{closed} % of pinches closed");
-    // Better than dex-retargeting's 26.1 mm (vector, filtered) and 24.9 mm (unfiltered); 23.6
+    // Better than dex-retargeting's 26.1 mm (vector, filtered) and 24.9 mm (unfiltered); 23.5
     // mm measured. The 22 mm is not reached: the ORCA thumb cannot reach where the
     // glove's thumb tip is (its abduction and PIP sit on their limits; 44 mm at best at the
     // mean thumb target) and the glove's index tip points past the ORCA index abduction limit
-    // (36 mm). Without the smoothing the defaults measure 22.0 mm at 0.024 rad of jerk: the
-    // smoothing's lag costs middle, ring and little about 2 mm each.
+    // (36 mm). Without the smoothing the defaults measure 22.1 mm at 0.025 rad of jerk: the
+    // smoothing's lag costs middle, ring and little about 2 mm each. Guard against worse.
     assert!(
-        q.tip_error_mean_mm < 24.9,
+        q.tip_error_mean_mm <= 24.0,
         "tip error {} mm",
         q.tip_error_mean_mm
     );
