@@ -25,7 +25,7 @@ use crate::ros::NetworkConfig;
 use crate::score::load_trial::load_trial_log;
 use crate::score::report_files::write_report_files;
 use crate::score::score_command::reason;
-use crate::score::score_inputs::ScoringInputs;
+use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
 use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station::recorder::{RecordingOptions, config_digest};
@@ -82,16 +82,10 @@ pub struct TrialArgs {
     /// The user's calibration profile (from `pomdar calibrate`); overrides the configuration's.
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
-    /// Human baseline table (from `pomdar baseline`): with it each trial shows its score,
-    /// without it correctness only.
-    #[arg(long, value_name = "FILE")]
-    pub baseline: Option<PathBuf>,
-    /// Task catalog (default: the built-in 18 POMDAR tasks).
-    #[arg(long, value_name = "FILE")]
-    pub catalog: Option<PathBuf>,
-    /// Scoring rules (default: weights 0.8 / 0.2, no time limit).
-    #[arg(long, value_name = "FILE")]
-    pub rules: Option<PathBuf>,
+    /// The baseline (with it each trial shows its score, without it correctness only),
+    /// catalog and rules.
+    #[command(flatten)]
+    pub scoring: ScoringFileArgs,
     /// Countdown before a trial starts, seconds (0–30).
     #[arg(long, value_name = "S", default_value_t = 3.0)]
     pub countdown: f64,
@@ -155,11 +149,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
     check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
     check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
-    let inputs = ScoringInputs::load(
-        args.catalog.as_deref(),
-        args.rules.as_deref(),
-        args.baseline.as_deref(),
-    )?;
+    let inputs = args.scoring.load()?;
     let task = inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
         anyhow::anyhow!(
             "--task {:?} is not in the {} ({})",
@@ -203,7 +193,11 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
             .as_ref()
             .map(|p| p.display().to_string()),
         config_digest: config_digest(&config),
-        baseline: args.baseline.as_ref().map(|p| p.display().to_string()),
+        baseline: args
+            .scoring
+            .baseline
+            .as_ref()
+            .map(|p| p.display().to_string()),
     };
     let dir = session_dir(&args.out, &plan);
     let (manifest, opened) = open_session(&dir, &plan)?;

@@ -10,7 +10,7 @@ use scoring::{FileProblem, ReportInputs, ScoreReport, ScoringError, TrialScore, 
 use super::load_trial::load_trial_log;
 use super::parallel_files::{process_files, progress_style};
 use super::report_files::write_report_files;
-use super::score_inputs::ScoringInputs;
+use super::score_inputs::ScoringFileArgs;
 use super::trial_files::collect_trial_files;
 
 /// Exit status when the run finished but some trial files were rejected.
@@ -22,18 +22,9 @@ pub struct ScoreArgs {
     /// Trial logs (.mcap), or directories searched recursively for them.
     #[arg(required = true, value_name = "PATHS")]
     pub paths: Vec<PathBuf>,
-    /// Human baseline table (TOML, from `pomdar baseline`). Without it, or for tasks it does
-    /// not list, trials show correctness only (with a warning), never an invented time.
-    #[arg(long, value_name = "FILE")]
-    pub baseline: Option<PathBuf>,
-    /// Task catalog (TOML; default: the built-in 18 POMDAR tasks, also shipped as
-    /// launch_configs/tasks/pomdar_tasks.toml).
-    #[arg(long, value_name = "FILE")]
-    pub catalog: Option<PathBuf>,
-    /// Scoring rules (TOML; default: launch_configs/scoring/default_rules.toml's values:
-    /// weights 0.8/0.2, no time limit, unfinished trials keep their correctness with speed 0).
-    #[arg(long, value_name = "FILE")]
-    pub rules: Option<PathBuf>,
+    /// The baseline, catalog and rules.
+    #[command(flatten)]
+    pub files: ScoringFileArgs,
     /// Write report.md, scores.csv, overall.csv, trials.csv, scores.json and the figures
     /// (radar_manipulation, radar_grasp, overall_vs_dof, overall_vs_dof_all_tasks; .svg and
     /// .png) into this directory.
@@ -55,11 +46,7 @@ pub(crate) fn reason(error: ScoringError) -> String {
 /// `pomdar score`.
 pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
-    let inputs = ScoringInputs::load(
-        args.catalog.as_deref(),
-        args.rules.as_deref(),
-        args.baseline.as_deref(),
-    )?;
+    let inputs = args.files.load()?;
     let found = collect_trial_files(&args.paths);
     if found.files.is_empty() && found.problems.is_empty() {
         for s in &found.skipped {

@@ -8,6 +8,34 @@ use std::path::Path;
 use anyhow::Context as _;
 use scoring::{BaselineTable, DEFAULT_RULES_ORIGIN, ScoringRules, TaskCatalog};
 
+/// The scoring files a command takes (`pomdar score`, `pomdar trial`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ScoringFileArgs {
+    /// Human baseline table (TOML, from `pomdar baseline`). Without it, or for tasks it does
+    /// not list, trials show correctness only (with a warning), never an invented time.
+    #[arg(long, value_name = "FILE")]
+    pub baseline: Option<std::path::PathBuf>,
+    /// Task catalog (TOML; default: the built-in 18 POMDAR tasks, also shipped as
+    /// launch_configs/tasks/pomdar_tasks.toml).
+    #[arg(long, value_name = "FILE")]
+    pub catalog: Option<std::path::PathBuf>,
+    /// Scoring rules (TOML; default: launch_configs/scoring/default_rules.toml's values:
+    /// weights 0.8/0.2, no time limit, unfinished trials keep their correctness with speed 0).
+    #[arg(long, value_name = "FILE")]
+    pub rules: Option<std::path::PathBuf>,
+}
+
+impl ScoringFileArgs {
+    /// Loads the files given (see [`ScoringInputs::load`]).
+    pub fn load(&self) -> anyhow::Result<ScoringInputs> {
+        ScoringInputs::load(
+            self.catalog.as_deref(),
+            self.rules.as_deref(),
+            self.baseline.as_deref(),
+        )
+    }
+}
+
 /// The catalog, rules and baseline of a run.
 #[derive(Debug, Clone)]
 pub struct ScoringInputs {
