@@ -440,21 +440,20 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
                 Effect::Quit => quit = true,
             }
         }
-        if *flow.phase() == Phase::Complete && !report_written {
+        if *flow.phase() != Phase::Complete {
+            // A trial redone after the plan was complete: the report is written again.
+            report_written = false;
+        } else if !report_written {
             report_written = true;
             match write_session_report(&dir, &flow, &inputs) {
                 Ok(path) => flow.say(format!("session complete: report in {}", path.display())),
                 Err(e) => flow.say(format!("error: cannot write the session report: {e:#}")),
             }
-            // Without a keyboard to say q, a finished plan ends the console.
-            if !full_screen && (!scripted || player.as_ref().is_some_and(ScriptPlayer::finished)) {
-                quit = true;
-            }
         }
+        // Without a keyboard to say q, a finished plan (and script) ends the console.
         if *flow.phase() == Phase::Complete
-            && scripted
             && !full_screen
-            && player.as_ref().is_some_and(ScriptPlayer::finished)
+            && (!scripted || player.as_ref().is_some_and(ScriptPlayer::finished))
         {
             quit = true;
         }
