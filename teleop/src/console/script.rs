@@ -23,6 +23,30 @@ use std::path::Path;
 use super::keys::{Action, parse_action};
 use super::view::Screen;
 
+/// A state of a console that a script can wait for.
+pub trait ScriptState: Copy + PartialEq + std::fmt::Debug {
+    /// The state of a name (`running`).
+    fn from_name(name: &str) -> Option<Self>;
+    /// The state's name.
+    fn name(self) -> &'static str;
+    /// Every name, for errors.
+    fn names() -> String;
+}
+
+impl ScriptState for Screen {
+    fn from_name(name: &str) -> Option<Screen> {
+        Screen::from_name(name)
+    }
+
+    fn name(self) -> &'static str {
+        Screen::name(self)
+    }
+
+    fn names() -> String {
+        Screen::ALL.map(Screen::name).join(", ")
+    }
+}
+
 /// When a line happens.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum At {
@@ -34,13 +58,13 @@ pub enum At {
 
 /// What a line does.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Step {
+pub enum Step<A, S> {
     /// An operator action.
-    Act(Action),
-    /// Wait until the console shows `screen`, for at most `timeout_s`.
+    Act(A),
+    /// Wait until the console is in `state`, for at most `timeout_s`.
     Wait {
         /// The state waited for.
-        screen: Screen,
+        state: S,
         /// Seconds.
         timeout_s: f64,
     },
@@ -48,27 +72,48 @@ pub enum Step {
 
 /// One line of a script.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ScriptLine {
+pub struct ScriptLine<A, S> {
     /// 1-based line number in the file.
     pub line: usize,
     /// When.
     pub at: At,
     /// What.
-    pub step: Step,
+    pub step: Step<A, S>,
 }
+
+/// A line of the trial console's scripts.
+pub type TrialScriptLine = ScriptLine<Action, Screen>;
 
 /// Default `wait` timeout, seconds.
 pub const DEFAULT_WAIT_S: f64 = 30.0;
 
-/// Reads and parses a script; errors name the file and the line.
-pub fn load_script(path: &Path) -> anyhow::Result<Vec<ScriptLine>> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow::anyhow!("cannot read the script {}: {e}", path.display()))?;
-    parse_script(&text).map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))
+/// Reads and parses a trial console script; errors name the file and the line.
+pub fn load_script(path: &Path) -> anyhow::Result<Vec<TrialScriptLine>> {
+    load_script_with(path, parse_action)
 }
 
-/// Parses a script's text; an error is `LINE: reason`.
-pub fn parse_script(text: &str) -> Result<Vec<ScriptLine>, String> {
+/// Parses a trial console script's text; an error is `LINE: reason`.
+pub fn parse_script(text: &str) -> Result<Vec<TrialScriptLine>, String> {
+    parse_script_with(text, parse_action)
+}
+
+/// Reads and parses a script whose actions `parse_action` reads; errors name the file and the
+/// line.
+pub fn load_script_with<A, S: ScriptState>(
+    path: &Path,
+    parse_action: impl Fn(&str) -> Result<A, String>,
+) -> anyhow::Result<Vec<ScriptLine<A, S>>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow::anyhow!("cannot read the script {}: {e}", path.display()))?;
+    parse_script_with(&text, parse_action).map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))
+}
+
+/// Parses a script's text (the grammar above) with the console's actions and states; an error
+/// is `LINE: reason`.
+pub fn parse_script_with<A, S: ScriptState>(
+    text: &str,
+    parse_action: impl Fn(&str) -> Result<A, String>,
+) -> Result<Vec<ScriptLine<A, S>>, String> {
     let mut out = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
@@ -81,7 +126,9 @@ pub fn parse_script(text: &str) -> Result<Vec<ScriptLine>, String> {
             Some((first, rest)) if starts_like_time(first) => {
                 (parse_time(first).map_err(fail)?, rest.trim())
             }
-            _ if starts_like_time(content) => return Err(fail("a time without an action".into())),
+            _ if starts_like_time(content) => {
+                return Err(fail("a time without an action".into()));
+            }
             _ => (At::After(0.0), content),
         };
         let step = if let Some(args) = rest.strip_prefix("wait") {
@@ -89,16 +136,8 @@ pub fn parse_script(text: &str) -> Result<Vec<ScriptLine>, String> {
             let name = words
                 .next()
                 .ok_or_else(|| fail("'wait' needs a state".into()))?;
-            let screen = Screen::from_name(name).ok_or_else(|| {
-                fail(format!(
-                    "unknown state '{name}' (known: {})",
-                    Screen::ALL
-                        .iter()
-                        .map(|s| s.name())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ))
-            })?;
+            let state = S::from_name(name)
+                .ok_or_else(|| fail(format!("unknown state '{name}' (known: {})", S::names())))?;
             let timeout_s = match words.next() {
                 Some(t) => t
                     .parse::<f64>()
@@ -114,7 +153,7 @@ pub fn parse_script(text: &str) -> Result<Vec<ScriptLine>, String> {
             if let Some(extra) = words.next() {
                 return Err(fail(format!("unexpected '{extra}' after the wait timeout")));
             }
-            Step::Wait { screen, timeout_s }
+            Step::Wait { state, timeout_s }
         } else {
             Step::Act(parse_action(rest).map_err(fail)?)
         };
@@ -163,7 +202,7 @@ mod tests {
         assert_eq!(
             script[2].step,
             Step::Wait {
-                screen: Screen::Running,
+                state: Screen::Running,
                 timeout_s: 10.0
             }
         );
@@ -173,7 +212,7 @@ mod tests {
         assert_eq!(
             script[5].step,
             Step::Wait {
-                screen: Screen::Summary,
+                state: Screen::Summary,
                 timeout_s: DEFAULT_WAIT_S
             }
         );

@@ -4,22 +4,20 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use super::keys::Action;
-use super::script::{At, ScriptLine, Step};
-use super::view::Screen;
+use super::script::{At, ScriptLine, ScriptState, Step};
 
-/// A script being played.
+/// A script being played: actions `A`, waits on states `S`.
 #[derive(Debug)]
-pub struct ScriptPlayer {
-    lines: VecDeque<ScriptLine>,
+pub struct ScriptPlayer<A, S> {
+    lines: VecDeque<ScriptLine<A, S>>,
     origin: Instant,
     previous: Instant,
     waiting_since: Option<Instant>,
 }
 
-impl ScriptPlayer {
+impl<A: Clone, S: ScriptState> ScriptPlayer<A, S> {
     /// Starts playing `lines` now.
-    pub fn new(lines: Vec<ScriptLine>, now: Instant) -> ScriptPlayer {
+    pub fn new(lines: Vec<ScriptLine<A, S>>, now: Instant) -> ScriptPlayer<A, S> {
         ScriptPlayer {
             lines: lines.into(),
             origin: now,
@@ -33,9 +31,9 @@ impl ScriptPlayer {
         self.lines.is_empty()
     }
 
-    /// The next due action at `now` with the console showing `screen`; an error when a wait
-    /// timed out (naming its line).
-    pub fn next(&mut self, screen: Screen, now: Instant) -> Result<Option<Action>, String> {
+    /// The next due action at `now` with the console in `state`; an error when a wait timed
+    /// out (naming its line).
+    pub fn next(&mut self, state: S, now: Instant) -> Result<Option<A>, String> {
         while let Some(line) = self.lines.front() {
             let due = match line.at {
                 At::Absolute(s) => self.origin + Duration::from_secs_f64(s),
@@ -52,10 +50,10 @@ impl ScriptPlayer {
                     return Ok(Some(action));
                 }
                 Step::Wait {
-                    screen: wanted,
+                    state: wanted,
                     timeout_s,
                 } => {
-                    if *wanted == screen {
+                    if *wanted == state {
                         self.lines.pop_front();
                         self.previous = now;
                         self.waiting_since = None;
@@ -68,7 +66,7 @@ impl ScriptPlayer {
                             "script line {}: waited {waited:.1} s for '{}', the console is still '{}'",
                             line.line,
                             wanted.name(),
-                            screen.name()
+                            state.name()
                         ));
                     }
                     return Ok(None);
@@ -82,7 +80,9 @@ impl ScriptPlayer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::console::keys::Action;
     use crate::console::script::parse_script;
+    use crate::console::view::Screen;
 
     #[test]
     fn lines_play_when_due_and_waits_follow_the_screen() {
