@@ -211,7 +211,13 @@ impl CalibrationView {
             let a = &session.attempts()[k][i];
             (
                 a.quality.meter_fill(),
-                format!("{} capture {}: {}", poses[k].name, i + 1, a.quality.meter()),
+                format!(
+                    "{} capture {}: {} · {}",
+                    poses[k].name,
+                    i + 1,
+                    a.quality.level.name().to_uppercase(),
+                    a.quality.summary()
+                ),
                 quality_level(a.quality.level),
             )
         });

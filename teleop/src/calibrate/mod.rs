@@ -4,11 +4,17 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `session_node.rs` | the session over ROS 2: the hand shows each pose, the glove is recorded with the capture windows |
-//! | `session_events.rs` | the session log's metadata record and events |
+//! | `pose_session.rs` | the session pose by pose as a pure state machine: settle, capture, judge, accept or retry, fit |
+//! | `capture_quality.rs` | a capture's jitter, invalid frames and frames vs expected: good / poor / bad |
+//! | `session_node.rs` | the session over ROS 2: the hand is sent to each pose, the glove recorded with every capture window, its quality and the decisions; the fit in a blocking task |
+//! | `session_events.rs` | the session log's metadata record and events; each pose's accepted capture window |
 //! | `session_frames.rs` | reading a session log back: each pose's frames |
 //! | `fit_session.rs` | session log → captures → fit → table → profile (atomic write) |
-//! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, time-aligned with the session |
+//! | `calibration_console.rs` | the console's front: full-screen or line console, keys, `--script` |
+//! | `calibration_view.rs` | what the console shows, as data; the line console's output |
+//! | `calibration_screen.rs` | drawing the view full-screen (ratatui) |
+//! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
+//! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
 //! | `calibrate_command.rs` | the `pomdar calibrate` flags and modes |
 //! | `profile_file.rs` | loading a profile for the station, its one-line description, atomic writes |
 //! | `progress_bar.rs` | the fit's progress on stderr |

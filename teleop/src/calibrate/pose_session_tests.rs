@@ -333,3 +333,49 @@ fn a_poor_capture_is_the_operators_call_and_actions_out_of_place_are_refused() {
     assert_eq!(run.effects.last(), Some(&Effect::Quit { completed: false }));
     assert_eq!(run.events("abort").len(), 1);
 }
+
+#[test]
+fn the_view_shows_the_pose_its_captures_and_what_to_press() {
+    use crate::calibrate::calibration_view::{CalState, CalibrationView};
+    use crate::console::view::Level;
+
+    let mut run = start(Policy::Operator);
+    run.hold_pose(0.002);
+    run.hold_pose(0.008);
+    let view = CalibrationView::build(&run.session, &[], &[], run.now);
+    assert_eq!(view.state, CalState::Review);
+    assert_eq!(view.title, "[2/7] pinch_middle");
+    assert!(
+        view.instruction.contains("middle finger"),
+        "{}",
+        view.instruction
+    );
+    assert_eq!(view.poses[0].1, "accepted (good)");
+    assert_eq!(
+        view.poses[1],
+        (
+            "pinch_middle".to_string(),
+            "now (so far: bad)".to_string(),
+            Level::Warn
+        )
+    );
+    assert_eq!(view.poses[2].1, "-");
+    assert!(
+        view.detail[0].contains("r captures the pose again"),
+        "{:?}",
+        view.detail
+    );
+    let (fill, label, level) = view.meter.clone().unwrap();
+    assert_eq!((fill, level), (0.0, Level::Bad));
+    assert!(
+        label.starts_with("pinch_middle capture 1: BAD · jitter"),
+        "{label}"
+    );
+    assert_eq!(view.progress, None);
+
+    run.act(CalibrationAction::Retry);
+    let view = CalibrationView::build(&run.session, &[], &[], run.now);
+    assert_eq!(view.state, CalState::Settling);
+    assert_eq!(view.title, "[2/7] pinch_middle · capture 2");
+    assert_eq!(view.banner, "COPY THE POSE  1.5 s");
+}

@@ -145,3 +145,87 @@ pub fn capture_windows(reader: &TrialReader) -> anyhow::Result<BTreeMap<String, 
         .map(|a| (a.pose, a.window))
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mcap_log::{TrialWriter, TrialWriterOptions};
+
+    /// Writes a log with these events, one per millisecond, and reads its windows back.
+    fn windows_of(
+        name: &str,
+        events: &[Value],
+    ) -> (Vec<CaptureAttempt>, BTreeMap<String, (i64, i64)>) {
+        let dir =
+            std::env::temp_dir().join(format!("pomdar-session-events-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{name}.mcap"));
+        let mut writer = TrialWriter::create(&path, TrialWriterOptions::default()).unwrap();
+        for (i, event) in events.iter().enumerate() {
+            writer
+                .write_event(1_000_000 * (i as i64 + 1), event)
+                .unwrap();
+        }
+        writer.finish().unwrap();
+        let reader = TrialReader::open(&path).unwrap();
+        (
+            capture_attempts(&reader).unwrap(),
+            capture_windows(&reader).unwrap(),
+        )
+    }
+
+    fn with(mut event: Value, attempt: u64) -> Value {
+        event["attempt"] = attempt.into();
+        event
+    }
+
+    #[test]
+    fn the_accepted_capture_is_used_and_old_logs_read_as_before() {
+        // A log written before captures were judged: no attempts, no decisions.
+        let (attempts, windows) = windows_of(
+            "old",
+            &[
+                capture_event("open", true),
+                capture_event("open", false),
+                capture_event("closed", true),
+                capture_event("closed", false),
+            ],
+        );
+        assert_eq!(attempts.len(), 2);
+        assert_eq!(attempts[0].attempt, 1);
+        assert_eq!(windows["open"], (1_000_000, 2_000_000));
+        assert_eq!(windows["closed"], (3_000_000, 4_000_000));
+
+        // A judged log: the retried first capture of "open" is kept but not used.
+        let decision = |pose: &str, attempt: u64, d: &str| json!({"event": DECISION_EVENT, "pose": pose, "attempt": attempt, "decision": d, "by": "operator"});
+        let quality = |pose: &str, attempt: u64, q: &str| json!({"event": QUALITY_EVENT, "pose": pose, "attempt": attempt, "quality": q});
+        let (attempts, windows) = windows_of(
+            "judged",
+            &[
+                with(capture_event("open", true), 1),
+                with(capture_event("open", false), 1),
+                quality("open", 1, "bad"),
+                decision("open", 1, "retry"),
+                with(capture_event("open", true), 2),
+                with(capture_event("open", false), 2),
+                quality("open", 2, "good"),
+                decision("open", 2, "accepted"),
+                with(capture_event("closed", true), 1),
+                with(capture_event("closed", false), 1),
+                quality("closed", 1, "poor"),
+            ],
+        );
+        assert_eq!(attempts.len(), 3);
+        assert_eq!(
+            (
+                attempts[0].quality.as_deref(),
+                attempts[0].decision.as_deref()
+            ),
+            (Some("bad"), Some("retry"))
+        );
+        assert_eq!(attempts[1].attempt, 2);
+        assert_eq!(windows["open"], (5_000_000, 6_000_000));
+        // "closed" was never accepted (the session stopped in review): no window for the fit.
+        assert!(!windows.contains_key("closed"), "{windows:?}");
+    }
+}
