@@ -7,22 +7,14 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Gauge, Paragraph, Wrap};
+use ratatui::widgets::{Block, Gauge, Paragraph};
 
 use crate::calibrate::calibration_view::{CalState, CalibrationView};
-use crate::console::view::Level;
+use crate::console::panels::{draw_heading, draw_messages, draw_rows, level_style};
 
 /// The keys, as the key bar shows them.
 pub const CALIBRATION_KEY_HELP: &str =
     "r retry the pose · space/Enter accept a poor capture · q quit";
-
-fn level_style(level: Level) -> Style {
-    match level {
-        Level::Ok => Style::new().fg(Color::Green),
-        Level::Warn => Style::new().fg(Color::Yellow),
-        Level::Bad => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
-    }
-}
 
 fn banner_style(state: CalState) -> Style {
     let color = match state {
@@ -50,47 +42,26 @@ pub fn draw_calibration(frame: &mut Frame<'_>, view: &CalibrationView) {
     ])
     .areas(frame.area());
 
-    let pose = Paragraph::new(vec![
-        Line::from(Span::styled(
-            view.title.clone(),
-            Style::new().add_modifier(Modifier::BOLD),
-        )),
-        Line::from(view.instruction.clone()),
-    ])
-    .wrap(Wrap { trim: true })
-    .block(Block::bordered().title(" POMDAR calibration console "));
-    frame.render_widget(pose, top);
+    draw_heading(
+        frame,
+        top,
+        "POMDAR calibration console",
+        &view.title,
+        &view.instruction,
+    );
 
     let [poses_area, setup_area] =
         Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(middle);
-    let poses: Vec<Line> = view
+    let poses = view
         .poses
         .iter()
-        .map(|(name, status, level)| {
-            Line::from(vec![
-                Span::styled(format!("{name:<14}"), Style::new().fg(Color::Gray)),
-                Span::styled(status.clone(), level_style(*level)),
-            ])
-        })
-        .collect();
-    frame.render_widget(
-        Paragraph::new(poses).block(Block::bordered().title(" Poses ")),
-        poses_area,
-    );
-    let setup: Vec<Line> = view
+        .map(|(name, status, level)| (name.as_str(), status.as_str(), Some(*level)));
+    draw_rows(frame, poses_area, "Poses", 14, poses);
+    let setup = view
         .setup
         .iter()
-        .map(|(k, v)| {
-            Line::from(vec![
-                Span::styled(format!("{k:<10}"), Style::new().fg(Color::Gray)),
-                Span::raw(v.clone()),
-            ])
-        })
-        .collect();
-    frame.render_widget(
-        Paragraph::new(setup).block(Block::bordered().title(" Session ")),
-        setup_area,
-    );
+        .map(|(k, v)| (k.as_str(), v.as_str(), None));
+    draw_rows(frame, setup_area, "Session", 10, setup);
 
     let block = Block::bordered().title(" State ");
     let inner = block.inner(state);
@@ -140,18 +111,7 @@ pub fn draw_calibration(frame: &mut Frame<'_>, view: &CalibrationView) {
         results,
     );
 
-    let shown = usize::from(messages.height.saturating_sub(2));
-    let skip = view.messages.len().saturating_sub(shown);
-    let message_lines: Vec<Line> = view
-        .messages
-        .iter()
-        .skip(skip)
-        .map(|m| Line::from(m.clone()))
-        .collect();
-    frame.render_widget(
-        Paragraph::new(message_lines).block(Block::bordered().title(" Messages ")),
-        messages,
-    );
+    draw_messages(frame, messages, &view.messages);
     frame.render_widget(
         Paragraph::new(Line::from(Span::styled(
             CALIBRATION_KEY_HELP,
@@ -164,6 +124,7 @@ pub fn draw_calibration(frame: &mut Frame<'_>, view: &CalibrationView) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::console::view::Level;
     use ratatui::Terminal;
     use ratatui::backend::TestBackend;
 

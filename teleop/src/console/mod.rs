@@ -5,6 +5,7 @@
 pub mod health;
 pub mod keys;
 pub mod manifest;
+pub mod panels;
 pub mod plain_output;
 pub mod screen;
 pub mod script;

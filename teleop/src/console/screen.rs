@@ -7,15 +7,8 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use super::keys::KEY_HELP;
-use super::view::{ConsoleView, Level, Screen};
-
-fn level_style(level: Level) -> Style {
-    match level {
-        Level::Ok => Style::new().fg(Color::Green),
-        Level::Warn => Style::new().fg(Color::Yellow),
-        Level::Bad => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
-    }
-}
+use super::panels::{draw_heading, draw_messages, draw_rows};
+use super::view::{ConsoleView, Screen};
 
 fn banner_style(screen: Screen) -> Style {
     let color = match screen {
@@ -41,47 +34,26 @@ pub fn draw(frame: &mut Frame<'_>, view: &ConsoleView, prompt: Option<&str>) {
     ])
     .areas(frame.area());
 
-    let task = Paragraph::new(vec![
-        Line::from(Span::styled(
-            view.title.clone(),
-            Style::new().add_modifier(Modifier::BOLD),
-        )),
-        Line::from(view.instruction.clone()),
-    ])
-    .wrap(Wrap { trim: true })
-    .block(Block::bordered().title(" POMDAR trial console "));
-    frame.render_widget(task, top);
+    draw_heading(
+        frame,
+        top,
+        "POMDAR trial console",
+        &view.title,
+        &view.instruction,
+    );
 
     let [setup_area, health_area] =
         Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(middle);
-    let setup: Vec<Line> = view
+    let setup = view
         .setup
         .iter()
-        .map(|(k, v)| {
-            Line::from(vec![
-                Span::styled(format!("{k:<12}"), Style::new().fg(Color::Gray)),
-                Span::raw(v.clone()),
-            ])
-        })
-        .collect();
-    frame.render_widget(
-        Paragraph::new(setup).block(Block::bordered().title(" Session ")),
-        setup_area,
-    );
-    let health: Vec<Line> = view
+        .map(|(k, v)| (k.as_str(), v.as_str(), None));
+    draw_rows(frame, setup_area, "Session", 12, setup);
+    let health = view
         .health
         .iter()
-        .map(|(k, v, level)| {
-            Line::from(vec![
-                Span::styled(format!("{k:<11}"), Style::new().fg(Color::Gray)),
-                Span::styled(v.clone(), level_style(*level)),
-            ])
-        })
-        .collect();
-    frame.render_widget(
-        Paragraph::new(health).block(Block::bordered().title(" Health ")),
-        health_area,
-    );
+        .map(|(k, v, level)| (k.as_str(), v.as_str(), Some(*level)));
+    draw_rows(frame, health_area, "Health", 11, health);
 
     let mut lines = vec![Line::from(Span::styled(
         view.banner.clone(),
@@ -101,18 +73,7 @@ pub fn draw(frame: &mut Frame<'_>, view: &ConsoleView, prompt: Option<&str>) {
         results,
     );
 
-    let shown = usize::from(messages.height.saturating_sub(2));
-    let skip = view.messages.len().saturating_sub(shown);
-    let message_lines: Vec<Line> = view
-        .messages
-        .iter()
-        .skip(skip)
-        .map(|m| Line::from(m.clone()))
-        .collect();
-    frame.render_widget(
-        Paragraph::new(message_lines).block(Block::bordered().title(" Messages ")),
-        messages,
-    );
+    draw_messages(frame, messages, &view.messages);
 
     let bar = match prompt {
         Some(text) => Line::from(Span::styled(
