@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
-use scoring::{ArmConstraint, ReportInputs, ScoreReport, TrialScore, score_trial};
+use scoring::{ArmConstraint, ReportInputs, ScoreReport};
 use tokio::sync::{mpsc, watch};
 
 use crate::arm::Constraint;
@@ -22,9 +22,7 @@ use crate::cli::NodeArgs;
 use crate::clock::StationClock;
 use crate::demo::default_domain_id;
 use crate::ros::NetworkConfig;
-use crate::score::load_trial::load_trial_log;
 use crate::score::report_files::write_report_files;
-use crate::score::score_command::reason;
 use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
 use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
@@ -348,7 +346,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
                     effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
                 }
                 StationEvent::TrialFinished(path) => {
-                    effects.extend(flow.trial_logged(score_log(&path, &inputs)));
+                    effects.extend(flow.trial_logged(inputs.score_file(&path)));
                 }
                 StationEvent::TrialFinishFailed { path, error } => {
                     effects.extend(flow.trial_logged(Err(format!(
@@ -557,18 +555,6 @@ fn typed(prompt: &mut Option<(Prompt, String)>, key: Input) -> Option<Action> {
     }
 }
 
-/// Reads a finished trial log back and scores it.
-fn score_log(path: &Path, inputs: &ScoringInputs) -> Result<TrialScore, String> {
-    let log = load_trial_log(path)?;
-    score_trial(
-        &log,
-        &inputs.catalog,
-        inputs.baseline.as_ref(),
-        &inputs.rules,
-    )
-    .map_err(reason)
-}
-
 /// Scores the session's counted trials and writes the report into `DIR/report`.
 fn write_session_report(
     dir: &Path,
@@ -584,7 +570,7 @@ fn write_session_report(
         .filter(|t| t.status == TrialStatus::Scored)
     {
         let path = dir.join(&trial.file);
-        match score_log(&path, inputs) {
+        match inputs.score_file(&path) {
             Ok(score) => scores.push(score),
             Err(reason) => rejected.push(scoring::FileProblem {
                 file: path.display().to_string(),

@@ -12,8 +12,9 @@ use scoring::{
 
 use super::load_trial::load_trial_log;
 use super::parallel_files::{process_files, progress_style};
-use super::score_command::{EXIT_SOME_REJECTED, reason};
+use super::score_command::EXIT_SOME_REJECTED;
 use super::score_inputs::ScoringInputs;
+use super::score_inputs::reason;
 use super::trial_files::collect_trial_files;
 use crate::atomic_file::write_atomically;
 

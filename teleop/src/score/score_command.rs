@@ -5,9 +5,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Args;
-use scoring::{FileProblem, ReportInputs, ScoreReport, ScoringError, TrialScore, score_trial};
+use scoring::{FileProblem, ReportInputs, ScoreReport, TrialScore};
 
-use super::load_trial::load_trial_log;
 use super::parallel_files::{process_files, progress_style};
 use super::report_files::write_report_files;
 use super::score_inputs::ScoringFileArgs;
@@ -35,14 +34,6 @@ pub struct ScoreArgs {
     pub json: bool,
 }
 
-/// The reason of a scoring error, without the file name the report shows beside it.
-pub(crate) fn reason(error: ScoringError) -> String {
-    match error {
-        ScoringError::Trial { reason, .. } => reason,
-        other => other.to_string(),
-    }
-}
-
 /// `pomdar score`.
 pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
@@ -63,16 +54,7 @@ pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
     }
     let results = process_files(
         &found.files,
-        |path| {
-            let log = load_trial_log(path)?;
-            score_trial(
-                &log,
-                &inputs.catalog,
-                inputs.baseline.as_ref(),
-                &inputs.rules,
-            )
-            .map_err(reason)
-        },
+        |path| inputs.score_file(path),
         progress_style(found.files.len()),
         "trial files scored",
     );

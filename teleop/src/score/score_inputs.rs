@@ -6,7 +6,12 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use anyhow::Context as _;
-use scoring::{BaselineTable, DEFAULT_RULES_ORIGIN, ScoringRules, TaskCatalog};
+use scoring::{
+    BaselineTable, DEFAULT_RULES_ORIGIN, ScoringError, ScoringRules, TaskCatalog, TrialScore,
+    score_trial,
+};
+
+use super::load_trial::load_trial_log;
 
 /// The scoring files a command takes (`pomdar score`, `pomdar trial`).
 #[derive(Debug, Clone, clap::Args)]
@@ -56,6 +61,13 @@ fn read(path: &Path, what: &str) -> anyhow::Result<String> {
 }
 
 impl ScoringInputs {
+    /// Reads a trial log and scores it; the error is the reason alone (the report shows the
+    /// file beside it).
+    pub fn score_file(&self, path: &Path) -> Result<TrialScore, String> {
+        let log = load_trial_log(path)?;
+        score_trial(&log, &self.catalog, self.baseline.as_ref(), &self.rules).map_err(reason)
+    }
+
     /// Loads and validates the files given (errors name the file, the key and the allowed
     /// values).
     pub fn load(
@@ -101,5 +113,13 @@ impl ScoringInputs {
             baseline,
             dof,
         })
+    }
+}
+
+/// The reason of a scoring error, without the file name the report shows beside it.
+pub(crate) fn reason(error: ScoringError) -> String {
+    match error {
+        ScoringError::Trial { reason, .. } => reason,
+        other => other.to_string(),
     }
 }
