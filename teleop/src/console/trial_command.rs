@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
-use scoring::{ArmConstraint, ReportInputs, ScoreReport};
+use scoring::ArmConstraint;
 use tokio::sync::{mpsc, watch};
 
 use crate::arm::Constraint;
@@ -578,16 +578,7 @@ fn write_session_report(
             }),
         }
     }
-    let mut report = ScoreReport::build(ReportInputs {
-        catalog: &inputs.catalog,
-        baseline: inputs.baseline.as_ref(),
-        rules: &inputs.rules,
-        rules_origin: &inputs.rules_origin,
-        dof: &inputs.dof,
-        scores,
-        rejected,
-        skipped: Vec::new(),
-    });
+    let mut report = inputs.report(scores, rejected, Vec::new());
     let out = dir.join("report");
     write_report_files(&out, &mut report)?;
     Ok(out.join("report.md"))

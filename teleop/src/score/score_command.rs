@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Args;
-use scoring::{FileProblem, ReportInputs, ScoreReport, TrialScore};
+use scoring::{FileProblem, TrialScore};
 
 use super::parallel_files::{process_files, progress_style};
 use super::report_files::write_report_files;
@@ -70,16 +70,7 @@ pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
         }
     }
     let scored = scores.len();
-    let mut report = ScoreReport::build(ReportInputs {
-        catalog: &inputs.catalog,
-        baseline: inputs.baseline.as_ref(),
-        rules: &inputs.rules,
-        rules_origin: &inputs.rules_origin,
-        dof: &inputs.dof,
-        scores,
-        rejected,
-        skipped: found.skipped,
-    });
+    let mut report = inputs.report(scores, rejected, found.skipped);
 
     let mut figure_errors = Vec::new();
     if let Some(dir) = &args.out {

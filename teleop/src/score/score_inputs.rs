@@ -7,8 +7,8 @@ use std::path::Path;
 
 use anyhow::Context as _;
 use scoring::{
-    BaselineTable, DEFAULT_RULES_ORIGIN, ScoringError, ScoringRules, TaskCatalog, TrialScore,
-    score_trial,
+    BaselineTable, DEFAULT_RULES_ORIGIN, FileProblem, ReportInputs, ScoreReport, ScoringError,
+    ScoringRules, TaskCatalog, TrialScore, score_trial,
 };
 
 use super::load_trial::load_trial_log;
@@ -66,6 +66,25 @@ impl ScoringInputs {
     pub fn score_file(&self, path: &Path) -> Result<TrialScore, String> {
         let log = load_trial_log(path)?;
         score_trial(&log, &self.catalog, self.baseline.as_ref(), &self.rules).map_err(reason)
+    }
+
+    /// The report of these scores with these files' problems.
+    pub fn report(
+        &self,
+        scores: Vec<TrialScore>,
+        rejected: Vec<FileProblem>,
+        skipped: Vec<FileProblem>,
+    ) -> ScoreReport {
+        ScoreReport::build(ReportInputs {
+            catalog: &self.catalog,
+            baseline: self.baseline.as_ref(),
+            rules: &self.rules,
+            rules_origin: &self.rules_origin,
+            dof: &self.dof,
+            scores,
+            rejected,
+            skipped,
+        })
     }
 
     /// Loads and validates the files given (errors name the file, the key and the allowed
