@@ -123,6 +123,8 @@ pub struct Retargeter {
     qp: BoxQp,
     /// The pull toward the previous command in this frame's energy (per rad²).
     prior: f64,
+    /// The previous command, kept for the smoothing's second solve (no allocation per frame).
+    previous: Vec<f64>,
 }
 
 impl Retargeter {
@@ -194,6 +196,7 @@ impl Retargeter {
             trial: neutral.clone(),
             qp: BoxQp::new(n, config.solver.qp_max_iterations, config.solver.qp_method),
             command: neutral.clone(),
+            previous: neutral.clone(),
             prior: config.regularisation.previous_command,
             neutral,
             free,
@@ -281,14 +284,14 @@ impl Retargeter {
         if extra <= 0.0 {
             return Ok(self.solve(&targets, dt_s, base));
         }
-        let previous = self.command.clone();
+        self.previous.copy_from_slice(&self.command);
         let first = self.solve(&targets, dt_s, base);
         let x = (first.tip_error_m / residual_m).powi(2);
         let prior = base + extra * x / (1.0 + x);
         if prior <= base {
             return Ok(first);
         }
-        self.command.copy_from_slice(&previous);
+        self.command.copy_from_slice(&self.previous);
         let mut second = self.solve(&targets, dt_s, prior);
         second.steps += first.steps;
         second.qp_iterations += first.qp_iterations;
