@@ -35,3 +35,26 @@ pub fn files_with_extension(dir: &Path, extension: &str) -> std::io::Result<Vec<
     out.sort();
     Ok(out)
 }
+
+/// A fresh, empty scratch directory for this test process: `$TMPDIR/pomdar-{name}-{pid}`
+/// (whatever an earlier run of the same process id left is removed).
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("pomdar-{name}-{}", std::process::id()));
+    if let Err(e) = std::fs::remove_dir_all(&dir)
+        && e.kind() != std::io::ErrorKind::NotFound
+    {
+        panic!("cannot clear the scratch directory {}: {e}", dir.display());
+    }
+    if let Err(e) = std::fs::create_dir_all(&dir) {
+        panic!("cannot create the scratch directory {}: {e}", dir.display());
+    }
+    dir
+}
+
+/// A path as a command-line argument (test paths are UTF-8).
+pub fn path_arg(path: &Path) -> &str {
+    match path.to_str() {
+        Some(text) => text,
+        None => panic!("not UTF-8: {}", path.display()),
+    }
+}

@@ -14,6 +14,7 @@ use std::sync::OnceLock;
 use calibration::CalibrationProfile;
 use msgs::Float32MultiArray;
 use pomdar_tests::interop::{assert_readers_decode_as_we_do, independent_readers_with_values};
+use pomdar_tests::path_arg;
 use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar as pomdar};
 use pomdar_tests::station_harness::test_domain;
 use teleop::calibrate::session_events::capture_windows;
@@ -22,14 +23,11 @@ use teleop::mcap_log::{LoggedMessage, TrialReader, TrialWriter, TrialWriterOptio
 const HAND_SCALE: f64 = 1.15;
 const USER: &str = "sim_user";
 
+/// This file's scratch directory, shared by its tests (not cleared: they share one session).
 fn scratch() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pomdar-calibrate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn path_arg(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 struct Simulated {

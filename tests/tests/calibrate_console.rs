@@ -13,6 +13,7 @@ use calibration::{CalibrationProfile, POSE_NAMES};
 use msgs::StringMsg;
 use pomdar_tests::pomdar_binary::run_pomdar as pomdar;
 use pomdar_tests::station_harness::test_domain;
+use pomdar_tests::{path_arg, scratch_dir};
 use serde_json::Value;
 use teleop::calibrate::session_events::{
     CaptureAttempt, QUALITY_EVENT, capture_attempts, capture_windows,
@@ -20,20 +21,6 @@ use teleop::calibrate::session_events::{
 use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
 
 const BAD_POSE: &str = "pinch_ring";
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "pomdar-calibrate-console-{}-{name}",
-        std::process::id()
-    ));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn path_arg(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 struct Run {
     profile: PathBuf,
@@ -45,7 +32,7 @@ struct Run {
 /// A simulated session (hand scale 1.15, glove 8,-6,5°, shaking at the first capture of
 /// [`BAD_POSE`]), with `extra` arguments.
 fn run(name: &str, slot: u16, extra: &[&str]) -> Run {
-    let dir = scratch(name);
+    let dir = scratch_dir(&format!("calibrate-console-{name}"));
     let profile = dir.join("profile.toml");
     let session = dir.join("session.mcap");
     let domain = test_domain(slot).to_string();
@@ -210,7 +197,7 @@ fn check_fit(run: &Run) {
 
 #[test]
 fn a_scripted_session_retries_the_bad_capture_and_fits_the_accepted_ones() {
-    let dir = scratch("script");
+    let dir = scratch_dir("calibrate-console-script");
     let script = dir.join("retry.script");
     std::fs::write(
         &script,
@@ -264,7 +251,7 @@ fn without_an_operator_a_bad_capture_is_retried_automatically() {
 
 #[test]
 fn a_script_that_waits_for_nothing_fails_naming_its_line() {
-    let dir = scratch("timeout");
+    let dir = scratch_dir("calibrate-console-timeout");
     let script = dir.join("bad.script");
     std::fs::write(&script, "wait fitting 0.5\n").unwrap();
     let output = pomdar(&[

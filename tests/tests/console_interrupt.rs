@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 use futures::StreamExt;
 use msgs::JointState;
 use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
+use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use teleop::mcap_log::read_trial_events;
 use teleop::ros::{QosConfig, RosNode};
@@ -171,10 +172,7 @@ fn assert_silent_after(heard: &Heard, stopped: Instant, what: &str) {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds() {
     let domain = test_domain(3);
-    let root =
-        std::env::temp_dir().join(format!("pomdar-console-interrupt-{}", std::process::id()));
-    std::fs::remove_dir_all(&root).ok();
-    std::fs::create_dir_all(&root).unwrap();
+    let root = scratch_dir("console-interrupt");
     let dir = root.join("kill/orca_full/V1");
 
     // The robot's ear and the glove.

@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
 
 const ROWS: u16 = 30;
@@ -78,9 +79,7 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         return;
     }
     let binary = pomdar_binary().unwrap();
-    let dir = std::env::temp_dir().join(format!("pomdar-console-screen-{}", std::process::id()));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("console-screen");
     let command = format!(
         "stty rows {ROWS} cols {COLS} && exec '{}' trial --task V2 --user pty --operator ci --practice 0 --trials 2 --simulate --domain-id {} --countdown 3 --out '{}'",
         binary.display(),

@@ -10,6 +10,7 @@ use std::path::Path;
 
 use msgs::JointState;
 use pomdar_tests::pomdar_binary::run_pomdar;
+use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
 use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader, read_trial_events};
 
@@ -93,9 +94,7 @@ fn names(events: &[serde_json::Value]) -> Vec<String> {
 
 #[test]
 fn a_scripted_session_logs_scores_and_reports_every_trial() {
-    let root = std::env::temp_dir().join(format!("pomdar-console-session-{}", std::process::id()));
-    std::fs::remove_dir_all(&root).ok();
-    std::fs::create_dir_all(&root).unwrap();
+    let root = scratch_dir("console-session");
     let baseline = root.join("baseline.toml");
     std::fs::write(
         &baseline,
