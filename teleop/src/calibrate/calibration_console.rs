@@ -7,7 +7,6 @@
 //! Ctrl-C interrupts. The line console does not read stdin: without a script nobody is there
 //! to decide, so poor captures are accepted and bad ones retried automatically.
 
-use std::io::IsTerminal as _;
 use std::time::Instant;
 
 use calibration::FitProgress;
@@ -20,7 +19,7 @@ use crate::calibrate::pose_session::{
     AUTOMATIC_MAX_ATTEMPTS, CalibrationAction, Policy, PoseSession,
 };
 use crate::calibrate::progress_bar::ProgressBar;
-use crate::console::terminal::{FullScreen, Input};
+use crate::console::terminal::{FullScreen, Input, full_screen_wanted};
 
 /// What the operator's side asks of the session.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,7 +65,7 @@ impl ConsoleFront {
         setup: Vec<(String, String)>,
     ) -> anyhow::Result<ConsoleFront> {
         let (tx, inputs) = mpsc::unbounded_channel();
-        let full = !plain && std::io::stdin().is_terminal() && std::io::stdout().is_terminal();
+        let full = full_screen_wanted(plain);
         let display = if full {
             Display::Full(FullScreen::enter(tx.clone())?)
         } else {

@@ -2,7 +2,7 @@
 //! including a panic), the keyboard read on its own thread, and stdin lines for the line
 //! console.
 
-use std::io::BufRead as _;
+use std::io::{BufRead as _, IsTerminal as _};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -27,6 +27,12 @@ pub enum Input {
     Line(String),
     /// stdin was closed (line console).
     Closed,
+}
+
+/// Whether a console should be full-screen: stdin and stdout are terminals and the operator
+/// did not ask for `--plain`.
+pub fn full_screen_wanted(plain: bool) -> bool {
+    !plain && std::io::stdin().is_terminal() && std::io::stdout().is_terminal()
 }
 
 /// The full-screen terminal; restores the terminal when dropped.

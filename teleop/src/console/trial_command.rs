@@ -5,7 +5,6 @@
 //! done.
 
 use std::collections::BTreeMap;
-use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -40,7 +39,7 @@ use super::screen::draw;
 use super::script::load_script;
 use super::script_player::ScriptPlayer;
 use super::session_dir::{SessionPlan, check_name, open_session, session_dir};
-use super::terminal::{FullScreen, Input, read_stdin_lines};
+use super::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
 use super::trial_flow::{Effect, Phase, TrialFlow};
 use super::view::{ConsoleView, Screen, SessionInfo};
 
@@ -278,8 +277,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     }
 
     let (input_tx, mut input_rx) = mpsc::unbounded_channel();
-    let full_screen =
-        !args.plain && std::io::stdin().is_terminal() && std::io::stdout().is_terminal();
+    let full_screen = full_screen_wanted(args.plain);
     let mut display = if full_screen {
         Display::Full(FullScreen::enter(input_tx.clone())?)
     } else {
