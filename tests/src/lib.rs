@@ -58,3 +58,32 @@ pub fn path_arg(path: &Path) -> &str {
         None => panic!("not UTF-8: {}", path.display()),
     }
 }
+
+/// From `pomdar calibrate --simulate`'s stdout: the line comparing the fit with the simulated
+/// user's true transform, its scale error (%) and its rotation error (degrees).
+pub fn simulated_calibration_errors(stdout: &str) -> (String, f64, f64) {
+    let Some(line) = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("scale error"))
+    else {
+        panic!("no error summary in:\n{stdout}");
+    };
+    let number_after = |label: &str| -> f64 {
+        let Some(at) = line.find(label) else {
+            panic!("no '{label}' in {line:?}");
+        };
+        let rest = &line[at + label.len()..];
+        let end = rest
+            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+')))
+            .unwrap_or(rest.len());
+        match rest[..end].parse() {
+            Ok(value) => value,
+            Err(e) => panic!("'{label}' in {line:?}: {e}"),
+        }
+    };
+    (
+        line.to_string(),
+        number_after("scale error "),
+        number_after("rotation error "),
+    )
+}

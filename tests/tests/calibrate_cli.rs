@@ -14,9 +14,9 @@ use std::sync::OnceLock;
 use calibration::CalibrationProfile;
 use msgs::Float32MultiArray;
 use pomdar_tests::interop::{assert_readers_decode_as_we_do, independent_readers_with_values};
-use pomdar_tests::path_arg;
 use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar as pomdar};
 use pomdar_tests::station_harness::test_domain;
+use pomdar_tests::{path_arg, simulated_calibration_errors};
 use teleop::calibrate::session_events::capture_windows;
 use teleop::mcap_log::{LoggedMessage, TrialReader, TrialWriter, TrialWriterOptions};
 
@@ -109,22 +109,7 @@ fn a_simulated_session_writes_a_profile_close_to_the_truth() {
     assert!(!part_of(&sim.profile).exists(), ".part left behind");
     assert!(sim.stdout.contains("recovered") && sim.stdout.contains("true"));
     // The printed comparison with the user's true transform: within the acceptance bounds.
-    let line = sim
-        .stdout
-        .lines()
-        .find(|l| l.trim_start().starts_with("scale error"))
-        .unwrap_or_else(|| panic!("no error summary in:\n{}", sim.stdout));
-    let number_after = |label: &str| -> f64 {
-        let rest = &line[line.find(label).unwrap() + label.len()..];
-        let end = rest
-            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+')))
-            .unwrap();
-        rest[..end].parse().unwrap()
-    };
-    let (scale_error_pct, rotation_error_deg) = (
-        number_after("scale error "),
-        number_after("rotation error "),
-    );
+    let (line, scale_error_pct, rotation_error_deg) = simulated_calibration_errors(&sim.stdout);
     assert!(
         scale_error_pct.abs() <= 3.0 && rotation_error_deg <= 3.0,
         "{line}"

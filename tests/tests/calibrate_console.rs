@@ -13,7 +13,7 @@ use calibration::{CalibrationProfile, POSE_NAMES};
 use msgs::StringMsg;
 use pomdar_tests::pomdar_binary::run_pomdar as pomdar;
 use pomdar_tests::station_harness::test_domain;
-use pomdar_tests::{path_arg, scratch_dir};
+use pomdar_tests::{path_arg, scratch_dir, simulated_calibration_errors};
 use serde_json::Value;
 use teleop::calibrate::session_events::{
     CaptureAttempt, QUALITY_EVENT, capture_attempts, capture_windows,
@@ -169,20 +169,7 @@ fn check_fit(run: &Run) {
             "{line} vs {report:?}"
         );
     }
-    let line = run
-        .stdout
-        .lines()
-        .find(|l| l.trim_start().starts_with("scale error"))
-        .unwrap_or_else(|| panic!("no error summary in:\n{}", run.stdout));
-    let number_after = |label: &str| -> f64 {
-        let rest = &line[line.find(label).unwrap() + label.len()..];
-        let end = rest
-            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+')))
-            .unwrap();
-        rest[..end].parse().unwrap()
-    };
-    let scale_error_pct = number_after("scale error ");
-    let rotation_error_deg = number_after("rotation error ");
+    let (line, scale_error_pct, rotation_error_deg) = simulated_calibration_errors(&run.stdout);
     assert!(
         scale_error_pct.abs() <= 3.0 && rotation_error_deg <= 3.0,
         "{line}"
