@@ -11,6 +11,7 @@ use retarget::HandModel;
 use teleop::clock::StationClock;
 use teleop::ros::convert::{header, isometry_to_pose};
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
+use teleop::station::recorder::RecordingOptions;
 use teleop::station::ros_station::{OperatorCommand, StationSummary, run_station};
 use teleop::station::station_config::StationConfig;
 use tokio::sync::{mpsc, watch};
@@ -111,7 +112,17 @@ impl Harness {
 
     /// Start a station with `config` (its network replaced by loopback on `domain`) and a test
     /// node, and wait until the glove topics and outputs are matched.
-    pub async fn start(mut config: StationConfig, domain: u16) -> anyhow::Result<Harness> {
+    pub async fn start(config: StationConfig, domain: u16) -> anyhow::Result<Harness> {
+        Harness::start_recording(config, domain, None).await
+    }
+
+    /// [`Harness::start`], the station recording its run to `recording` (finished when the
+    /// harness stops).
+    pub async fn start_recording(
+        mut config: StationConfig,
+        domain: u16,
+        recording: Option<RecordingOptions>,
+    ) -> anyhow::Result<Harness> {
         let network = loopback(domain);
         config.network = network.clone();
         config.validate()?;
@@ -124,7 +135,7 @@ impl Harness {
             clock,
             shutdown_rx,
             operator_rx,
-            None,
+            recording,
         ));
 
         let context = network.context()?;
