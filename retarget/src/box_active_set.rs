@@ -28,15 +28,16 @@ enum Bound {
     Upper,
 }
 
-/// The minimiser, or `None` when the method did not reach a certified answer within
-/// `max_iterations` active-set changes. Only the upper triangle of `H` is read.
+/// The minimiser and the number of active-set iterations it took, or `None` when the method
+/// did not reach a certified answer within `max_iterations` active-set changes. Only the upper
+/// triangle of `H` is read.
 pub fn solve_box_qp(
     H: &DMatrix<f64>,
     g: &DVector<f64>,
     lower: &[f64],
     upper: &[f64],
     max_iterations: usize,
-) -> Option<DVector<f64>> {
+) -> Option<(DVector<f64>, u32)> {
     let n = g.len();
     let ordered = |(l, u): (&f64, &f64)| l.partial_cmp(u).is_some_and(|o| o.is_le());
     if !lower.iter().zip(upper).all(ordered) {
@@ -45,7 +46,7 @@ pub fn solve_box_qp(
     let h = |r: usize, c: usize| if r <= c { H[(r, c)] } else { H[(c, r)] };
     let mut state = vec![Bound::Free; n];
     let mut x = DVector::<f64>::zeros(n);
-    for _ in 0..max_iterations {
+    for iteration in 1..=max_iterations {
         let free: Vec<usize> = (0..n).filter(|&i| state[i] == Bound::Free).collect();
         for i in 0..n {
             match state[i] {
@@ -106,7 +107,7 @@ pub fn solve_box_qp(
             .max_by(|a, b| a.1.total_cmp(&b.1));
         match release {
             Some((i, _)) => state[i] = Bound::Free,
-            None => return Some(x),
+            None => return Some((x, u32::try_from(iteration).unwrap_or(u32::MAX))),
         }
     }
     None
@@ -122,7 +123,9 @@ mod tests {
         // x0 gives 2(x0 − 1) + x1 = 0 ⇒ x0 = 1.5.
         let H = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 2.0]);
         let g = DVector::from_vec(vec![-2.0, 4.0]);
-        let x = solve_box_qp(&H, &g, &[-10.0, -1.0], &[10.0, 10.0], 10).unwrap();
+        let x = solve_box_qp(&H, &g, &[-10.0, -1.0], &[10.0, 10.0], 10)
+            .unwrap()
+            .0;
         assert!(
             (x[0] - 1.5).abs() < 1e-12 && (x[1] + 1.0).abs() < 1e-12,
             "{x}"
@@ -138,7 +141,7 @@ mod tests {
         let H = DMatrix::from_row_slice(2, 2, &[1.0, 0.9, 0.9, 1.0]);
         let g = -(&H * DVector::from_vec(vec![-1.0, 3.0]));
         let (l, u) = ([-0.5, -10.0], [10.0, 2.0]);
-        let x = solve_box_qp(&H, &g, &l, &u, 10).unwrap();
+        let x = solve_box_qp(&H, &g, &l, &u, 10).unwrap().0;
         // On the face x1 = 2: x0 = −(g0 + 0.9·2) / 1.
         let expected_x0 = -(g[0] + 0.9 * 2.0);
         assert!(expected_x0 >= l[0], "fixture: the face optimum is feasible");
@@ -195,7 +198,7 @@ mod tests {
             let g = DVector::from_fn(n, |_, _| 3.0 * next());
             let l: Vec<f64> = (0..n).map(|_| -next().abs()).collect();
             let u: Vec<f64> = (0..n).map(|_| next().abs()).collect();
-            let x = solve_box_qp(&H, &g, &l, &u, 4 * n + 4).expect("a certified answer");
+            let x = solve_box_qp(&H, &g, &l, &u, 4 * n + 4).expect("a certified answer").0;
             let reference = projected_gradient(&H, &g, &l, &u);
             proptest::prop_assert!((&x - &reference).amax() < 1e-6, "{x} vs {reference}");
         }

@@ -29,12 +29,23 @@ use nalgebra::{DMatrix, DVector};
 use crate::box_active_set::solve_box_qp;
 use crate::retarget_config::QpMethod;
 
+/// Which method solved a QP.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QpSolver {
+    /// The exact active-set method, its answer certified by the KKT conditions.
+    ActiveSet,
+    /// Clarabel's interior-point method.
+    Clarabel,
+}
+
 /// What one QP solve produced.
 #[derive(Debug, Clone, PartialEq)]
 pub struct QpOutcome {
-    /// Clarabel's status.
+    /// The method that produced the answer.
+    pub solver: QpSolver,
+    /// Clarabel's status (`Solved` for a certified active-set answer).
     pub status: SolverStatus,
-    /// Interior-point iterations.
+    /// Active-set changes, or Clarabel's interior-point iterations.
     pub iterations: u32,
     /// Clarabel's own solve time, seconds.
     pub solve_time_s: f64,
@@ -108,12 +119,13 @@ impl BoxQp {
         step: &mut DVector<f64>,
     ) -> QpOutcome {
         if self.method == QpMethod::ActiveSet
-            && let Some(x) = solve_box_qp(H, g, lower, upper, 4 * self.n + 4)
+            && let Some((x, iterations)) = solve_box_qp(H, g, lower, upper, 4 * self.n + 4)
         {
             step.copy_from(&x);
             return QpOutcome {
+                solver: QpSolver::ActiveSet,
                 status: SolverStatus::Solved,
-                iterations: 0,
+                iterations,
                 solve_time_s: 0.0,
             };
         }
@@ -166,6 +178,7 @@ impl BoxQp {
                     Ok(solver) => self.solver.insert(solver),
                     Err(_) => {
                         return QpOutcome {
+                            solver: QpSolver::Clarabel,
                             status: SolverStatus::NumericalError,
                             iterations: 0,
                             solve_time_s: 0.0,
@@ -180,6 +193,7 @@ impl BoxQp {
             step[i] = y * self.d[i];
         }
         QpOutcome {
+            solver: QpSolver::Clarabel,
             status: solution.status,
             iterations: solution.iterations,
             solve_time_s: solution.solve_time,

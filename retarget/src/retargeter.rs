@@ -35,7 +35,7 @@ use crate::forward_kinematics::FkState;
 use crate::hand_model::HandModel;
 use crate::hand_model::LinkId;
 use crate::human_key_vectors::human_key_vectors;
-use crate::qp_step::BoxQp;
+use crate::qp_step::{BoxQp, QpSolver};
 use crate::retarget_config::RetargetConfig;
 
 /// How a frame's solve ended.
@@ -58,7 +58,12 @@ pub struct Solution {
     pub q: Vec<f64>,
     /// Gauss–Newton steps taken (QPs solved).
     pub steps: u32,
-    /// Interior-point iterations over all QPs.
+    /// QPs the exact active-set method solved.
+    pub qp_active_set: u32,
+    /// QPs Clarabel solved (all of them with `solver.qp_method = "clarabel"`; otherwise the
+    /// active set's fallbacks).
+    pub qp_clarabel: u32,
+    /// Iterations over all QPs: active-set changes plus Clarabel's interior-point iterations.
     pub qp_iterations: u32,
     /// Energy at the previous command, for this frame's targets.
     pub cost_before: f64,
@@ -295,6 +300,8 @@ impl Retargeter {
         let mut second = self.solve(&targets, dt_s, prior);
         second.steps += first.steps;
         second.qp_iterations += first.qp_iterations;
+        second.qp_active_set += first.qp_active_set;
+        second.qp_clarabel += first.qp_clarabel;
         second.qp_time_s += first.qp_time_s;
         Ok(second)
     }
@@ -330,6 +337,8 @@ impl Retargeter {
         let mut status = SolveStatus::StepLimit;
         let mut steps = 0;
         let mut qp_iterations = 0;
+        let mut qp_active_set = 0;
+        let mut qp_clarabel = 0;
         let mut qp_time_s = 0.0;
         for _ in 0..self.config.solver.steps_per_frame {
             self.normal_equations(targets, &q);
@@ -346,6 +355,10 @@ impl Retargeter {
             );
             steps += 1;
             qp_iterations += outcome.iterations;
+            match outcome.solver {
+                QpSolver::ActiveSet => qp_active_set += 1,
+                QpSolver::Clarabel => qp_clarabel += 1,
+            }
             qp_time_s += outcome.solve_time_s;
             if !outcome.usable() || !self.step.iter().all(|s| s.is_finite()) {
                 status = SolveStatus::QpFailed(status_name(outcome.status));
@@ -378,6 +391,8 @@ impl Retargeter {
             q,
             steps,
             qp_iterations,
+            qp_active_set,
+            qp_clarabel,
             cost_before,
             cost_after: cost,
             qp_time_s,

@@ -23,6 +23,7 @@ use teleop::ingress::ingress_config::IngressConfig;
 use teleop::ingress::rokoko_node::run_rokoko_ingress;
 use teleop::ingress::rokoko_packet::{Selection, parse_packet};
 use teleop::ingress::rokoko_packet_builder::right_hand_packet;
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
 use tokio::sync::{oneshot, watch};
 

@@ -11,9 +11,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
+use station::{ControlMode, StationConfig};
 use teleop::demo::{DemoOptions, default_domain_id, run_demo};
 use teleop::sim::sim_glove_node::SimGloveConfig;
-use teleop::station::station_config::{ControlMode, StationConfig};
 
 /// User + system CPU seconds of this process so far (Linux `/proc/self/stat`).
 fn cpu_seconds() -> Option<f64> {
@@ -27,7 +27,7 @@ fn cpu_seconds() -> Option<f64> {
 
 fn run(rate_hz: f64, duration_s: f64, domain: u16) {
     let mut station = StationConfig::default();
-    station.control.mode = ControlMode::EveryFrame;
+    station.control.mode = ControlMode::OnArrival;
     station.input.qos = teleop::ros::QosConfig::best_effort(1000);
     let glove = SimGloveConfig {
         rate_hz,

@@ -15,8 +15,8 @@ use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
-use crate::station::ros_station::{OperatorCommand, run_station};
-use crate::station::station_config::StationConfig;
+use crate::station_node::ros_node::{OperatorCommand, run_station};
+use crate::station_setup::load_station_config;
 
 /// `pomdar demo` options.
 #[derive(Debug, Args)]
@@ -189,13 +189,7 @@ pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
 
 /// `pomdar demo`.
 pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
-    let mut station = match &args.config {
-        Some(path) => StationConfig::from_file(path)?,
-        None => StationConfig::default(),
-    };
-    if args.profile.is_some() {
-        station.calibration_profile = args.profile.clone();
-    }
+    let station = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     let glove = SimGloveConfig {
         motion: args.motion.into(),
         period_s: MotionKind::from(args.motion).default_period_s(),
@@ -210,12 +204,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
     }
     let domain_id = args.domain_id.unwrap_or_else(default_domain_id);
     let control = match station.control.mode {
-        crate::station::station_config::ControlMode::Rate => {
+        ::station::ControlMode::Rate => {
             format!("{} Hz control ticks", station.control.rate_hz)
         }
-        crate::station::station_config::ControlMode::EveryFrame => {
-            "every-frame control".to_string()
-        }
+        ::station::ControlMode::OnArrival => "commands on frame arrival".to_string(),
     };
     if !args.json {
         eprintln!(
@@ -271,11 +263,8 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
 
 /// `pomdar station`.
 pub async fn station(args: StationArgs) -> anyhow::Result<()> {
-    let mut config = StationConfig::from_file(&args.config)?;
+    let mut config = load_station_config(Some(&args.config), args.profile.as_deref())?;
     config.network = args.node.network(&config.network);
-    if args.profile.is_some() {
-        config.calibration_profile = args.profile.clone();
-    }
     config.control.auto_engage |= args.engage;
     let shutdown = ctrl_c_shutdown();
     let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
@@ -288,7 +277,7 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     );
     let recording = args
         .record
-        .map(|path| crate::station::recorder::RecordingOptions {
+        .map(|path| crate::station_node::recorder::RecordingOptions {
             path,
             metadata: std::collections::BTreeMap::from([
                 ("source".to_string(), "pomdar station".to_string()),
@@ -313,8 +302,8 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     eprintln!(
         "stopped: {} new frames, {} hand commands, {} arm targets, rejected {:?}",
         summary.counters.frames_new,
-        summary.hand_commands,
-        summary.arm_targets,
+        summary.totals.hand_commands,
+        summary.totals.arm_targets,
         summary.counters.rejected
     );
     Ok(())
@@ -370,7 +359,7 @@ pub async fn mock_hand(args: MockHandArgs) -> anyhow::Result<()> {
 /// `pomdar mock-franka`.
 pub async fn mock_franka(args: MockFrankaArgs) -> anyhow::Result<()> {
     let report = Arc::new(Mutex::new(MockFrankaReport::default()));
-    let start = StationConfig::default()
+    let start = ::station::StationConfig::default()
         .arm
         .start_pose_isometry()
         .map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -423,13 +412,7 @@ pub struct ResimArgs {
 /// `pomdar resim`.
 pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
     use crate::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
-    let mut config = match &args.config {
-        Some(path) => StationConfig::from_file(path)?,
-        None => StationConfig::default(),
-    };
-    if args.profile.is_some() {
-        config.calibration_profile = args.profile.clone();
-    }
+    let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     let reader = TrialReader::open(&args.input)?;
     let options = TrialWriterOptions {
         overwrite: args.overwrite,

@@ -10,16 +10,16 @@ use retarget::HandModel;
 use serde::Serialize;
 use tokio::sync::{mpsc, watch};
 
-use crate::arm::Constraint;
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
 use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
-use crate::station::recorder::RecordingOptions;
-use crate::station::ros_station::run_station;
-use crate::station::station_config::StationConfig;
+use crate::station_node::recorder::RecordingOptions;
+use crate::station_node::ros_node::run_station;
+use station::StationConfig;
+use station::arm::Constraint;
 
 /// Options of a demo run.
 #[derive(Debug, Clone)]

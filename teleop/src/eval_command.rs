@@ -18,10 +18,12 @@ use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Ret
 use serde::Serialize;
 
 use crate::calibrate::profile_file::{describe, load_profile};
+use crate::eval_live_path::{LivePathReport, live_path};
 use crate::mcap_log::{LoggedMessage, TrialReader};
 use crate::resim::{keypoints, layout_for};
-use crate::sim::samples::Samples;
-use crate::station::station_config::StationConfig;
+use crate::samples::Samples;
+use crate::station_setup::load_station_config;
+use station::StationConfig;
 
 /// `pomdar eval` options.
 #[derive(Debug, Args)]
@@ -66,17 +68,13 @@ pub struct EvalOutput {
     pub time_per_frame_us_p50: Option<f64>,
     /// Wall time of one frame's retargeting, microseconds: p99.
     pub time_per_frame_us_p99: Option<f64>,
+    /// The live path: the station's command in force at each distinct frame.
+    pub live_path: LivePathReport,
 }
 
 /// `pomdar eval`.
 pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
-    let mut config = match &args.config {
-        Some(path) => StationConfig::from_file(path)?,
-        None => StationConfig::default(),
-    };
-    if args.profile.is_some() {
-        config.calibration_profile = args.profile.clone();
-    }
+    let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     let reader = TrialReader::open(&args.input)?;
     let output = evaluate(&reader, &config, HandModel::orca_v1_right())?;
     if args.json {
@@ -153,7 +151,9 @@ pub fn evaluate(
             _ => rejected += 1,
         }
     }
+    let live_path = live_path(reader, config, retargeter.model().clone())?;
     Ok(EvalOutput {
+        live_path,
         input: reader.path().display().to_string(),
         messages: messages.len(),
         distinct_frames: frames.len(),
@@ -222,5 +222,25 @@ pub fn table(o: &EvalOutput) -> String {
         opt(o.time_per_frame_us_p50, 1),
         opt(o.time_per_frame_us_p99, 1)
     );
-    out
+    out + &live_path_lines(o)
+}
+
+/// The live path against the retargeter alone.
+fn live_path_lines(o: &EvalOutput) -> String {
+    let (alone, live) = (&o.quality, &o.live_path.quality);
+    format!(
+        "\n  live path (the station re-simulated, command in force at each distinct frame):\n  \
+         tip mean {:.1} mm ({:+.2} mm), jerk {:.4} rad ({:+.1} %), max step {:.3} rad, pinches closed {}, \
+         {} frames before engage; station step p50 {} µs, p99 {} µs\n",
+        live.tip_error_mean_mm,
+        live.tip_error_mean_mm - alone.tip_error_mean_mm,
+        live.jerk_rad,
+        100.0 * (live.jerk_rad / alone.jerk_rad - 1.0),
+        live.max_step_rad,
+        live.pinches_closed_pct
+            .map_or("-".into(), |v| format!("{v:.0} %")),
+        o.live_path.frames_without_command,
+        opt(o.live_path.step_us_p50, 1),
+        opt(o.live_path.step_us_p99, 1),
+    )
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use retarget::RetargetConfig;
 
 use crate::hand_source::ImportFile;
-use crate::station::station_config::StationConfig;
+use station::StationConfig;
 
 /// The kinds of file under `launch_configs/`, by the folder they live in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,7 +5,6 @@
 //! `scoring`, `msgs`) compute; this crate reads, writes and talks (`score`: the trial files
 //! and reports of `pomdar score` and `pomdar baseline`).
 
-pub mod arm;
 pub mod atomic_file;
 pub mod calibrate;
 pub mod cli;
@@ -13,6 +12,7 @@ pub mod clock;
 pub mod console;
 pub mod demo;
 pub mod eval_command;
+pub mod eval_live_path;
 pub mod hand_source;
 pub mod ingress;
 pub mod launch_config;
@@ -22,6 +22,8 @@ pub mod progress_bar;
 pub mod replay;
 pub mod resim;
 pub mod ros;
+pub mod samples;
 pub mod score;
 pub mod sim;
-pub mod station;
+pub mod station_node;
+pub mod station_setup;

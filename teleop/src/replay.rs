@@ -15,6 +15,7 @@ use serde::Serialize;
 use tokio::sync::watch;
 
 use crate::mcap_log::{LoggedMessage, TrialReader};
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 
 /// Replay settings.

@@ -1,32 +1,33 @@
-//! Deterministic re-simulation: the station's processing fed from a log, with the log's clock.
+//! Deterministic re-simulation: the one [`Station`] fed from a log, with the log's clock.
 //!
-//! Every keypoint, wrist and arm-feedback message of the input log is handed to the same
-//! [`StationCore`] and [`OutputStage`] the ROS node uses, in log-time order, with its log time
-//! as "now"; control ticks fall on the log's clock: every `1 / rate_hz` from the first message
-//! (or on every new frame) for plain glove recordings, and at the recorded times of the
-//! station's own joint targets for a log the station recorded, so re-simulating a recorded
-//! run with the same configuration reproduces its joint targets exactly. The outputs go to a new log, stamped with tick times only — no wall
-//! clock reaches the output, so re-simulating the same log with the same configuration gives
-//! the same file, byte for byte. Wall-clock processing time is measured for the statistics
-//! only.
+//! A log the station recorded holds every input it was stepped with: each glove, wrist and
+//! arm-feedback message with its receive time (log time) and its sender's stamp (publish
+//! time), and each control input — timer tick, engage, disengage, second publisher on the arm
+//! topic — on `/pomdar/station_control`. Re-simulating it steps a new station with exactly
+//! those inputs, at exactly those times, so the same configuration reproduces the run's
+//! commands byte for byte. A plain glove recording (no control channel) has no operator and no
+//! timer: the station engages on its first fresh frame (as `pomdar station --engage` would) and
+//! its timer ticks on the log's clock every `1 / rate_hz` from the first message. The outputs go
+//! to a new log stamped with the log's clock only, so the same log and configuration give the
+//! same file, byte for byte. Wall-clock step time is measured for the statistics only.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
 
 use anyhow::Context as _;
-use msgs::PoseStamped;
-use nalgebra::Isometry3;
+use msgs::{PoseStamped, StringMsg};
 use retarget::{HandModel, KeypointLayout};
 use serde::Serialize;
+use station::convert::KeypointMessage;
+use station::{
+    ControlInput, KeypointFormat, KeypointFrame, Station, StationConfig, StationInput,
+    StationOutputs,
+};
 
 use crate::mcap_log::{LoggedMessage, TrialReader, TrialWriter};
-use crate::ros::convert::{KeypointMessage, pose_to_isometry};
-use crate::sim::samples::Samples;
-use crate::station::frame_gate::Verdict;
-use crate::station::output_stage::OutputStage;
-use crate::station::ros_station::station_core;
-use crate::station::station_config::{ControlMode, KeypointFormat, StationConfig};
-use crate::station::station_core::StationCore;
+use crate::samples::Samples;
+use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
+use crate::station_setup::build_station;
 
 /// What a re-simulation did.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -45,13 +46,44 @@ pub struct ResimStats {
     pub arm_targets: u64,
     /// The keypoint layout used.
     pub layout: String,
-    /// Where the control ticks came from: "recorded" (the station's own tick times in the
-    /// log) or "log clock" (a grid at `rate_hz`, or every new frame).
+    /// Where the control inputs came from: "recorded" (the station's own ticks and operator
+    /// commands in the log) or "log clock" (ticks every `1 / rate_hz` on the log's clock, engaged
+    /// on the first fresh frame).
     pub ticks: String,
-    /// Wall time of each control step that retargeted a new frame, ms: p50.
+    /// Wall time of each step that retargeted a new frame, ms: p50.
     pub step_ms_p50: Option<f64>,
-    /// Wall time of each control step that retargeted a new frame, ms: p99.
+    /// Wall time of each step that retargeted a new frame, ms: p99.
     pub step_ms_p99: Option<f64>,
+}
+
+/// Where a log's control inputs come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputOrigin {
+    /// The station recorded the log: its control inputs are in it.
+    Recorded,
+    /// A glove recording: ticks on the log's clock, engaged on the first fresh frame.
+    LogClock,
+}
+
+/// One input of a log with the time the station is stepped at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimedInput {
+    /// Receive time (log time), nanoseconds.
+    pub now_ns: i64,
+    /// The input.
+    pub input: StationInput,
+}
+
+/// Everything a station is stepped with to re-simulate a log.
+#[derive(Debug, Clone)]
+pub struct LogInputs {
+    /// The inputs in the order the station takes them.
+    pub inputs: Vec<TimedInput>,
+    /// Where the control inputs came from.
+    pub origin: InputOrigin,
+    /// The configuration to re-simulate with: the caller's, with the log's layout and, for a
+    /// glove recording, engaging on the first fresh frame.
+    pub config: StationConfig,
 }
 
 /// If the configuration names a lab layout but the log carries the other lab layout (22 vs
@@ -78,156 +110,168 @@ pub(crate) fn keypoints(
     })
 }
 
-struct Replayer<'w> {
-    core: StationCore,
-    stage: OutputStage,
-    writer: &'w mut TrialWriter,
-    config: StationConfig,
-    frame_source_ns: i64,
-    glove_wrist: Option<Isometry3<f64>>,
-    robot_pose: Option<Isometry3<f64>>,
-    engaged_once: bool,
-    stats: ResimStats,
-    step_ms: Samples,
+/// The station input a logged message holds, if it is one (`None` for the station's outputs
+/// and other topics).
+fn logged_input(
+    message: &LoggedMessage,
+    config: &StationConfig,
+) -> anyhow::Result<Option<StationInput>> {
+    let input = &config.input;
+    let topic = message.topic.as_str();
+    let now = message.log_time_ns;
+    Ok(Some(if topic == input.keypoints_topic {
+        let points = keypoints(message, input.keypoints_format)
+            .with_context(|| format!("keypoints at log time {now} ns"))?
+            .points();
+        // A log without sender stamps has publish time 0: the receive time stands in, as live.
+        let source_ns = if message.publish_time_ns > 0 {
+            message.publish_time_ns
+        } else {
+            now
+        };
+        StationInput::Keypoints(KeypointFrame { points, source_ns })
+    } else if topic == input.wrist_topic {
+        StationInput::Wrist(message.decode::<PoseStamped>()?.pose)
+    } else if topic == input.arm_feedback_topic {
+        StationInput::ArmFeedback(message.decode::<PoseStamped>()?.pose)
+    } else if topic == STATION_CONTROL_TOPIC {
+        let control = control_input(&message.decode::<StringMsg>()?)
+            .with_context(|| format!("{STATION_CONTROL_TOPIC} at log time {now} ns"))?;
+        StationInput::Control(control)
+    } else {
+        return Ok(None);
+    }))
 }
 
-impl Replayer<'_> {
-    fn tick(&mut self, now_ns: i64) -> anyhow::Result<()> {
-        let started = Instant::now();
-        let tick = self.core.tick(now_ns);
-        let outputs = self.stage.outputs(
-            &tick,
-            now_ns,
-            self.frame_source_ns,
-            self.glove_wrist,
-            self.robot_pose,
-            false,
-        );
-        for warning in self.stage.take_warnings() {
-            eprintln!("{warning}");
+/// The inputs of `reader`'s log for a station configured by `config`.
+pub fn log_inputs(reader: &TrialReader, config: &StationConfig) -> anyhow::Result<LogInputs> {
+    let mut messages: Vec<&LoggedMessage> = reader.messages().collect();
+    messages.sort_by_key(|m| m.log_time_ns); // stable: file order within equal times
+    let input = &config.input;
+    let first_count = messages
+        .iter()
+        .find(|m| m.topic == input.keypoints_topic)
+        .map(|m| keypoints(m, input.keypoints_format))
+        .transpose()?
+        .map(|k| k.points().len());
+    let mut config = config.clone();
+    config.retarget.layout = layout_for(&config, first_count);
+    let origin = if messages.iter().any(|m| m.topic == STATION_CONTROL_TOPIC) {
+        InputOrigin::Recorded
+    } else {
+        config.control.auto_engage = true;
+        InputOrigin::LogClock
+    };
+    let mut inputs = Vec::with_capacity(messages.len());
+    for message in &messages {
+        if let Some(input) = logged_input(message, &config)? {
+            inputs.push(TimedInput {
+                now_ns: message.log_time_ns,
+                input,
+            });
         }
-        if outputs.fresh_hand {
-            self.step_ms.push(started.elapsed().as_secs_f64() * 1e3);
-        }
-        let out = &self.config.output;
-        if let Some(m) = outputs.joint_state {
-            self.writer
-                .write(&out.joint_targets_topic, now_ns, now_ns, &m)?;
-            self.stats.joint_targets += 1;
-        }
-        if let Some(m) = outputs.policy {
-            self.writer
-                .write(&self.config.policy_output.topic, now_ns, now_ns, &m)?;
-        }
-        if let Some(m) = outputs.arm {
-            self.writer
-                .write(&out.arm_target_topic, now_ns, now_ns, &m)?;
-            self.stats.arm_targets += 1;
-        }
-        Ok(())
     }
+    if origin == InputOrigin::LogClock {
+        inputs = with_log_clock_ticks(inputs, config.control.rate_hz);
+    }
+    Ok(LogInputs {
+        inputs,
+        origin,
+        config,
+    })
 }
 
-/// Re-simulate `reader`'s glove input through the station configured by `config`, writing
-/// the outputs to `writer` (the caller finishes it).
+/// `inputs` with a tick every `1 / rate_hz` from the first one's time; a tick goes before the
+/// inputs received after it, up to the last input.
+fn with_log_clock_ticks(inputs: Vec<TimedInput>, rate_hz: f64) -> Vec<TimedInput> {
+    let period_ns = (1e9 / rate_hz).round() as i64;
+    let mut next_tick = inputs.first().map(|i| i.now_ns + period_ns);
+    let mut merged = Vec::with_capacity(inputs.len() * 2);
+    for input in inputs {
+        while let Some(t) = next_tick.filter(|t| *t <= input.now_ns) {
+            merged.push(TimedInput {
+                now_ns: t,
+                input: StationInput::Control(ControlInput::Tick),
+            });
+            next_tick = Some(t + period_ns);
+        }
+        merged.push(input);
+    }
+    merged
+}
+
+/// Re-simulate `reader`'s log through the station configured by `config`, writing the outputs
+/// to `writer` (the caller finishes it).
 pub fn resim(
     reader: &TrialReader,
     config: &StationConfig,
     model: HandModel,
     writer: &mut TrialWriter,
 ) -> anyhow::Result<ResimStats> {
-    let mut messages: Vec<&LoggedMessage> = reader.messages().collect();
-    messages.sort_by_key(|m| m.log_time_ns); // stable: file order within equal times
-    let input = &config.input;
-    let format = input.keypoints_format;
-    let first_count = messages
-        .iter()
-        .find(|m| m.topic == input.keypoints_topic)
-        .map(|m| keypoints(m, format))
-        .transpose()?
-        .map(|k| k.points().len());
-    let mut config = config.clone();
-    config.retarget.layout = layout_for(&config, first_count);
-    let core = station_core(&config, model.clone())?;
-    let stage = OutputStage::new(&config, &model)?;
-    let mut r = Replayer {
-        core,
-        stage,
-        writer,
-        config: config.clone(),
-        frame_source_ns: 0,
-        glove_wrist: None,
-        robot_pose: None,
-        engaged_once: false,
-        stats: ResimStats {
-            layout: config.retarget.layout.name().to_string(),
-            ..ResimStats::default()
+    let log = log_inputs(reader, config)?;
+    let (mut station, _) = build_station(&log.config, model)?;
+    let mut stats = ResimStats {
+        layout: log.config.retarget.layout.name().to_string(),
+        ticks: match log.origin {
+            InputOrigin::Recorded => "recorded".into(),
+            InputOrigin::LogClock => "log clock".into(),
         },
-        step_ms: Samples::default(),
+        ..ResimStats::default()
     };
-    // A log the station recorded carries its tick times: the joint targets' log times.
-    let recorded_ticks: Vec<i64> = messages
-        .iter()
-        .filter(|m| m.topic == config.output.joint_targets_topic)
-        .map(|m| m.log_time_ns)
-        .collect();
-    let replay_ticks = !recorded_ticks.is_empty();
-    r.stats.ticks = if replay_ticks {
-        "recorded".into()
-    } else {
-        "log clock".into()
-    };
-    let mut recorded = recorded_ticks.into_iter().peekable();
-    let period_ns = (1e9 / config.control.rate_hz).round() as i64;
-    let mut next_tick = messages.first().map(|m| m.log_time_ns + period_ns);
-    for message in &messages {
-        let now = message.log_time_ns;
-        if replay_ticks {
-            while let Some(t) = recorded.next_if(|t| *t < now) {
-                r.tick(t)?;
-            }
-        } else if config.control.mode == ControlMode::Rate {
-            while let Some(t) = next_tick.filter(|t| *t <= now) {
-                r.tick(t)?;
-                next_tick = Some(t + period_ns);
-            }
+    let mut step_ms = Samples::default();
+    for TimedInput { now_ns, input } in log.inputs {
+        stats.frames_read += u64::from(matches!(input, StationInput::Keypoints(_)));
+        let started = Instant::now();
+        let outputs = station.step(input, now_ns);
+        if outputs.fresh_frame_received_ns.is_some() {
+            step_ms.push(started.elapsed().as_secs_f64() * 1e3);
         }
-        if message.topic == input.keypoints_topic {
-            r.stats.frames_read += 1;
-            let points = keypoints(message, format)
-                .with_context(|| format!("keypoints at log time {now} ns"))?
-                .points();
-            let source_ns = (message.publish_time_ns > 0).then_some(message.publish_time_ns);
-            match r.core.on_stamped_keypoints(&points, source_ns, now) {
-                Verdict::New => {
-                    r.frame_source_ns = if message.publish_time_ns > 0 {
-                        message.publish_time_ns
-                    } else {
-                        now
-                    };
-                    if !r.engaged_once {
-                        r.engaged_once = r.core.engage(now);
-                    }
-                    if config.control.mode == ControlMode::EveryFrame && !replay_ticks {
-                        r.tick(now)?;
-                    }
-                }
-                Verdict::Repeat | Verdict::Rejected(_) => {}
-            }
-        } else if message.topic == input.wrist_topic {
-            r.glove_wrist = pose_to_isometry(&message.decode::<PoseStamped>()?.pose);
-        } else if message.topic == input.arm_feedback_topic {
-            r.robot_pose = pose_to_isometry(&message.decode::<PoseStamped>()?.pose);
+        write_outputs(writer, &log.config, &outputs, now_ns, &mut stats)?;
+    }
+    let counters = station.counters();
+    stats.frames_new = counters.frames_new;
+    stats.frames_repeated = counters.frames_repeated;
+    stats.rejected.clone_from(&counters.rejected);
+    stats.step_ms_p50 = step_ms.percentile(0.5);
+    stats.step_ms_p99 = step_ms.percentile(0.99);
+    Ok(stats)
+}
+
+/// Write one step's outputs, stamped `now_ns`, in the order the station node sends them.
+fn write_outputs(
+    writer: &mut TrialWriter,
+    config: &StationConfig,
+    outputs: &StationOutputs,
+    now_ns: i64,
+    stats: &mut ResimStats,
+) -> anyhow::Result<()> {
+    for notice in &outputs.notices {
+        eprintln!("{notice}");
+    }
+    if let Some(hand) = &outputs.hand {
+        let topic = &config.output.joint_targets_topic;
+        writer.write(topic, now_ns, now_ns, &hand.joint_state)?;
+        stats.joint_targets += 1;
+        if let Some(policy) = &hand.policy {
+            writer.write(&config.policy_output.topic, now_ns, now_ns, policy)?;
         }
     }
-    for t in recorded {
-        r.tick(t)?;
+    if let Some(arm) = &outputs.arm {
+        writer.write(&config.output.arm_target_topic, now_ns, now_ns, arm)?;
+        stats.arm_targets += 1;
     }
-    let counters = r.core.counters().clone();
-    r.stats.frames_new = counters.frames_new;
-    r.stats.frames_repeated = counters.frames_repeated;
-    r.stats.rejected = counters.rejected;
-    r.stats.step_ms_p50 = r.step_ms.percentile(0.5);
-    r.stats.step_ms_p99 = r.step_ms.percentile(0.99);
-    Ok(r.stats)
+    Ok(())
+}
+
+/// Step a station through `log` and hand each step's outputs to `visit`, with the station after
+/// the step (for the command in force).
+pub fn drive_station(
+    station: &mut Station,
+    log: LogInputs,
+    mut visit: impl FnMut(&TimedInput, &StationOutputs, &Station),
+) {
+    for timed in log.inputs {
+        let outputs = station.step(timed.input.clone(), timed.now_ns);
+        visit(&timed, &outputs, station);
+    }
 }

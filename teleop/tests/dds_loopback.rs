@@ -6,6 +6,7 @@
 use std::time::Duration;
 
 use msgs::{Header, JointState, Time};
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
 
 fn loopback(domain: u16) -> NetworkConfig {

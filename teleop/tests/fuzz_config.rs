@@ -15,8 +15,8 @@ mod config_oracle;
 mod toml_mutation;
 
 use proptest::prelude::*;
-use teleop::arm::ArmConfig;
-use teleop::station::station_config::StationConfig;
+use station::StationConfig;
+use station::arm::ArmConfig;
 use toml_mutation::{budget, edits, mutate};
 
 fn launch_config(path: &str) -> String {

@@ -7,9 +7,9 @@ use std::collections::BTreeMap;
 
 use msgs::{Float32MultiArray, JointState, StringMsg};
 use serde_json::json;
+use station::StationConfig;
 use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader, part_path_for};
-use teleop::station::recorder::{RecordingOptions, StationRecorder, config_digest};
-use teleop::station::station_config::StationConfig;
+use teleop::station_node::recorder::{RecordingOptions, StationRecorder, config_digest};
 
 #[test]
 fn a_recorded_trial_has_its_metadata_messages_and_events_in_order() {

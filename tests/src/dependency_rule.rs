@@ -1,5 +1,5 @@
-//! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`
-//! and `scoring` never depend, directly or transitively, on ros2-client, rustdds or tokio, and
+//! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`,
+//! `scoring` and `station` never depend, directly or transitively, on ros2-client, rustdds or tokio, and
 //! their sources do no I/O and read no clock. Only `teleop` does.
 
 use std::collections::{BTreeSet, HashMap};
@@ -7,7 +7,7 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 4] = ["msgs", "retarget", "calibration", "scoring"];
+pub const CORE_CRATES: [&str; 5] = ["msgs", "retarget", "calibration", "scoring", "station"];
 
 /// Packages a core crate must never pull in.
 pub const BANNED_PACKAGES: [&str; 3] = ["ros2-client", "rustdds", "tokio"];

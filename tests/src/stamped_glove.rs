@@ -10,6 +10,8 @@ use msgs::{Float32MultiArray, RosMessage};
 use ros2_client::dds::rustdds::no_key::DataWriterCdr;
 use ros2_client::dds::rustdds::{DataWriterStatus, QosPolicies, StatusEvented as _, Timestamp};
 use ros2_client::{MessageTypeName, Name};
+use teleop::ros::NetworkContext as _;
+use teleop::ros::QosProfileOf as _;
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
 
 /// Nanoseconds since the Unix epoch as a DDS timestamp (seconds and 2^-32 fractions).

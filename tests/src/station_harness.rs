@@ -8,12 +8,13 @@ use futures::StreamExt;
 use msgs::{Float32MultiArray, JointState, PoseStamped, StringMsg};
 use nalgebra::{Isometry3, Point3};
 use retarget::HandModel;
+use station::StationConfig;
+use station::convert::{header, isometry_to_pose};
 use teleop::clock::StationClock;
-use teleop::ros::convert::{header, isometry_to_pose};
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
-use teleop::station::recorder::RecordingOptions;
-use teleop::station::ros_station::{OperatorCommand, StationSummary, run_station};
-use teleop::station::station_config::StationConfig;
+use teleop::station_node::recorder::RecordingOptions;
+use teleop::station_node::ros_node::{OperatorCommand, StationSummary, run_station};
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
@@ -36,7 +37,7 @@ pub fn loopback(domain: u16) -> NetworkConfig {
 /// in-process retargeter's (or re-simulation's) fed the same frames.
 pub fn timing_independent_config() -> StationConfig {
     let mut config = StationConfig::default();
-    config.control.mode = teleop::station::station_config::ControlMode::EveryFrame;
+    config.control.mode = station::ControlMode::OnArrival;
     config.control.auto_engage = true;
     config.input.qos = QosConfig::reliable(2000);
     config.output.qos = QosConfig::reliable(2000);
@@ -280,7 +281,7 @@ impl Harness {
 /// Panics naming the first target that breaks a rule.
 pub fn check_arm_targets(
     targets: &[Isometry3<f64>],
-    arm: &teleop::arm::ArmConfig,
+    arm: &station::arm::ArmConfig,
     axis: Option<[f64; 3]>,
 ) {
     let Some(first) = targets.first().map(|t| t.translation.vector) else {

@@ -18,6 +18,7 @@ use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
 use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use teleop::mcap_log::read_trial_events;
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
 
 /// A child process, killed when dropped so a failing test leaves nothing running.

@@ -6,11 +6,11 @@
 
 use pomdar_tests::interop::{assert_readers_agree, independent_readers};
 use pomdar_tests::station_harness::{check_arm_targets, test_domain};
-use teleop::arm::Constraint;
+use station::StationConfig;
+use station::arm::Constraint;
 use teleop::demo::{DemoOptions, run_demo};
 use teleop::mcap_log::TrialReader;
 use teleop::sim::sim_glove_node::SimGloveConfig;
-use teleop::station::station_config::StationConfig;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn sim_glove_station_mock_hand_and_arm() {

@@ -18,9 +18,9 @@ use pomdar_tests::stamped_glove::StampedGlove;
 use pomdar_tests::station_harness::{Harness, Heard, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
+use station::{ControlMode, StationConfig};
 use teleop::ros::QosConfig;
-use teleop::station::ros_station::OperatorCommand;
-use teleop::station::station_config::{ControlMode, StationConfig};
+use teleop::station_node::ros_node::OperatorCommand;
 
 const MS: i64 = 1_000_000;
 const HOUR: i64 = 3_600_000 * MS;
@@ -428,7 +428,7 @@ async fn a_burst_on_timer_control_is_judged_whole_and_only_the_newest_frame_is_d
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_burst_on_every_frame_control_is_coalesced_and_the_newest_frame_wins() {
-    let config = burst_config(ControlMode::EveryFrame);
+    let config = burst_config(ControlMode::OnArrival);
     let h = Harness::start(config.clone(), test_domain(3))
         .await
         .unwrap();
@@ -461,7 +461,7 @@ async fn a_burst_on_every_frame_control_is_coalesced_and_the_newest_frame_wins()
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn duplicated_frames_are_counted_as_repeats_and_change_no_output() {
-    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(4))
+    let h = Harness::start(config(ControlMode::OnArrival), test_domain(4))
         .await
         .unwrap();
     let sender = stamped_glove(&h).await;
@@ -518,7 +518,7 @@ async fn duplicated_frames_are_counted_as_repeats_and_change_no_output() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_frame_sent_before_the_newest_is_rejected_as_out_of_order() {
-    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(5))
+    let h = Harness::start(config(ControlMode::OnArrival), test_domain(5))
         .await
         .unwrap();
     let sender = stamped_glove(&h).await;

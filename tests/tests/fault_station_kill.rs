@@ -17,9 +17,10 @@ use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use retarget::KeypointLayout;
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use station::convert::{header, isometry_to_pose};
 use teleop::clock::StationClock;
 use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
-use teleop::ros::convert::{header, isometry_to_pose};
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
 
 const MS: i64 = 1_000_000;

@@ -31,14 +31,14 @@ use pomdar_tests::station_harness::{check_arm_targets, loopback, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{HandModel, KeypointLayout};
 use serde_json::{Value, json};
-use teleop::arm::Constraint;
+use station::arm::Constraint;
+use station::{ControlMode, StationConfig};
 use teleop::clock::StationClock;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::resim::resim;
 use teleop::ros::QosConfig;
-use teleop::station::recorder::RecordingOptions;
-use teleop::station::ros_station::run_station;
-use teleop::station::station_config::{ControlMode, StationConfig};
+use teleop::station_node::recorder::RecordingOptions;
+use teleop::station_node::ros_node::run_station;
 use tokio::sync::{mpsc, watch};
 
 const FRAMES: usize = 60;
@@ -52,7 +52,7 @@ fn config(domain: u16) -> StationConfig {
         network: loopback(domain),
         ..StationConfig::default()
     };
-    config.control.mode = ControlMode::EveryFrame;
+    config.control.mode = ControlMode::OnArrival;
     config.control.auto_engage = true;
     config.input.qos = QosConfig::reliable(1000);
     config.output.qos = QosConfig::reliable(1000);
@@ -367,7 +367,7 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
     // The arm follows the wrist along the vertical axis only.
     let arm_poses: Vec<_> = received_arm
         .iter()
-        .map(|m| teleop::ros::convert::pose_to_isometry(&m.pose).unwrap())
+        .map(|m| station::convert::pose_to_isometry(&m.pose).unwrap())
         .collect();
     check_arm_targets(&arm_poses, &config.arm, Some(config.arm.vertical_axis));
     let first_z = arm_poses[0].translation.vector.z;

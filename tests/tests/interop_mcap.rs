@@ -29,8 +29,8 @@ use pomdar_tests::pomdar_binary::pomdar_binary;
 use retarget::KeypointLayout;
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use serde_json::{Value, json};
+use station::convert::{header, isometry_to_pose};
 use teleop::mcap_log::{OfferedQos, TrialReader, TrialWriter, TrialWriterOptions};
-use teleop::ros::convert::{header, isometry_to_pose};
 
 const FRAMES: usize = 50;
 const PERIOD_NS: i64 = 20_000_000;

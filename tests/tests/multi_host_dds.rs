@@ -26,8 +26,8 @@ use pomdar_tests::netns_lab::{NetnsLab, namespaces_available};
 use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::workspace_root;
 use serde_json::Value;
+use station::StationConfig;
 use teleop::mcap_log::{LoggedMessage, TRIAL_EVENTS_TOPIC, TrialReader};
-use teleop::station::station_config::StationConfig;
 
 const MS: i64 = 1_000_000;
 /// How long host A's cable stays pulled: longer than the disengage timeout.
@@ -447,7 +447,7 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
         .skip_while(|w| *w != "--config")
         .nth(1)
         .expect("the guide's station command has no --config");
-    let config = StationConfig::from_file(&root.join(config_path)).unwrap();
+    let config = teleop::station_setup::read_station_config(&root.join(config_path)).unwrap();
     let hosts: Vec<&str> = blocks.iter().map(|b| b.host.as_str()).collect();
     assert_eq!(
         hosts,

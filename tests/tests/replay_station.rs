@@ -23,7 +23,7 @@ use retarget::HandModel;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::replay::{ReplayOptions, replay};
 use teleop::ros::QosConfig;
-use teleop::station::recorder::RecordingOptions;
+use teleop::station_node::recorder::RecordingOptions;
 use tokio::sync::watch;
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -133,7 +133,7 @@ async fn replayed_reference_matches_the_in_process_resimulation() {
 /// of distinct glove frames.
 fn resimulated_targets(
     log: &TrialReader,
-    config: &teleop::station::station_config::StationConfig,
+    config: &station::StationConfig,
     out: &std::path::Path,
 ) -> (Vec<JointState>, u64) {
     let mut writer = TrialWriter::create(out, TrialWriterOptions::default()).unwrap();

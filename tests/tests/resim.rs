@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use msgs::{Float32MultiArray, JointState};
 use pomdar_tests::interop::{assert_readers_agree, independent_readers, reference_file};
 use retarget::HandModel;
+use station::StationConfig;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::resim::resim;
-use teleop::station::station_config::StationConfig;
 
 fn reference() -> Option<PathBuf> {
     reference_file("rokoko_orca_2024-11-20.mcap")

@@ -24,6 +24,7 @@ use pomdar_tests::station_harness::{Harness, loopback, test_domain, timing_indep
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{HandModel, KeypointLayout, Retargeter};
 use serde_json::{Value, json};
+use station::convert::{array_to_points, pose_to_isometry};
 use teleop::clock::StationClock;
 use teleop::ingress::ingress_config::Hand;
 use teleop::ingress::ingress_config::IngressConfig;
@@ -31,7 +32,7 @@ use teleop::ingress::ingress_counters::IngressCounters;
 use teleop::ingress::rokoko_node::run_rokoko_ingress;
 use teleop::ingress::rokoko_packet::bone_names;
 use teleop::ingress::rokoko_packet_builder::right_hand_packet;
-use teleop::ros::convert::{array_to_points, pose_to_isometry};
+use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
 use tokio::sync::{oneshot, watch};
 use tokio::task::JoinHandle;

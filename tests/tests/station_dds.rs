@@ -10,10 +10,11 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use pomdar_tests::station_harness::{Harness, check_arm_targets, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
-use teleop::arm::Constraint;
+use station::arm::Constraint;
+use station::{ControlMode, StationConfig};
+use teleop::ros::NetworkContext as _;
 use teleop::ros::QosConfig;
-use teleop::station::ros_station::OperatorCommand;
-use teleop::station::station_config::{ControlMode, StationConfig};
+use teleop::station_node::ros_node::OperatorCommand;
 
 const MS: i64 = 1_000_000;
 
@@ -95,7 +96,7 @@ fn check_rate_and_arm(h: &Harness, start: i64, end: i64) {
     let poses: Vec<_> = heard
         .arm
         .iter()
-        .map(|(_, m)| teleop::ros::convert::pose_to_isometry(&m.pose).unwrap())
+        .map(|(_, m)| station::convert::pose_to_isometry(&m.pose).unwrap())
         .collect();
     assert!(poses.len() > 40, "{} arm targets", poses.len());
     check_arm_targets(&poses, &arm, Some(arm.vertical_axis));
@@ -117,7 +118,7 @@ async fn joint_targets_equal_the_in_process_retargeter_for_the_same_frames() {
     // which moves an interior-point solution within its tolerance (1e-9 to 1e-8 rad measured).
     // So the station's targets must equal what the retargeter computes in process to 1e-6 rad;
     // a wrong frame, order, layout or configuration differs by orders of magnitude more.
-    let mut config = config(ControlMode::EveryFrame);
+    let mut config = config(ControlMode::OnArrival);
     config.retarget.solver.max_joint_speed_rad_s = 100.0;
     config.retarget.solver.max_rate_dt_s = 1.0;
     let h = Harness::start(config.clone(), test_domain(1))
@@ -262,7 +263,7 @@ async fn glove_loss_holds_then_disengages_and_only_engage_resumes() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn malformed_frames_are_rejected_counted_and_change_nothing() {
-    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(3))
+    let h = Harness::start(config(ControlMode::OnArrival), test_domain(3))
         .await
         .unwrap();
     let glove = glove();
@@ -304,7 +305,7 @@ async fn malformed_frames_are_rejected_counted_and_change_nothing() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_restarted_glove_publisher_is_followed_again() {
-    let h = Harness::start(config(ControlMode::EveryFrame), test_domain(4))
+    let h = Harness::start(config(ControlMode::OnArrival), test_domain(4))
         .await
         .unwrap();
     let glove = glove();
@@ -379,7 +380,7 @@ async fn a_second_publisher_on_the_arm_command_topic_is_detected_and_the_arm_sto
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn each_trial_is_recorded_to_its_own_log() {
     use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
-    use teleop::station::recorder::RecordingOptions;
+    use teleop::station_node::recorder::RecordingOptions;
     let h = Harness::start(config(ControlMode::Rate), test_domain(9))
         .await
         .unwrap();

@@ -22,7 +22,6 @@ use crate::calibrate::simulated_user::{
 };
 use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::clock::StationClock;
-use crate::station::station_config::StationConfig;
 
 /// `pomdar calibrate` options.
 #[derive(Debug, Args)]
@@ -138,10 +137,7 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
     if args.user.trim().is_empty() {
         bail!("--user must name the user");
     }
-    let station = match &args.config {
-        Some(path) => StationConfig::from_file(path)?,
-        None => StationConfig::default(),
-    };
+    let station = crate::station_setup::load_station_config(args.config.as_deref(), None)?;
     let settings = match &args.settings {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
             .map_err(|e| anyhow::anyhow!("calibration settings {}: {e}", path.display()))?,

@@ -18,7 +18,7 @@ use crate::calibrate::progress_bar::ProgressBar;
 use crate::calibrate::session_frames::read_session;
 use crate::calibrate::utc_date::{iso8601_utc, now_unix_s};
 use crate::mcap_log::TrialReader;
-use crate::station::station_config::StationConfig;
+use station::StationConfig;
 
 /// What a fit needs.
 #[derive(Debug, Clone)]

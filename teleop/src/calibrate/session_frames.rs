@@ -11,7 +11,7 @@ use retarget::KeypointLayout;
 
 use crate::calibrate::session_events::{SESSION_METADATA, capture_windows};
 use crate::mcap_log::{LoggedMessage, TrialReader};
-use crate::ros::convert::KeypointMessage;
+use station::convert::KeypointMessage;
 
 /// What a session log says about itself.
 #[derive(Debug, Clone, PartialEq)]

@@ -31,9 +31,10 @@ use crate::calibrate::pose_session::{Effect, Phase, PoseSession, PoseStep, Sessi
 use crate::calibrate::session_events::SESSION_METADATA;
 use crate::clock::StationClock;
 use crate::mcap_log::{OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::ros::NetworkContext as _;
 use crate::ros::RosNode;
-use crate::ros::convert::{KeypointMessage, header};
-use crate::station::station_config::{KeypointFormat, StationConfig};
+use station::convert::{KeypointMessage, header};
+use station::{KeypointFormat, StationConfig};
 
 /// How often the commanded pose is re-sent, seconds.
 const RESEND_S: f64 = 0.1;

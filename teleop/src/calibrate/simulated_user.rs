@@ -19,9 +19,10 @@ use tokio::sync::watch;
 
 use crate::calibrate::session_node::PoseCue;
 use crate::clock::StationClock;
-use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::station::station_config::{KeypointFormat, StationConfig};
+use station::convert::{header, isometry_to_pose};
+use station::{KeypointFormat, StationConfig};
 
 /// Keypoint noise of a simulated user, metres (standard deviation per axis).
 pub const SIMULATED_NOISE_M: f64 = 0.002;

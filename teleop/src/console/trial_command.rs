@@ -15,7 +15,6 @@ use retarget::HandModel;
 use scoring::ArmConstraint;
 use tokio::sync::{mpsc, watch};
 
-use crate::arm::Constraint;
 use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::cli::NodeArgs;
 use crate::clock::StationClock;
@@ -25,11 +24,13 @@ use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
 use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
-use crate::station::recorder::{RecordingOptions, config_digest};
-use crate::station::ros_station::{
-    OperatorCommand, StationEvent, StationHooks, run_station_observed, station_core_described,
+use crate::station_node::recorder::{RecordingOptions, config_digest};
+use crate::station_node::ros_node::{
+    OperatorCommand, StationEvent, StationHooks, run_station_observed,
 };
-use crate::station::station_config::StationConfig;
+use crate::station_setup::{build_station, load_station_config};
+use station::StationConfig;
+use station::arm::Constraint;
 
 use super::health::{Health, StartLimits};
 use super::keys::{Action, key_action, parse_action};
@@ -155,13 +156,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
             inputs.catalog.ids()
         )
     })?;
-    let mut config = match &args.config {
-        Some(path) => StationConfig::from_file(path)?,
-        None => StationConfig::default(),
-    };
-    if args.profile.is_some() {
-        config.calibration_profile.clone_from(&args.profile);
-    }
+    let mut config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     config.network = args.node.network(&config.network);
     if args.simulate {
         config.network = NetworkConfig {
@@ -175,7 +170,7 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     config.validate()?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
-    station_core_described(&config, model.clone())?;
+    build_station(&config, model.clone())?;
     let script = args.script.as_deref().map(load_script).transpose()?;
 
     let plan = SessionPlan {

@@ -19,8 +19,9 @@ use crate::clock::StationClock;
 use crate::ingress::ingress_config::IngressConfig;
 use crate::ingress::ingress_counters::{IngressCounters, Order};
 use crate::ingress::rokoko_packet::{PacketError, Selection, parse_packet};
-use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::NetworkContext as _;
 use crate::ros::{QosConfig, RosNode};
+use station::convert::{header, isometry_to_pose};
 
 /// How often the status goes out.
 const STATUS_PERIOD: Duration = Duration::from_secs(1);

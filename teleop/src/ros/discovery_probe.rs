@@ -19,6 +19,7 @@ use serde::Serialize;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 
 /// What to probe.

@@ -11,7 +11,7 @@ use ros2_client::{
     Subscription,
 };
 
-use crate::ros::qos::QosConfig;
+use crate::ros::{QosConfig, QosProfileOf as _};
 
 /// A message with the times the station knows about it.
 #[derive(Debug, Clone, PartialEq)]

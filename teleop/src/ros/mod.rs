@@ -1,7 +1,6 @@
 //! The ROS 2 adapter: a DDS participant on the configured domain, and typed publishers and
 //! subscriptions for the `msgs` types (ros2-client on RustDDS; no ROS installation needed).
 
-pub mod convert;
 pub mod discovery_probe;
 mod endpoint;
 mod participant;
@@ -9,5 +8,7 @@ pub mod probe_command;
 mod qos;
 
 pub use endpoint::{RosNode, Stamped};
-pub use participant::{NetworkConfig, domain_id};
-pub use qos::{QosConfig, Reliability};
+pub use participant::{NetworkContext, domain_id};
+pub use qos::QosProfileOf;
+pub use station::convert;
+pub use station::{NetworkConfig, QosConfig, Reliability};

@@ -16,19 +16,7 @@ use std::net::IpAddr;
 use anyhow::{Context as _, bail};
 use ros2_client::Context;
 use ros2_client::dds::rustdds::DomainParticipantBuilder;
-use serde::{Deserialize, Serialize};
-
-/// Network side of the participant.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct NetworkConfig {
-    /// DDS domain id (0–232). Unset: `ROS_DOMAIN_ID`, else 0.
-    pub domain_id: Option<u16>,
-    /// Restrict discovery to these local addresses (for example `["127.0.0.1"]` for a
-    /// loopback-only test, or one interface of a multi-homed lab PC). Empty: all interfaces.
-    /// Each must be an address of this host (checked when the participant is created).
-    pub interfaces: Vec<IpAddr>,
-}
+use station::NetworkConfig;
 
 /// Check that `address` can restrict DDS to an interface of this host: a unicast address
 /// one of its interfaces holds (a UDP socket binds to it).
@@ -65,9 +53,14 @@ pub fn domain_id(configured: Option<u16>) -> anyhow::Result<u16> {
     Ok(id)
 }
 
-impl NetworkConfig {
+/// The DDS participant of a [`NetworkConfig`].
+pub trait NetworkContext {
     /// Create the ROS 2 context (one DDS participant) for this configuration.
-    pub fn context(&self) -> anyhow::Result<Context> {
+    fn context(&self) -> anyhow::Result<Context>;
+}
+
+impl NetworkContext for NetworkConfig {
+    fn context(&self) -> anyhow::Result<Context> {
         let domain = domain_id(self.domain_id)?;
         let mut builder = DomainParticipantBuilder::new(domain);
         for address in &self.interfaces {

@@ -10,8 +10,9 @@ use nalgebra::Isometry3;
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::convert::{header, isometry_to_pose, pose_to_isometry};
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
 /// What the mock arm saw.
 #[derive(Debug, Clone, Default, PartialEq)]

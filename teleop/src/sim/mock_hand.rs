@@ -12,9 +12,10 @@ use retarget::HandModel;
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::convert::header;
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::samples::Samples;
+use station::convert::header;
 
 /// What the mock hand saw.
 #[derive(Debug, Clone, Default, PartialEq)]

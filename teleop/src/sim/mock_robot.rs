@@ -11,7 +11,7 @@ use tokio::task::JoinHandle;
 use crate::clock::StationClock;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
-use crate::station::station_config::StationConfig;
+use station::StationConfig;
 
 /// The running mock robot: its two nodes and what they saw (updated live).
 #[derive(Debug)]

@@ -5,5 +5,5 @@
 pub mod mock_franka;
 pub mod mock_hand;
 pub mod mock_robot;
-pub mod samples;
+pub use crate::samples;
 pub mod sim_glove_node;

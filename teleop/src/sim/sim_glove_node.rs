@@ -11,8 +11,9 @@ use serde::{Deserialize, Serialize};
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::convert::{header, isometry_to_pose};
+use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use station::convert::{header, isometry_to_pose};
 
 /// How long the glove waits for a subscriber before publishing anyway.
 const MATCH_WAIT: Duration = Duration::from_secs(5);

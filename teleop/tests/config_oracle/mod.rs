@@ -5,14 +5,12 @@
 //! Shared by the stable proptest fuzzing (`tests/fuzz_config.rs`) and the cargo-fuzz target
 //! (`fuzz/fuzz_targets/station_files.rs`).
 
-use nalgebra::Point3;
 use retarget::HandModel;
-use teleop::arm::ArmConfig;
+use station::arm::ArmConfig;
+use station::convert::isometry_to_pose;
+use station::{ControlInput, KeypointFrame, Station, StationConfig, StationInput};
 use teleop::hand_source::ImportFile;
 use teleop::ingress::ingress_config::IngressConfig;
-use teleop::station::output_stage::OutputStage;
-use teleop::station::ros_station::station_core;
-use teleop::station::station_config::StationConfig;
 
 /// `text` as each kind of station file; whatever loads is checked.
 pub fn check_text(text: &str) {
@@ -41,44 +39,51 @@ pub fn check_text(text: &str) {
     }
 }
 
-/// A configuration that loaded runs: the core and the output stage build (or say why not),
-/// and two real frames give finite commands within the limits.
+/// A configuration that loaded runs: the station builds (or says why not), and real frames,
+/// ticks and a wrist pose give finite commands within the limits.
 pub fn check_station(config: &StationConfig) {
     let mut config = config.clone();
     // Profiles are files; their loading is fuzzed in the calibration crate.
     config.calibration_profile = None;
     let model = HandModel::orca_v1_right();
-    let (Ok(mut core), Ok(mut stage)) = (
-        station_core(&config, model.clone()),
-        OutputStage::new(&config, &model),
-    ) else {
+    let Ok(mut station) = Station::new(&config, model.clone(), None) else {
         return;
     };
     let layout = config.retarget.layout;
-    let frame = |t: f64| -> Vec<Point3<f64>> {
+    let frame = |t: f64, source_ns: i64| -> StationInput {
         let q: Vec<f64> = model
             .limits()
             .map(|l| (0.5 - 0.1 * t) * l.lower_rad + (0.5 + 0.1 * t) * l.upper_rad)
             .collect();
-        model.synthetic_keypoints(&model.forward_new(&q).unwrap(), layout)
+        let points = model.synthetic_keypoints(&model.forward_new(&q).unwrap(), layout);
+        StationInput::Keypoints(KeypointFrame { points, source_ns })
     };
     const MS: i64 = 1_000_000;
-    core.on_stamped_keypoints(&frame(0.0), Some(0), 0);
-    core.engage(MS);
-    core.on_stamped_keypoints(&frame(1.0), Some(20 * MS), 20 * MS);
-    for now in [21 * MS, 60 * MS, 400 * MS, 2000 * MS] {
-        let tick = core.tick(now);
-        if let Some(hand) = &tick.hand {
-            for (q, l) in hand.q.iter().zip(model.limits()) {
+    let tick = || StationInput::Control(ControlInput::Tick);
+    let wrist = StationInput::Wrist(isometry_to_pose(&nalgebra::Isometry3::identity()));
+    let inputs = [
+        (frame(0.0, 0), 0),
+        (wrist, MS),
+        (StationInput::Control(ControlInput::Engage), MS),
+        (frame(1.0, 20 * MS), 20 * MS),
+        (tick(), 21 * MS),
+        (tick(), 60 * MS),
+        (tick(), 400 * MS),
+        (tick(), 2000 * MS),
+    ];
+    for (input, now) in inputs {
+        let outputs = station.step(input, now);
+        if let Some(hand) = &outputs.hand {
+            for (q, l) in hand.joint_state.position.iter().zip(model.limits()) {
                 assert!(q.is_finite() && *q >= l.lower_rad - 1e-9 && *q <= l.upper_rad + 1e-9);
             }
+            if let Some(policy) = &hand.policy {
+                assert!(policy.data.iter().all(|v| v.is_finite()));
+            }
         }
-        let outputs = stage.outputs(&tick, now, 20 * MS, None, None, false);
-        if let Some(joints) = outputs.joint_state {
-            assert!(joints.position.iter().all(|q| q.is_finite()));
-        }
-        if let Some(policy) = outputs.policy {
-            assert!(policy.data.iter().all(|v| v.is_finite()));
+        if let Some(arm) = &outputs.arm {
+            let p = &arm.pose.position;
+            assert!([p.x, p.y, p.z].iter().all(|v| v.is_finite()));
         }
     }
 }

@@ -1,18 +1,18 @@
-//! The station's configuration file (TOML; `launch_configs/station/*.toml` are presets).
-//! Every table is optional and defaults to the ETH lab's topics; unknown keys are rejected;
-//! errors name the file and the key.
+//! The station's configuration (TOML; `launch_configs/station/*.toml` are presets). Every
+//! table is optional and defaults to the ETH lab's topics; unknown keys are rejected; errors
+//! name the key and its allowed range (the application adds the file).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Context, bail};
 use retarget::RetargetConfig;
 use serde::{Deserialize, Serialize};
 
 use crate::arm::ArmConfig;
-use crate::ros::{NetworkConfig, QosConfig};
-use crate::station::frame_gate::GateConfig;
-use crate::station::policy_output::PolicyOutputConfig;
-use crate::station::watchdog::WatchdogConfig;
+use crate::config_error::ConfigError;
+use crate::frame_gate::GateConfig;
+use crate::network_config::{NetworkConfig, QosConfig};
+use crate::policy_output::PolicyOutputConfig;
+use crate::watchdog::WatchdogConfig;
 
 /// The whole station configuration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -90,21 +90,30 @@ pub struct OutputConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ControlMode {
-    /// On a fixed-rate timer (`rate_hz`), using the newest frame.
+    /// A hand command as each new (changed, accepted) glove frame arrives, at most
+    /// `max_command_rate_hz` by the frames' own stamps (the default; `every_frame` is the old
+    /// name).
+    #[serde(alias = "every_frame")]
+    OnArrival,
+    /// A hand command on every tick of the `rate_hz` timer, from the newest frame.
     Rate,
-    /// On every new (changed) frame.
-    EveryFrame,
 }
 
 /// Control loop settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ControlConfig {
-    /// Timer or every frame.
+    /// On frame arrival, or on the timer.
     pub mode: ControlMode,
-    /// Timer rate, Hz (`mode = "rate"`); commands are republished at this rate while held.
+    /// The station's timer, Hz. Every tick advances the watchdog, steps the arm target (its
+    /// step caps are per tick) and repeats a held hand command; with `mode = "rate"` it also
+    /// computes the hand command.
     pub rate_hz: f64,
-    /// Engage automatically once input is fresh (demo, tests); the console engages explicitly.
+    /// Ceiling on hand commands with `mode = "on_arrival"`, Hz: a frame stamped less than
+    /// `1 / max_command_rate_hz` after the last commanded one waits for the next frame or tick.
+    pub max_command_rate_hz: f64,
+    /// Engage automatically once input is fresh, once (demo, tests); the console engages
+    /// explicitly.
     pub auto_engage: bool,
 }
 
@@ -156,8 +165,9 @@ impl Default for OutputConfig {
 impl Default for ControlConfig {
     fn default() -> Self {
         ControlConfig {
-            mode: ControlMode::Rate,
+            mode: ControlMode::OnArrival,
             rate_hz: 25.0,
+            max_command_rate_hz: 200.0,
             auto_engage: false,
         }
     }
@@ -165,42 +175,23 @@ impl Default for ControlConfig {
 
 impl StationConfig {
     /// Parse and validate.
-    pub fn from_toml_str(text: &str) -> anyhow::Result<StationConfig> {
-        let config: StationConfig =
-            toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", e.to_string().trim_end()))?;
+    pub fn from_toml_str(text: &str) -> Result<StationConfig, ConfigError> {
+        let config: StationConfig = toml::from_str(text).map_err(|e| ConfigError::Syntax {
+            reason: e.to_string().trim_end().to_string(),
+        })?;
         config.validate()?;
         Ok(config)
     }
 
-    /// Read, parse and validate a file; errors name it. A relative `calibration_profile` is
-    /// resolved against the file's directory.
-    pub fn from_file(path: &Path) -> anyhow::Result<StationConfig> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let mut config =
-            StationConfig::from_toml_str(&text).with_context(|| format!("{}", path.display()))?;
-        if let Some(profile) = &config.calibration_profile
-            && profile.is_relative()
-        {
-            let dir = path.parent().unwrap_or(Path::new(""));
-            config.calibration_profile = Some(dir.join(profile));
-        }
-        Ok(config)
-    }
-
     /// Check every value.
-    pub fn validate(&self) -> anyhow::Result<()> {
-        if !(self.control.rate_hz >= 1.0 && self.control.rate_hz <= 2000.0) {
-            bail!(
-                "control.rate_hz = {} must be in [1, 2000]",
-                self.control.rate_hz
-            );
-        }
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        self.control.validate()?;
         if !(self.output.status_rate_hz > 0.0 && self.output.status_rate_hz <= 100.0) {
-            bail!(
-                "output.status_rate_hz = {} must be in (0, 100]",
-                self.output.status_rate_hz
-            );
+            return Err(ConfigError::out_of_range(
+                "output.status_rate_hz",
+                self.output.status_rate_hz,
+                "in (0, 100]",
+            ));
         }
         for (key, topic) in [
             ("input.keypoints_topic", &self.input.keypoints_topic),
@@ -211,7 +202,11 @@ impl StationConfig {
             ("output.status_topic", &self.output.status_topic),
         ] {
             if !topic.starts_with('/') {
-                bail!("{key} = '{topic}' must be an absolute topic name (start with '/')");
+                return Err(ConfigError::out_of_range(
+                    key,
+                    format!("'{topic}'"),
+                    "an absolute topic name (start with '/')",
+                ));
             }
         }
         self.input.qos.validate("input.qos")?;
@@ -219,25 +214,47 @@ impl StationConfig {
         self.gate.validate()?;
         self.watchdog.validate()?;
         if self.gate.reorder_window_ms >= self.watchdog.disengage_timeout_ms {
-            bail!(
-                "gate.reorder_window_ms = {} must be less than watchdog.disengage_timeout_ms ({}): a sender's clock stepping back must not disengage the station",
+            return Err(ConfigError::out_of_range(
+                "gate.reorder_window_ms",
                 self.gate.reorder_window_ms,
-                self.watchdog.disengage_timeout_ms
-            );
+                format!(
+                    "less than watchdog.disengage_timeout_ms ({}): a sender's clock stepping back must not disengage the station",
+                    self.watchdog.disengage_timeout_ms
+                ),
+            ));
         }
-        self.retarget
-            .validate()
-            .map_err(|e| anyhow::anyhow!("retarget: {e}"))?;
-        self.arm
-            .validate()
-            .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
-        crate::ros::domain_id(self.network.domain_id).context("network.domain_id")?;
+        self.policy_output.validate()?;
+        self.retarget.validate()?;
+        self.arm.validate()?;
+        self.network.validate()
+    }
+}
+
+impl ControlConfig {
+    /// Check the rates.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if !(self.rate_hz >= 1.0 && self.rate_hz <= 2000.0) {
+            return Err(ConfigError::out_of_range(
+                "control.rate_hz",
+                self.rate_hz,
+                "in [1, 2000]",
+            ));
+        }
+        if !(self.max_command_rate_hz >= 1.0 && self.max_command_rate_hz <= 2000.0) {
+            return Err(ConfigError::out_of_range(
+                "control.max_command_rate_hz",
+                self.max_command_rate_hz,
+                "in [1, 2000]",
+            ));
+        }
         Ok(())
     }
 }
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
+
     use super::*;
 
     #[test]
@@ -256,19 +273,20 @@ mod tests {
         assert!(err.to_string().contains("output.status_topic"), "{err}");
         let err = StationConfig::from_toml_str("[input]\ntopic = \"/x\"\n").unwrap_err();
         assert!(err.to_string().contains("topic"), "{err}");
+        let err = StationConfig::from_toml_str("[control]\nmax_command_rate_hz = 0\n").unwrap_err();
+        assert!(
+            err.to_string().contains("control.max_command_rate_hz"),
+            "{err}"
+        );
     }
 
     #[test]
-    fn a_relative_profile_is_relative_to_the_config_file() {
-        let dir = std::env::temp_dir().join(format!("pomdar-station-cfg-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("station.toml");
-        std::fs::write(&path, "calibration_profile = \"profiles/alice.toml\"\n").unwrap();
-        let config = StationConfig::from_file(&path).unwrap();
-        std::fs::remove_dir_all(&dir).ok();
+    fn the_old_every_frame_mode_reads_as_on_arrival() {
+        let config = StationConfig::from_toml_str("[control]\nmode = \"every_frame\"\n").unwrap();
+        assert_eq!(config.control.mode, ControlMode::OnArrival);
         assert_eq!(
-            config.calibration_profile,
-            Some(dir.join("profiles/alice.toml"))
+            StationConfig::default().control.mode,
+            ControlMode::OnArrival
         );
     }
 }

@@ -9,9 +9,11 @@
 
 use std::collections::BTreeMap;
 
-use anyhow::bail;
 use retarget::{HandModel, ORCA_CORE_JOINTS};
 use serde::{Deserialize, Serialize};
+
+use crate::config_error::ConfigError;
+use crate::station_error::StationError;
 
 /// `/hand/policy_output` configuration.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -21,6 +23,29 @@ pub struct PolicyOutputConfig {
     pub topic: String,
     /// Per joint: URDF zero minus orca_core zero, radians.
     pub offsets_rad: BTreeMap<String, f64>,
+}
+
+impl PolicyOutputConfig {
+    /// Check the offsets: ORCA joints, within ±π.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        for (name, value) in &self.offsets_rad {
+            if !ORCA_CORE_JOINTS.contains(&name.as_str()) {
+                return Err(ConfigError::out_of_range(
+                    format!("policy_output.offsets_rad.{name}"),
+                    value,
+                    format!("keyed by an ORCA joint ({})", ORCA_CORE_JOINTS.join(", ")),
+                ));
+            }
+            if !(value.is_finite() && value.abs() <= std::f64::consts::PI) {
+                return Err(ConfigError::out_of_range(
+                    format!("policy_output.offsets_rad.{name}"),
+                    value,
+                    "in [-π, π]",
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Maps model joint vectors to policy_output arrays.
@@ -34,7 +59,11 @@ pub struct PolicyOutput {
 impl PolicyOutput {
     /// Resolve the 17 slots on `model`; errors name a joint the model lacks or an unknown
     /// offset key.
-    pub fn new(model: &HandModel, config: &PolicyOutputConfig) -> anyhow::Result<PolicyOutput> {
+    pub fn new(
+        model: &HandModel,
+        config: &PolicyOutputConfig,
+    ) -> Result<PolicyOutput, StationError> {
+        config.validate()?;
         // Wrist first, then orca_core's order of the finger joints.
         let fingers = &ORCA_CORE_JOINTS[..16];
         let names = std::iter::once("wrist").chain(fingers.iter().copied());
@@ -42,21 +71,14 @@ impl PolicyOutput {
         let mut offsets = Vec::with_capacity(17);
         for name in names {
             let Some(dof) = model.dof_index(name) else {
-                bail!(
-                    "policy_output: model '{}' has no joint '{name}'",
-                    model.name()
-                );
+                return Err(StationError::MissingJoint {
+                    output: "policy_output",
+                    model: model.name().to_string(),
+                    joint: name.to_string(),
+                });
             };
             slots.push(dof);
             offsets.push(config.offsets_rad.get(name).copied().unwrap_or(0.0));
-        }
-        for (name, value) in &config.offsets_rad {
-            if !ORCA_CORE_JOINTS.contains(&name.as_str()) {
-                bail!("policy_output.offsets_rad.{name}: not an ORCA joint");
-            }
-            if !(value.is_finite() && value.abs() <= std::f64::consts::PI) {
-                bail!("policy_output.offsets_rad.{name} = {value} must be in [-π, π]");
-            }
         }
         Ok(PolicyOutput { slots, offsets })
     }

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 use proptest::prelude::*;
-use teleop::arm::{
+use station::arm::{
     ArmCommand, ArmConfig, ArmMapper, Constraint, OrientationPolicy, RotationConfig, StartPose,
 };
 

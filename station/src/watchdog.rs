@@ -15,6 +15,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::config_error::ConfigError;
+
 /// Timeouts of the watchdog.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -36,19 +38,23 @@ impl Default for WatchdogConfig {
 
 impl WatchdogConfig {
     /// Check the ranges; errors name the key.
-    pub fn validate(&self) -> anyhow::Result<()> {
+    pub fn validate(&self) -> Result<(), ConfigError> {
         if !(10..=10_000).contains(&self.hold_timeout_ms) {
-            anyhow::bail!(
-                "watchdog.hold_timeout_ms = {} must be in 10..=10000",
-                self.hold_timeout_ms
-            );
+            return Err(ConfigError::out_of_range(
+                "watchdog.hold_timeout_ms",
+                self.hold_timeout_ms,
+                "in 10..=10000",
+            ));
         }
         if self.disengage_timeout_ms <= self.hold_timeout_ms || self.disengage_timeout_ms > 60_000 {
-            anyhow::bail!(
-                "watchdog.disengage_timeout_ms = {} must be greater than hold_timeout_ms ({}) and at most 60000",
+            return Err(ConfigError::out_of_range(
+                "watchdog.disengage_timeout_ms",
                 self.disengage_timeout_ms,
-                self.hold_timeout_ms
-            );
+                format!(
+                    "greater than hold_timeout_ms ({}) and at most 60000",
+                    self.hold_timeout_ms
+                ),
+            ));
         }
         Ok(())
     }

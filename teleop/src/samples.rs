@@ -15,6 +15,11 @@ impl Samples {
         }
     }
 
+    /// The newest sample.
+    pub fn last(&self) -> Option<f64> {
+        self.samples_ms.last().copied()
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.samples_ms.len()

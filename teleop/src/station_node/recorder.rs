@@ -14,8 +14,8 @@ use msgs::RosMessage;
 use serde_json::json;
 
 use crate::mcap_log::{FinishedTrial, OfferedQos, TrialWriter, TrialWriterOptions};
-use crate::ros::convert::KeypointMessage;
-use crate::station::station_config::StationConfig;
+use station::StationConfig;
+use station::convert::KeypointMessage;
 
 /// Where and what to record.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -70,10 +70,10 @@ impl StationRecorder {
         let output_qos = OfferedQos::from(config.output.qos);
         for topic in [&config.input.keypoints_topic] {
             match config.input.keypoints_format {
-                crate::station::station_config::KeypointFormat::Float32MultiArray => {
+                station::KeypointFormat::Float32MultiArray => {
                     writer.add_channel::<msgs::Float32MultiArray>(topic, &[input_qos])?;
                 }
-                crate::station::station_config::KeypointFormat::PoseArray => {
+                station::KeypointFormat::PoseArray => {
                     writer.add_channel::<msgs::PoseArray>(topic, &[input_qos])?;
                 }
             }
@@ -136,6 +136,18 @@ impl StationRecorder {
             KeypointMessage::Array(m) => self.input(topic, received_ns, source_ns, m),
             KeypointMessage::Poses(m) => self.input(topic, received_ns, source_ns, m),
         }
+    }
+
+    /// Record a control input the station was stepped with at `now_ns`.
+    pub fn control(&mut self, now_ns: i64, input: station::ControlInput) {
+        let message = crate::station_node::station_log::control_message(input);
+        let result = self.writer.write(
+            crate::station_node::station_log::STATION_CONTROL_TOPIC,
+            now_ns,
+            now_ns,
+            &message,
+        );
+        self.check(result);
     }
 
     /// Record an output message sent at `now_ns`.

@@ -7,11 +7,13 @@
 //! `[min_bone_m, max_bone_m]`; no point moving more than `max_jump_m` relative to the wrist
 //! since the last accepted frame (the arm may move the whole hand freely; a finger may not
 //! teleport). Before these, frames stamped by their sender before the newest accepted one are
-//! turned away as late ([`source_order`](super::source_order); the station core applies it).
+//! turned away as late ([`source_order`](crate::source_order); the hand control applies it).
 
 use nalgebra::Point3;
 use retarget::{Finger, KeypointLayout};
 use serde::{Deserialize, Serialize};
+
+use crate::config_error::ConfigError;
 
 /// Limits of a plausible human hand frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,23 +45,28 @@ impl Default for GateConfig {
 
 impl GateConfig {
     /// Check the ranges; errors name the key.
-    pub fn validate(&self) -> anyhow::Result<()> {
+    pub fn validate(&self) -> Result<(), ConfigError> {
         if !(self.min_bone_m >= 0.0 && self.min_bone_m < self.max_bone_m && self.max_bone_m <= 1.0)
         {
-            anyhow::bail!(
-                "gate.min_bone_m = {} and gate.max_bone_m = {} must satisfy 0 ≤ min < max ≤ 1",
-                self.min_bone_m,
-                self.max_bone_m
-            );
+            return Err(ConfigError::out_of_range(
+                "gate.min_bone_m, gate.max_bone_m",
+                format!("{}, {}", self.min_bone_m, self.max_bone_m),
+                "0 ≤ min < max ≤ 1",
+            ));
         }
         if !(self.max_jump_m > 0.0 && self.max_jump_m <= 1.0) {
-            anyhow::bail!("gate.max_jump_m = {} must be in (0, 1]", self.max_jump_m);
+            return Err(ConfigError::out_of_range(
+                "gate.max_jump_m",
+                self.max_jump_m,
+                "in (0, 1]",
+            ));
         }
         if !(1..=10_000).contains(&self.reorder_window_ms) {
-            anyhow::bail!(
-                "gate.reorder_window_ms = {} must be in 1..=10000",
-                self.reorder_window_ms
-            );
+            return Err(ConfigError::out_of_range(
+                "gate.reorder_window_ms",
+                self.reorder_window_ms,
+                "in 1..=10000",
+            ));
         }
         Ok(())
     }
@@ -84,6 +91,18 @@ pub enum Rejection {
 }
 
 impl Rejection {
+    /// The reason's name in the status and the logs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rejection::WrongSize => "wrong_size",
+            Rejection::NonFinite => "non_finite",
+            Rejection::BoneLength => "bone_length",
+            Rejection::Jump => "jump",
+            Rejection::Retargeter => "retargeter",
+            Rejection::OutOfOrder => "out_of_order",
+        }
+    }
+
     /// All reasons, for counters.
     pub const ALL: [Rejection; 6] = [
         Rejection::WrongSize,

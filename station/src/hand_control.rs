@@ -1,0 +1,303 @@
+//! The hand side of the station: which glove frames are taken, when the retargeter runs, and
+//! the command it gave.
+//!
+//! A keypoint frame goes through the source order (late frames are turned away), the frame
+//! gate (repeats and implausible frames) and the watchdog (freshness); a new frame is kept as
+//! the pending one, and [`HandControl::command`] retargets it. The time step handed to the
+//! retargeter comes from the frames' own stamps (their senders' clocks), so frames delivered
+//! together by a busy network keep the spacing at which they were captured; after a jump of the
+//! sender's clock the receive times stand in for one step.
+
+use std::collections::BTreeMap;
+
+use nalgebra::Point3;
+use retarget::{Retargeter, SolveStatus};
+use serde::Serialize;
+
+use crate::frame_gate::{FrameGate, Rejection, Verdict};
+use crate::source_order::{SourceOrder, StampOrder};
+use crate::watchdog::{DriveState, Watchdog};
+
+/// Longest time step handed to the retargeter, seconds (its rate limit caps it anyway).
+const MAX_DT_S: f64 = 0.5;
+/// Shortest time step handed to the retargeter, seconds.
+const MIN_DT_S: f64 = 1e-4;
+/// Time step of the first frame after engage, seconds (the glove's ~25 Hz).
+const FIRST_DT_S: f64 = 0.04;
+
+/// A keypoint frame as the station received it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KeypointFrame {
+    /// The keypoints, metres, in the layout's order.
+    pub points: Vec<Point3<f64>>,
+    /// The sender's stamp (the DDS source time; the receive time when the sender gives none),
+    /// nanoseconds.
+    pub source_ns: i64,
+}
+
+/// The hand command in force.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HandCommand {
+    /// Joint targets, radians, in the model's degree-of-freedom order.
+    pub q: Vec<f64>,
+    /// True when this repeats an earlier command (held, no fresh frame).
+    pub held: bool,
+    /// Receive time of the keypoint frame behind the command, nanoseconds.
+    pub frame_received_ns: i64,
+    /// Source stamp of the keypoint frame behind the command, nanoseconds.
+    pub frame_source_ns: i64,
+}
+
+/// The QP work of the last solve: which method ran, how often, how many iterations.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct QpReport {
+    /// QPs the exact active-set method solved.
+    pub active_set: u32,
+    /// QPs Clarabel solved (every QP with `solver.qp_method = "clarabel"`; otherwise the
+    /// active set's fallbacks).
+    pub clarabel: u32,
+    /// Active-set changes plus interior-point iterations, over the frame's QPs.
+    pub iterations: u32,
+    /// Clarabel's own solve time, microseconds (the active set keeps no clock: the station's
+    /// step time is measured by the application around the whole step).
+    pub clarabel_time_us: f64,
+}
+
+/// Counters and the latest solver figures, for the status topic.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Counters {
+    /// New (changed, accepted) keypoint frames.
+    pub frames_new: u64,
+    /// Repeated frames (same keypoints as the last accepted one).
+    pub frames_repeated: u64,
+    /// Rejected frames by reason.
+    pub rejected: BTreeMap<String, u64>,
+    /// Frames whose sender's clock had jumped (back beyond the reorder window, or ahead beyond
+    /// what the receive clock explains); they were accepted.
+    pub source_clock_jumps: u64,
+    /// New frames replaced by a newer one before they were retargeted (above the command-rate
+    /// ceiling, or between two ticks with `mode = "rate"`).
+    pub frames_superseded: u64,
+    /// Frames retargeted.
+    pub solves: u64,
+    /// Solves that ended on the step budget.
+    pub solves_step_limit: u64,
+    /// Solves with a failed QP (best iterate used).
+    pub solves_qp_failed: u64,
+    /// The QP work of the last solve.
+    pub last_qp: QpReport,
+    /// Mean palm-to-tip error of the last solve, millimetres.
+    pub last_tip_error_mm: f64,
+}
+
+/// The frame taken and not yet retargeted.
+#[derive(Debug, Clone)]
+struct PendingFrame {
+    frame: KeypointFrame,
+    received_ns: i64,
+    /// The sender's clock jumped at this frame: its stamp cannot be compared with the last.
+    clock_jump: bool,
+}
+
+/// The hand side of the station.
+#[derive(Debug)]
+pub struct HandControl {
+    retargeter: Retargeter,
+    order: SourceOrder,
+    gate: FrameGate,
+    watchdog: Watchdog,
+    pending: Option<PendingFrame>,
+    /// (source, receive) times of the last retargeted frame.
+    last_solved: Option<(i64, i64)>,
+    last_command: Option<HandCommand>,
+    counters: Counters,
+}
+
+impl HandControl {
+    /// Hand control around a configured retargeter, gate and watchdog.
+    pub fn new(retargeter: Retargeter, gate: FrameGate, watchdog: Watchdog) -> HandControl {
+        let mut counters = Counters::default();
+        for reason in Rejection::ALL {
+            counters.rejected.insert(reason.name().into(), 0);
+        }
+        HandControl {
+            retargeter,
+            order: SourceOrder::new(gate.config().reorder_window_ms),
+            gate,
+            watchdog,
+            pending: None,
+            last_solved: None,
+            last_command: None,
+            counters,
+        }
+    }
+
+    /// The retargeter (model, configuration).
+    pub fn retargeter(&self) -> &Retargeter {
+        &self.retargeter
+    }
+
+    /// The counters.
+    pub fn counters(&self) -> &Counters {
+        &self.counters
+    }
+
+    /// The drive state as of the last update.
+    pub fn state(&self) -> DriveState {
+        self.watchdog.state()
+    }
+
+    /// Age of the newest frame at `now_ns`.
+    pub fn input_age_ns(&self, now_ns: i64) -> Option<i64> {
+        self.watchdog.age_ns(now_ns)
+    }
+
+    /// The command in force (the last one computed), if any.
+    pub fn last_command(&self) -> Option<&HandCommand> {
+        self.last_command.as_ref()
+    }
+
+    /// Whether a taken frame waits to be retargeted.
+    pub fn has_pending(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// Source stamp of the last retargeted frame.
+    pub fn last_solved_source_ns(&self) -> Option<i64> {
+        self.last_solved.map(|(source, _)| source)
+    }
+
+    /// Source stamp of the pending frame.
+    pub fn pending_source_ns(&self) -> Option<i64> {
+        self.pending.as_ref().map(|p| p.frame.source_ns)
+    }
+
+    /// A keypoint frame arrived at `received_ns`. A frame stamped before the newest accepted
+    /// one is late and rejected (`out_of_order`); a jump of the sender's clock is counted and
+    /// followed (see [`source_order`](crate::source_order)). Then the frame gate decides; a new
+    /// frame becomes the pending one (replacing one not yet retargeted).
+    pub fn take_frame(&mut self, frame: KeypointFrame, received_ns: i64) -> Verdict {
+        let stamp = self.order.check(frame.source_ns, received_ns);
+        if stamp == StampOrder::Late {
+            self.count_rejection(Rejection::OutOfOrder);
+            return Verdict::Rejected(Rejection::OutOfOrder);
+        }
+        let verdict = self.gate.judge(&frame.points);
+        match verdict {
+            Verdict::New => {
+                self.accept_stamp(&frame, stamp, received_ns);
+                self.counters.frames_new += 1;
+                self.watchdog.frame(received_ns);
+                if self.pending.is_some() {
+                    self.counters.frames_superseded += 1;
+                }
+                self.pending = Some(PendingFrame {
+                    frame,
+                    received_ns,
+                    clock_jump: stamp == StampOrder::ClockJump,
+                });
+            }
+            Verdict::Repeat => {
+                self.accept_stamp(&frame, stamp, received_ns);
+                self.counters.frames_repeated += 1;
+            }
+            Verdict::Rejected(reason) => self.count_rejection(reason),
+        }
+        verdict
+    }
+
+    fn accept_stamp(&mut self, frame: &KeypointFrame, stamp: StampOrder, received_ns: i64) {
+        self.order.accept(frame.source_ns, received_ns);
+        if stamp == StampOrder::ClockJump {
+            self.counters.source_clock_jumps += 1;
+        }
+    }
+
+    /// The operator engages; granted with fresh input. Returns whether engaged.
+    pub fn engage(&mut self, now_ns: i64) -> bool {
+        let was = self.watchdog.state();
+        let engaged = self.watchdog.engage(now_ns);
+        if engaged && was == DriveState::Disengaged {
+            // Resume from the last command, not from a stale time step.
+            self.last_solved = None;
+        }
+        engaged
+    }
+
+    /// The operator disengages.
+    pub fn disengage(&mut self) {
+        self.watchdog.disengage();
+    }
+
+    /// Advance the watchdog to `now_ns`; a frame taken while not engaged is dropped.
+    pub fn update(&mut self, now_ns: i64) -> DriveState {
+        let state = self.watchdog.update(now_ns);
+        if state != DriveState::Engaged {
+            self.pending = None;
+        }
+        state
+    }
+
+    /// Retarget the pending frame, if any (call after [`update`](Self::update) said engaged).
+    /// `None` when there is none or the retargeter refused it (counted).
+    pub fn command_pending(&mut self) -> Option<HandCommand> {
+        let pending = self.pending.take()?;
+        self.solve(&pending)
+    }
+
+    /// The last command, marked held.
+    pub fn held(&self) -> Option<HandCommand> {
+        self.last_command.as_ref().map(|c| HandCommand {
+            held: true,
+            ..c.clone()
+        })
+    }
+
+    fn time_step_s(&self, pending: &PendingFrame) -> f64 {
+        let step_ns = match self.last_solved {
+            None => return FIRST_DT_S,
+            Some((_, received)) if pending.clock_jump => pending.received_ns - received,
+            Some((source, _)) => pending.frame.source_ns - source,
+        };
+        (step_ns as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
+    }
+
+    fn solve(&mut self, pending: &PendingFrame) -> Option<HandCommand> {
+        let dt_s = self.time_step_s(pending);
+        let Ok(solution) = self.retargeter.retarget(&pending.frame.points, dt_s) else {
+            self.count_rejection(Rejection::Retargeter);
+            return None;
+        };
+        self.last_solved = Some((pending.frame.source_ns, pending.received_ns));
+        let counters = &mut self.counters;
+        counters.solves += 1;
+        match solution.status {
+            SolveStatus::StepLimit => counters.solves_step_limit += 1,
+            SolveStatus::QpFailed(_) => counters.solves_qp_failed += 1,
+            SolveStatus::Converged => {}
+        }
+        counters.last_qp = QpReport {
+            active_set: solution.qp_active_set,
+            clarabel: solution.qp_clarabel,
+            iterations: solution.qp_iterations,
+            clarabel_time_us: solution.qp_time_s * 1e6,
+        };
+        counters.last_tip_error_mm = solution.tip_error_m * 1e3;
+        let command = HandCommand {
+            q: solution.q,
+            held: false,
+            frame_received_ns: pending.received_ns,
+            frame_source_ns: pending.frame.source_ns,
+        };
+        self.last_command = Some(command.clone());
+        Some(command)
+    }
+
+    fn count_rejection(&mut self, reason: Rejection) {
+        *self
+            .counters
+            .rejected
+            .entry(reason.name().into())
+            .or_default() += 1;
+    }
+}

@@ -1,0 +1,57 @@
+//! # station: the POMDAR station core
+//!
+//! One pure state machine, [`Station`], driven by [`Station::step`]`(input, now)`: a glove
+//! keypoint frame, a wrist pose, arm feedback, or a control input (a timer tick, the
+//! operator's engage or disengage, the application's word that another publisher drives the
+//! arm), each with its receive time in nanoseconds on the application's one clock. It gives back
+//! the messages to send (`sensor_msgs/JointState` hand targets, the lab's
+//! `/hand/policy_output`, a `geometry_msgs/PoseStamped` arm target) and notices for the
+//! operator. No I/O and no clock: the `teleop` application's ROS node, its re-simulation of a
+//! log, `pomdar eval` and the operator consoles drive this one core and keep no station state
+//! of their own, so a recorded run re-simulates to the same commands, byte for byte.
+//!
+//! ## Hand commands
+//!
+//! With `control.mode = "on_arrival"` (the default) a hand command is computed when a new,
+//! plausible glove frame arrives, unless it is stamped less than `1 / max_command_rate_hz`
+//! after the last commanded frame (then the next frame or tick takes it). The retargeter's time
+//! step is the difference of the two frames' source stamps `Δt = s_k − s_{k−1}`, clamped to
+//! `[0.1 ms, 0.5 s]`: the spacing at which the glove captured them, whatever the network did
+//! to their delivery. With `mode = "rate"` a command is computed on every tick from the newest
+//! frame, and repeated when none came.
+//!
+//! ## Ticks
+//!
+//! The timer (`control.rate_hz`, 25 Hz by default) advances the [`watchdog`] (hold after
+//! `hold_timeout_ms` without a new frame, disengage after `disengage_timeout_ms`), repeats the
+//! held command while held or disengaged, and steps the arm mapping ([`arm`]): its step caps
+//! are per tick, so the tick rate sets the arm speeds they allow.
+
+pub mod arm;
+pub mod config_error;
+pub mod convert;
+pub mod frame_gate;
+pub mod hand_control;
+pub mod network_config;
+pub mod output_stage;
+pub mod policy_output;
+pub mod rate_meter;
+pub mod source_order;
+#[allow(clippy::module_inception)]
+pub mod station;
+pub mod station_config;
+pub mod station_error;
+pub mod station_input;
+pub mod watchdog;
+
+pub use config_error::ConfigError;
+pub use frame_gate::{GateConfig, Rejection, Verdict};
+pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
+pub use network_config::{NetworkConfig, QosConfig, Reliability};
+pub use station::{ArmStatus, Station, StationStatus, Totals};
+pub use station_config::{
+    ControlConfig, ControlMode, InputConfig, KeypointFormat, OutputConfig, StationConfig,
+};
+pub use station_error::StationError;
+pub use station_input::{ControlInput, Notice, StationInput, StationOutputs};
+pub use watchdog::{DriveState, WatchdogConfig};

@@ -1,0 +1,367 @@
+//! The station: one state machine, driven by [`Station::step`] with an input and its receive
+//! time, giving back the messages to send. No clock, no I/O: the ROS node, the
+//! re-simulation, the evaluation and the consoles feed it and carry out what it returns, so a
+//! recorded run (every input with its receive time) re-simulates to the same commands.
+//!
+//! ```text
+//!  input (receive time)        what happens
+//!  ───────────────────────     ──────────────────────────────────────────────────────────────
+//!  keypoint frame              source order → frame gate → watchdog; a new frame is pending;
+//!                              auto-engage (once); on_arrival: retarget it now unless it is
+//!                              stamped within 1/max_command_rate_hz of the last commanded one
+//!  wrist pose, arm feedback    kept (an invalid wrist pose is counted and ignored)
+//!  tick (control.rate_hz)      watchdog; rate mode: retarget the pending frame or repeat the
+//!                              command; on_arrival: retarget a frame the ceiling held back;
+//!                              held/disengaged: repeat the held command; the arm steps
+//!  engage, disengage           the watchdog's operator side
+//!  arm blocked                 no arm targets while another publisher drives the arm topic
+//! ```
+
+use msgs::Pose;
+use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel, Retargeter};
+use serde::Serialize;
+
+use crate::arm::{ArmError, Constraint};
+use crate::convert::pose_to_isometry;
+use crate::frame_gate::{FrameGate, Verdict};
+use crate::hand_control::{Counters, HandCommand, HandControl, KeypointFrame};
+use crate::output_stage::{ArmInputs, ArmStep, OutputStage};
+use crate::rate_meter::RateMeter;
+use crate::station_config::{ControlConfig, ControlMode, StationConfig};
+use crate::station_error::StationError;
+use crate::station_input::{ControlInput, Notice, StationInput, StationOutputs};
+use crate::watchdog::{DriveState, Watchdog};
+
+/// Window of the status rates, seconds.
+const RATE_WINDOW_S: f64 = 1.0;
+
+/// What the station sent and refused, beyond the hand's counters.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Totals {
+    /// Hand commands sent (fresh, repeated and held).
+    pub hand_commands: u64,
+    /// Arm targets sent.
+    pub arm_targets: u64,
+    /// Wrist poses refused (non-finite, non-unit quaternion).
+    pub wrist_rejected: u64,
+    /// Arm steps refused by the arm mapping, by reason (the arm held: nothing was sent).
+    pub arm_refused: std::collections::BTreeMap<String, u64>,
+    /// Times the arm clutch could not engage.
+    pub arm_engage_failed: u64,
+}
+
+/// Rates over the last second.
+#[derive(Debug, Clone)]
+struct Meters {
+    input: RateMeter,
+    repeat: RateMeter,
+    output: RateMeter,
+}
+
+/// The station's part of the status topic (the application adds what only it knows:
+/// listeners, publish failures, step times).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StationStatus {
+    /// The drive state.
+    pub state: DriveState,
+    /// New glove frames per second.
+    pub input_rate_hz: f64,
+    /// Repeated glove frames per second.
+    pub repeat_rate_hz: f64,
+    /// Hand commands per second.
+    pub output_rate_hz: f64,
+    /// Age of the newest new frame, milliseconds.
+    pub input_age_ms: Option<f64>,
+    /// Frame and solver counters.
+    pub counters: Counters,
+    /// What was sent and refused.
+    #[serde(flatten)]
+    pub totals: Totals,
+    /// The arm.
+    pub arm: ArmStatus,
+}
+
+/// The arm's part of the status.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ArmStatus {
+    /// Whether the station drives an arm.
+    pub enabled: bool,
+    /// Whether the arm clutch is engaged.
+    pub engaged: bool,
+    /// Whether another publisher drives the arm command topic.
+    pub second_publisher: bool,
+    /// The task constraint.
+    pub constraint: Constraint,
+}
+
+/// The station.
+#[derive(Debug)]
+pub struct Station {
+    hand: HandControl,
+    output: OutputStage,
+    arm_inputs: ArmInputs,
+    control: ControlConfig,
+    auto_engage_pending: bool,
+    meters: Meters,
+    totals: Totals,
+}
+
+impl Station {
+    /// A station for `config` driving `model`, with a user's calibration if given. Checks the
+    /// configuration first.
+    pub fn new(
+        config: &StationConfig,
+        model: HandModel,
+        calibration: Option<CalibrationTransform>,
+    ) -> Result<Station, StationError> {
+        config.validate()?;
+        let output = OutputStage::new(config, &model)?;
+        let mut retargeter = Retargeter::new(
+            model,
+            config.retarget.clone(),
+            &EmbodimentCatalog::builtin(),
+        )?;
+        if let Some(transform) = calibration {
+            retargeter.set_calibration(transform)?;
+        }
+        let hand = HandControl::new(
+            retargeter,
+            FrameGate::new(config.retarget.layout, config.gate.clone()),
+            Watchdog::new(config.watchdog.clone()),
+        );
+        Ok(Station {
+            hand,
+            output,
+            arm_inputs: ArmInputs {
+                glove_wrist: None,
+                robot_pose: None,
+                blocked: false,
+            },
+            control: config.control.clone(),
+            auto_engage_pending: config.control.auto_engage,
+            meters: Meters {
+                input: RateMeter::new(RATE_WINDOW_S),
+                repeat: RateMeter::new(RATE_WINDOW_S),
+                output: RateMeter::new(RATE_WINDOW_S),
+            },
+            totals: Totals::default(),
+        })
+    }
+
+    /// The retargeter (model, configuration).
+    pub fn retargeter(&self) -> &Retargeter {
+        self.hand.retargeter()
+    }
+
+    /// The hand's counters.
+    pub fn counters(&self) -> &Counters {
+        self.hand.counters()
+    }
+
+    /// What was sent and refused.
+    pub fn totals(&self) -> &Totals {
+        &self.totals
+    }
+
+    /// The drive state.
+    pub fn state(&self) -> DriveState {
+        self.hand.state()
+    }
+
+    /// The hand command in force (the last one computed), if any.
+    pub fn command_in_force(&self) -> Option<&HandCommand> {
+        self.hand.last_command()
+    }
+
+    /// Whether arm targets are withheld (another publisher drives the arm topic).
+    pub fn arm_blocked(&self) -> bool {
+        self.arm_inputs.blocked
+    }
+
+    /// Age of the newest new frame at `now_ns`.
+    pub fn input_age_ns(&self, now_ns: i64) -> Option<i64> {
+        self.hand.input_age_ns(now_ns)
+    }
+
+    /// One step: `input`, received at `now_ns` (nanoseconds on the application's one clock).
+    pub fn step(&mut self, input: StationInput, now_ns: i64) -> StationOutputs {
+        match input {
+            StationInput::Keypoints(frame) => self.on_keypoints(frame, now_ns),
+            StationInput::Wrist(pose) => {
+                self.on_wrist(&pose);
+                StationOutputs::default()
+            }
+            StationInput::ArmFeedback(pose) => {
+                if let Some(robot) = pose_to_isometry(&pose) {
+                    self.arm_inputs.robot_pose = Some(robot);
+                }
+                StationOutputs::default()
+            }
+            StationInput::Control(control) => self.on_control(control, now_ns),
+        }
+    }
+
+    /// The status at `now_ns`.
+    pub fn status(&mut self, now_ns: i64) -> StationStatus {
+        StationStatus {
+            state: self.hand.state(),
+            input_rate_hz: self.meters.input.rate_hz(now_ns),
+            repeat_rate_hz: self.meters.repeat.rate_hz(now_ns),
+            output_rate_hz: self.meters.output.rate_hz(now_ns),
+            input_age_ms: self.hand.input_age_ns(now_ns).map(|a| a as f64 * 1e-6),
+            counters: self.hand.counters().clone(),
+            totals: self.totals.clone(),
+            arm: ArmStatus {
+                enabled: self.output.arm_enabled(),
+                engaged: self.output.arm().is_engaged(),
+                second_publisher: self.arm_inputs.blocked,
+                constraint: self.output.arm().constraint(),
+            },
+        }
+    }
+
+    fn on_wrist(&mut self, pose: &Pose) {
+        match pose_to_isometry(pose) {
+            Some(wrist) => self.arm_inputs.glove_wrist = Some(wrist),
+            // The last valid pose stays: the arm holds where it is.
+            None => self.totals.wrist_rejected += 1,
+        }
+    }
+
+    fn on_keypoints(&mut self, frame: KeypointFrame, now_ns: i64) -> StationOutputs {
+        let source_ns = frame.source_ns;
+        let verdict = self.hand.take_frame(frame, now_ns);
+        let mut outputs = StationOutputs {
+            verdict: Some(verdict),
+            ..StationOutputs::default()
+        };
+        match verdict {
+            Verdict::New => {
+                self.meters.input.record(now_ns);
+                if self.auto_engage_pending && self.hand.engage(now_ns) {
+                    self.auto_engage_pending = false;
+                }
+                if self.control.mode == ControlMode::OnArrival && self.under_ceiling(source_ns) {
+                    self.command_fresh(now_ns, &mut outputs);
+                }
+            }
+            Verdict::Repeat => self.meters.repeat.record(now_ns),
+            Verdict::Rejected(_) => {}
+        }
+        outputs
+    }
+
+    /// Whether a frame stamped `source_ns` may be commanded now: at least
+    /// `1 / max_command_rate_hz` after the last commanded frame by the senders' stamps (a
+    /// backwards stamp, after a sender's clock jump, always may).
+    fn under_ceiling(&self, source_ns: i64) -> bool {
+        let min_interval_ns = (1e9 / self.control.max_command_rate_hz) as i64;
+        self.hand
+            .last_solved_source_ns()
+            .is_none_or(|last| source_ns - last >= min_interval_ns || source_ns < last)
+    }
+
+    fn on_control(&mut self, control: ControlInput, now_ns: i64) -> StationOutputs {
+        let mut outputs = StationOutputs::default();
+        match control {
+            ControlInput::Tick => self.on_tick(now_ns, &mut outputs),
+            ControlInput::Engage => {
+                self.hand.engage(now_ns);
+            }
+            ControlInput::Disengage => self.hand.disengage(),
+            ControlInput::ArmBlocked { blocked } => {
+                if blocked && !self.arm_inputs.blocked {
+                    outputs.notices.push(Notice::ArmBlocked);
+                }
+                self.arm_inputs.blocked = blocked;
+            }
+        }
+        outputs
+    }
+
+    fn on_tick(&mut self, now_ns: i64, outputs: &mut StationOutputs) {
+        let state = self.hand.update(now_ns);
+        match (state, self.control.mode) {
+            (DriveState::Engaged, ControlMode::Rate) => {
+                if !self.command_fresh(now_ns, outputs) {
+                    self.send_hand(self.hand.last_command().cloned(), now_ns, outputs);
+                }
+            }
+            (DriveState::Engaged, ControlMode::OnArrival) => {
+                // A frame the ceiling held back, if no newer one came since.
+                self.command_fresh(now_ns, outputs);
+            }
+            (DriveState::Held | DriveState::Disengaged, _) => {
+                self.send_hand(self.hand.held(), now_ns, outputs);
+            }
+        }
+        self.step_arm(state, now_ns, outputs);
+    }
+
+    /// Retarget the pending frame (when engaged) and send the command; whether one was sent.
+    fn command_fresh(&mut self, now_ns: i64, outputs: &mut StationOutputs) -> bool {
+        if !self.hand.has_pending() || self.hand.update(now_ns) != DriveState::Engaged {
+            return false;
+        }
+        let Some(command) = self.hand.command_pending() else {
+            return false;
+        };
+        outputs.fresh_frame_received_ns = Some(command.frame_received_ns);
+        self.send_hand(Some(command), now_ns, outputs);
+        true
+    }
+
+    fn send_hand(
+        &mut self,
+        command: Option<HandCommand>,
+        now_ns: i64,
+        outputs: &mut StationOutputs,
+    ) {
+        if let Some(command) = command {
+            outputs.hand = Some(self.output.hand_messages(&command, now_ns));
+            self.totals.hand_commands += 1;
+            self.meters.output.record(now_ns);
+        }
+    }
+
+    fn step_arm(&mut self, state: DriveState, now_ns: i64, outputs: &mut StationOutputs) {
+        let (step, engage_error) = self.output.arm_step(state, self.arm_inputs, now_ns);
+        if let Some(error) = engage_error {
+            self.totals.arm_engage_failed += 1;
+            outputs.notices.push(Notice::ArmNotEngaged(error));
+        }
+        match step {
+            ArmStep::Idle => {}
+            ArmStep::Target(target) => {
+                self.totals.arm_targets += 1;
+                outputs.arm = Some(target);
+            }
+            ArmStep::Refused(error) => {
+                *self
+                    .totals
+                    .arm_refused
+                    .entry(arm_error_name(&error).to_string())
+                    .or_default() += 1;
+            }
+        }
+    }
+}
+
+/// The name of an arm refusal in the status.
+fn arm_error_name(error: &ArmError) -> &'static str {
+    match error {
+        ArmError::NonFinitePose { .. } => "non_finite_pose",
+        ArmError::ImplausiblePosition { .. } => "implausible_position",
+        ArmError::NonUnitQuaternion { .. } => "non_unit_quaternion",
+        ArmError::NonFiniteTarget => "non_finite_target",
+        ArmError::OutsideWorkspace { .. } => "outside_workspace",
+        ArmError::ConstraintChangeWhileEngaged => "constraint_change",
+        ArmError::InFile { .. } | ArmError::Syntax { .. } | ArmError::ConfigRange { .. } => {
+            "configuration"
+        }
+    }
+}
+
+#[cfg(test)]
+#[path = "station_tests.rs"]
+mod tests;

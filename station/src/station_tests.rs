@@ -1,0 +1,230 @@
+//! The station driven step by step, as every loop drives it.
+
+use msgs::Pose;
+use retarget::{HandModel, KeypointLayout};
+
+use super::*;
+use crate::convert::isometry_to_pose;
+use crate::frame_gate::Rejection;
+
+const MS: i64 = 1_000_000;
+
+fn model() -> HandModel {
+    HandModel::orca_v1_right()
+}
+
+fn station(config: &StationConfig) -> Station {
+    Station::new(config, model(), None).unwrap()
+}
+
+fn frame(index_mcp: f64, source_ms: i64) -> StationInput {
+    let model = model();
+    let mut q = model.zero_pose();
+    q[model.dof_index("index_mcp").unwrap()] = index_mcp;
+    let points = model.synthetic_keypoints(&model.forward_new(&q).unwrap(), KeypointLayout::Lab22);
+    StationInput::Keypoints(KeypointFrame {
+        points,
+        source_ns: source_ms * MS,
+    })
+}
+
+fn tick() -> StationInput {
+    StationInput::Control(ControlInput::Tick)
+}
+
+fn engage() -> StationInput {
+    StationInput::Control(ControlInput::Engage)
+}
+
+fn wrist(z: f64) -> StationInput {
+    StationInput::Wrist(isometry_to_pose(&nalgebra::Isometry3::translation(
+        0.0, 0.0, z,
+    )))
+}
+
+fn q_of(outputs: &StationOutputs) -> Vec<f64> {
+    outputs.hand.as_ref().unwrap().joint_state.position.clone()
+}
+
+#[test]
+fn nothing_moves_before_engage_then_each_new_frame_is_commanded_on_arrival() {
+    let mut s = station(&StationConfig::default());
+    let out = s.step(frame(0.2, 0), 0);
+    assert_eq!(out.verdict, Some(Verdict::New));
+    assert_eq!(out.hand, None);
+    assert_eq!(s.step(tick(), MS).hand, None);
+    s.step(engage(), 2 * MS);
+    let out = s.step(frame(0.3, 40), 40 * MS);
+    assert_eq!(out.fresh_frame_received_ns, Some(40 * MS));
+    let stamp = &out.hand.as_ref().unwrap().joint_state.header.stamp;
+    assert_eq!(
+        (stamp.sec, stamp.nanosec),
+        (0, 40_000_000),
+        "stamped with the source time"
+    );
+    // Repeats are counted, not solved again; an engaged tick sends no hand command.
+    assert_eq!(s.step(frame(0.3, 45), 45 * MS).hand, None);
+    assert_eq!(s.step(tick(), 50 * MS).hand, None);
+    assert_eq!(s.counters().frames_repeated, 1);
+    assert_eq!(s.counters().solves, 1);
+}
+
+#[test]
+fn the_command_rate_ceiling_holds_a_frame_until_the_next_frame_or_tick() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    config.control.max_command_rate_hz = 100.0; // 10 ms
+    let mut s = station(&config);
+    assert!(
+        s.step(frame(0.2, 0), 0).hand.is_some(),
+        "auto-engaged and commanded"
+    );
+    // Stamped 4 ms after the last command: waits.
+    assert!(s.step(frame(0.25, 4), 4 * MS).hand.is_none());
+    // The next frame supersedes it and goes out.
+    let out = s.step(frame(0.3, 12), 12 * MS);
+    assert_eq!(out.fresh_frame_received_ns, Some(12 * MS));
+    assert_eq!(s.counters().frames_superseded, 1);
+    // A held-back frame with no successor goes out on the tick.
+    assert!(s.step(frame(0.35, 15), 15 * MS).hand.is_none());
+    let out = s.step(tick(), 20 * MS);
+    assert_eq!(out.fresh_frame_received_ns, Some(15 * MS));
+}
+
+#[test]
+fn the_time_step_comes_from_the_frames_stamps_not_their_delivery() {
+    // Two stations see the same frames; one gets them delivered back to back.
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    config.retarget.solver.max_joint_speed_rad_s = 2.0;
+    let mut spaced = station(&config);
+    let mut bunched = station(&config);
+    for (i, q) in [0.0, 0.8, 1.2].into_iter().enumerate() {
+        let source_ms = 40 * i as i64;
+        let a = spaced.step(frame(q, source_ms), source_ms * MS);
+        let b = bunched.step(frame(q, source_ms), (80 + i as i64) * MS / 10);
+        assert_eq!(q_of(&a), q_of(&b), "frame {i}");
+    }
+}
+
+#[test]
+fn rate_mode_commands_on_ticks_and_repeats_the_command() {
+    let mut config = StationConfig::default();
+    config.control.mode = ControlMode::Rate;
+    let mut s = station(&config);
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    assert!(
+        s.step(frame(0.3, 30), 30 * MS).hand.is_none(),
+        "waits for the tick"
+    );
+    let first = s.step(tick(), 40 * MS);
+    assert_eq!(first.fresh_frame_received_ns, Some(30 * MS));
+    let again = s.step(tick(), 80 * MS);
+    assert_eq!(again.fresh_frame_received_ns, None);
+    assert_eq!(q_of(&again), q_of(&first));
+}
+
+#[test]
+fn stale_input_holds_the_last_command_then_disengages() {
+    let mut s = station(&StationConfig::default());
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    let first = s.step(frame(0.3, 2), 2 * MS);
+    let held = s.step(tick(), 200 * MS);
+    assert_eq!(s.state(), DriveState::Held);
+    assert_eq!(q_of(&held), q_of(&first));
+    assert_eq!(s.step(tick(), 1100 * MS).hand.is_some(), true);
+    assert_eq!(s.state(), DriveState::Disengaged);
+    // Fresh input alone does not resume.
+    assert!(s.step(frame(0.5, 1200), 1200 * MS).hand.is_none());
+    assert_eq!(q_of(&s.step(tick(), 1201 * MS)), q_of(&first));
+    assert_eq!(s.state(), DriveState::Disengaged);
+}
+
+#[test]
+fn malformed_frames_are_counted_and_change_nothing() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let before = q_of(&s.step(frame(0.2, 0), 0));
+    let StationInput::Keypoints(mut nan) = frame(0.4, 10) else {
+        unreachable!()
+    };
+    nan.points[5].x = f64::NAN;
+    let mut short = nan.clone();
+    short.points.truncate(21);
+    assert!(s.step(StationInput::Keypoints(nan), 10 * MS).hand.is_none());
+    assert!(
+        s.step(StationInput::Keypoints(short), 11 * MS)
+            .hand
+            .is_none()
+    );
+    assert_eq!(s.command_in_force().unwrap().q, before);
+    assert_eq!(s.counters().rejected["non_finite"], 1);
+    assert_eq!(s.counters().rejected["wrong_size"], 1);
+}
+
+#[test]
+fn late_frames_are_rejected_and_clock_jumps_followed() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    s.step(frame(0.2, 100), 0);
+    assert_eq!(s.step(frame(0.3, 120), 20 * MS).verdict, Some(Verdict::New));
+    let late = s.step(frame(0.4, 110), 21 * MS);
+    assert_eq!(late.verdict, Some(Verdict::Rejected(Rejection::OutOfOrder)));
+    assert!(late.hand.is_none());
+    assert_eq!(
+        s.step(frame(0.3, 120), 23 * MS).verdict,
+        Some(Verdict::Repeat)
+    );
+    // The sender's clock jumps back an hour: followed, counted, commanded.
+    let jumped = s.step(frame(0.35, 140 - 3_600_000), 40 * MS);
+    assert!(jumped.hand.is_some());
+    assert_eq!(s.counters().source_clock_jumps, 1);
+    assert!(s.step(frame(0.4, 160 - 3_600_000), 60 * MS).hand.is_some());
+    assert_eq!(s.counters().rejected["out_of_order"], 1);
+}
+
+#[test]
+fn the_arm_follows_the_wrist_on_ticks_and_an_invalid_wrist_pose_is_counted_and_ignored() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    s.step(wrist(0.0), 0);
+    s.step(frame(0.2, 0), 0);
+    assert!(s.step(tick(), 10 * MS).arm.is_some());
+    s.step(wrist(0.005), 20 * MS);
+    let moved = s.step(tick(), 30 * MS).arm.unwrap();
+    let mut invalid = Pose::default();
+    invalid.orientation.w = f64::NAN;
+    s.step(StationInput::Wrist(invalid), 35 * MS);
+    s.step(frame(0.25, 38), 38 * MS);
+    let kept = s.step(tick(), 40 * MS).arm.unwrap();
+    assert_eq!(kept.pose, moved.pose, "the last valid wrist pose stands");
+    assert_eq!(s.totals().wrist_rejected, 1);
+    // Blocked by a second publisher: nothing for the arm.
+    let out = s.step(
+        StationInput::Control(ControlInput::ArmBlocked { blocked: true }),
+        45 * MS,
+    );
+    assert_eq!(out.notices, vec![Notice::ArmBlocked]);
+    s.step(frame(0.3, 46), 46 * MS);
+    assert!(s.step(tick(), 50 * MS).arm.is_none());
+}
+
+#[test]
+fn the_status_reports_the_qp_method_that_ran() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    s.step(frame(0.2, 0), 0);
+    s.step(frame(0.6, 40), 40 * MS);
+    let status = s.status(41 * MS);
+    let qp = &status.counters.last_qp;
+    assert!(qp.active_set + qp.clarabel > 0, "{qp:?}");
+    assert!(qp.iterations > 0, "{qp:?}");
+    assert_eq!(status.totals.hand_commands, 2);
+    assert!(status.input_rate_hz > 0.0);
+}

@@ -1,0 +1,96 @@
+//! The live path of `pomdar eval`: the recording re-simulated through the [`station::Station`]
+//! exactly as `pomdar resim` drives it (its gate, watchdog, control mode and timer), and the
+//! command in force after each distinct glove frame scored with the same metrics as the
+//! retargeter alone. Where the two differ, the station's control loop (a tick beating against
+//! the glove, a rejected frame) costs what the figures say.
+
+use std::time::Instant;
+
+use nalgebra::Point3;
+use retarget::{HandModel, QualityRecorder, QualityReport};
+use serde::Serialize;
+use station::{StationConfig, StationInput};
+
+use crate::mcap_log::TrialReader;
+use crate::resim::{LogInputs, drive_station, log_inputs};
+use crate::samples::Samples;
+use crate::station_setup::build_station;
+
+/// The live path's figures.
+#[derive(Debug, Clone, Serialize)]
+pub struct LivePathReport {
+    /// The metrics of the command in force after each distinct glove frame.
+    #[serde(flatten)]
+    pub quality: QualityReport,
+    /// Distinct glove frames that had no command in force (before the station engaged).
+    pub frames_without_command: usize,
+    /// Hand commands computed from a new frame.
+    pub fresh_commands: u64,
+    /// Wall time of a station step that retargeted a new frame, microseconds: p50.
+    pub step_us_p50: Option<f64>,
+    /// Wall time of a station step that retargeted a new frame, microseconds: p99.
+    pub step_us_p99: Option<f64>,
+}
+
+/// Scores what the station commands at each distinct frame of a log.
+struct LivePathScore {
+    recorder: QualityRecorder,
+    previous: Option<Vec<Point3<f64>>>,
+    without_command: usize,
+    fresh: u64,
+    step_us: Samples,
+}
+
+impl LivePathScore {
+    fn after_step(&mut self, input: &StationInput, station: &station::Station, fresh: bool) {
+        self.fresh += u64::from(fresh);
+        let StationInput::Keypoints(frame) = input else {
+            return;
+        };
+        if self.previous.as_ref() == Some(&frame.points) {
+            return;
+        }
+        self.previous = Some(frame.points.clone());
+        match station.command_in_force() {
+            Some(command) => {
+                // A frame the recorder cannot measure (collapsed palm) is left out, as the
+                // retargeter-alone figures leave it out.
+                self.recorder.push(&frame.points, &command.q).ok();
+            }
+            None => self.without_command += 1,
+        }
+    }
+}
+
+/// The live path of `reader`'s log through a station configured by `config`.
+pub fn live_path(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+) -> anyhow::Result<LivePathReport> {
+    let log: LogInputs = log_inputs(reader, config)?;
+    let (mut station, _) = build_station(&log.config, model.clone())?;
+    let mut score = LivePathScore {
+        recorder: QualityRecorder::new(model, log.config.retarget.layout),
+        previous: None,
+        without_command: 0,
+        fresh: 0,
+        step_us: Samples::default(),
+    };
+    let mut started = Instant::now();
+    drive_station(&mut station, log, |timed, outputs, station| {
+        let fresh = outputs.fresh_frame_received_ns.is_some();
+        if fresh {
+            score.step_us.push(started.elapsed().as_secs_f64() * 1e6);
+        }
+        score.after_step(&timed.input, station, fresh);
+        started = Instant::now();
+    });
+    Ok(LivePathReport {
+        quality: score.recorder.report(),
+        frames_without_command: score.without_command,
+        fresh_commands: score.fresh,
+        step_us_p50: score.step_us.percentile(0.5),
+        step_us_p99: score.step_us.percentile(0.99),
+    })
+}

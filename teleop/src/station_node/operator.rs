@@ -1,0 +1,79 @@
+//! What the process that runs a station tells it (the operator's commands), and what the
+//! station tells that process back (trial logs, messages), besides its ROS topics.
+
+use tokio::sync::{mpsc, watch};
+
+use crate::station_node::recorder::RecordingOptions;
+
+/// What the operator (console, test, demo) tells a running station.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OperatorCommand {
+    /// Engage: drive hand and arm once input is fresh.
+    Engage,
+    /// Disengage: stop driving the arm; the hand holds.
+    Disengage,
+    /// A trial event for the log (`/pomdar/trial_events`, flushed at once), e.g.
+    /// `{"event": "progress", "value": 1}`, `{"event": "drop"}`, `{"event": "abort"}`,
+    /// `{"event": "note", "text": "..."}`. The station adds the event's time.
+    TrialEvent(serde_json::Value),
+    /// Start recording a new trial to its own log (finishing the current one, if any).
+    StartTrial(RecordingOptions),
+    /// Finish the current trial's log (stop event, summary, rename from `.part`).
+    StopTrial,
+}
+
+/// What a running station reports to the process that runs it (the operator console), besides
+/// its ROS topics. Without hooks the messages go to stderr.
+#[derive(Debug, Default)]
+pub struct StationHooks {
+    /// The status JSON, as published on the status topic, at the status rate.
+    pub status: Option<watch::Sender<Option<serde_json::Value>>>,
+    /// Trial log starts and ends, and messages for the operator.
+    pub events: Option<mpsc::UnboundedSender<StationEvent>>,
+}
+
+/// A station event for the process that runs it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StationEvent {
+    /// A trial log was created (its final path).
+    TrialStarted(std::path::PathBuf),
+    /// A trial log could not be created.
+    TrialStartFailed {
+        /// The log that was asked for.
+        path: std::path::PathBuf,
+        /// Why.
+        error: String,
+    },
+    /// A trial log was finished and renamed to its final path.
+    TrialFinished(std::path::PathBuf),
+    /// A trial log could not be finished (its `.part` stays for `pomdar recover`).
+    TrialFinishFailed {
+        /// The log.
+        path: std::path::PathBuf,
+        /// Why.
+        error: String,
+    },
+    /// A warning or error for the operator.
+    Message(String),
+}
+
+impl StationHooks {
+    /// Send `event` to the hooks, or print it on stderr without them.
+    pub fn send(&self, event: StationEvent) {
+        match &self.events {
+            Some(tx) => {
+                tx.send(event).ok();
+            }
+            None => match event {
+                StationEvent::TrialStartFailed { path, error } => {
+                    eprintln!("error: cannot start recording {}: {error}", path.display());
+                }
+                StationEvent::TrialFinishFailed { error, .. } => {
+                    eprintln!("error: cannot finish the trial log: {error}");
+                }
+                StationEvent::Message(text) => eprintln!("{text}"),
+                StationEvent::TrialStarted(_) | StationEvent::TrialFinished(_) => {}
+            },
+        }
+    }
+}

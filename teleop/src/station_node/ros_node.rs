@@ -1,0 +1,518 @@
+//! The station as a ROS 2 node: subscriptions and the timer step one [`Station`], and what it
+//! returns goes out as `sensor_msgs/JointState`, the lab's `/hand/policy_output`, a
+//! `geometry_msgs/PoseStamped` arm target, and a JSON status on `std_msgs/String`.
+//!
+//! Every input is stamped on receipt from the one [`StationClock`], recorded (when recording)
+//! with that time and its sender's DDS source time, and then stepped: the log holds every input
+//! the station saw, so `pomdar resim` reproduces the run's commands. The node keeps no station
+//! state of its own: only its endpoints, its recorder and what only it can measure (publish
+//! failures, unreadable samples, listeners, wall-clock step times and latency).
+//!
+//! Stamps: a command's header carries the DDS source time of the glove frame it was computed
+//! from (its receive time when the sender gives none), so any subscriber can measure
+//! end-to-end latency; held commands, arm targets and the status carry the station's one
+//! clock. docs/FAULTS.md lists what the station does on each input fault.
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use futures::{StreamExt, stream::BoxStream};
+use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
+use retarget::HandModel;
+use ros2_client::{MessageInfo, Publisher, Subscription};
+use serde::Serialize;
+use serde_json::json;
+use station::convert::KeypointMessage;
+use station::{
+    ControlInput, Counters, KeypointFormat, KeypointFrame, Station, StationConfig, StationInput,
+    StationOutputs, Totals,
+};
+use tokio::sync::{mpsc, watch};
+
+use crate::clock::StationClock;
+use crate::ros::{QosConfig, RosNode};
+use crate::samples::Samples;
+pub use crate::station_node::operator::{OperatorCommand, StationEvent, StationHooks};
+use crate::station_node::recorder::{RecordingOptions, StationRecorder};
+use crate::station_setup::build_station;
+
+/// Totals when the station stops.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StationSummary {
+    /// Frame and solver counters.
+    pub counters: Counters,
+    /// What the station sent and refused.
+    pub totals: Totals,
+    /// What the node could not do: publish failures and unreadable samples, by topic.
+    pub faults: NodeFaults,
+    /// Whether a second publisher on the arm command topic was seen.
+    pub second_publisher_seen: bool,
+    /// Wall time of each step that retargeted a new frame, milliseconds.
+    pub step_time: Samples,
+    /// Mean palm-to-tip key-vector error of each solve, millimetres.
+    pub tip_error_mm: Samples,
+    /// The logs written (one per trial), in order.
+    pub recorded: Vec<std::path::PathBuf>,
+}
+
+/// What the node could not do, by topic.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct NodeFaults {
+    /// Messages whose publishing failed (not sent), by topic.
+    pub publish_failed: BTreeMap<String, u64>,
+    /// Samples the subscription could not deliver (undecodable or lost in DDS), by topic.
+    pub input_errors: BTreeMap<String, u64>,
+}
+
+impl NodeFaults {
+    fn count(map: &mut BTreeMap<String, u64>, topic: &str) {
+        *map.entry(topic.to_string()).or_default() += 1;
+    }
+}
+
+/// Build the station first (a bad profile or configuration fails before any log or node
+/// exists), then run it until `shutdown` turns true.
+pub async fn run_station(
+    config: StationConfig,
+    model: HandModel,
+    clock: StationClock,
+    shutdown: watch::Receiver<bool>,
+    operator: mpsc::UnboundedReceiver<OperatorCommand>,
+    recording: Option<RecordingOptions>,
+) -> anyhow::Result<StationSummary> {
+    run_station_observed(
+        config,
+        model,
+        clock,
+        shutdown,
+        operator,
+        recording,
+        StationHooks::default(),
+    )
+    .await
+}
+
+/// [`run_station`], reporting its status and trial logs through `hooks`.
+pub async fn run_station_observed(
+    config: StationConfig,
+    model: HandModel,
+    clock: StationClock,
+    mut shutdown: watch::Receiver<bool>,
+    mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
+    recording: Option<RecordingOptions>,
+    hooks: StationHooks,
+) -> anyhow::Result<StationSummary> {
+    let (station, description) = build_station(&config, model)?;
+    if let Some(line) = description {
+        hooks.send(StationEvent::Message(line));
+    }
+    let recorder = match &recording {
+        Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
+        None => None,
+    };
+    let endpoints = Endpoints::open(&config)?;
+    let mut streams = endpoints.streams(&config);
+    let mut node = StationNode {
+        station,
+        config,
+        clock,
+        recorder,
+        hooks,
+        faults: NodeFaults::default(),
+        second_publisher_seen: false,
+        last_latency_ms: None,
+        step_time: Samples::default(),
+        tip_error_mm: Samples::default(),
+        recorded: Vec::new(),
+    };
+    loop {
+        tokio::select! {
+            _ = shutdown.changed() => {
+                if *shutdown.borrow() { break; }
+            }
+            Some(command) = operator.recv() => node.on_operator(command, &endpoints).await,
+            Some(item) = streams.keypoints.next() => node.on_keypoints(item, &endpoints).await,
+            Some(item) = streams.wrist.next() => node.on_wrist(item),
+            Some(item) = streams.feedback.next() => node.on_feedback(item),
+            _ = streams.tick.tick() => {
+                node.drive(StationInput::Control(ControlInput::Tick), &endpoints).await;
+            }
+            _ = streams.status_tick.tick() => node.on_status_tick(&endpoints).await,
+        }
+    }
+    Ok(node.finish())
+}
+
+/// The node's publishers and subscriptions.
+struct Endpoints {
+    node: RosNode,
+    joint: Publisher<JointState>,
+    policy: Option<Publisher<Float32MultiArray>>,
+    arm: Option<Publisher<PoseStamped>>,
+    /// The station's own subscription to the arm command topic: counts its publishers.
+    arm_monitor: Option<Subscription<PoseStamped>>,
+    status: Publisher<StringMsg>,
+    keypoints: KeypointSubscription,
+    wrist: Subscription<PoseStamped>,
+    feedback: Subscription<PoseStamped>,
+}
+
+/// The keypoint subscription, in the configured format.
+enum KeypointSubscription {
+    Array(Subscription<Float32MultiArray>),
+    Poses(Subscription<PoseArray>),
+}
+
+type Received<M> = ros2_client::ReadResult<(M, MessageInfo)>;
+
+/// The node's input streams and timers.
+struct Streams<'a> {
+    keypoints: BoxStream<'a, Received<KeypointMessage>>,
+    wrist: BoxStream<'a, Received<PoseStamped>>,
+    feedback: BoxStream<'a, Received<PoseStamped>>,
+    tick: tokio::time::Interval,
+    status_tick: tokio::time::Interval,
+}
+
+impl Endpoints {
+    fn open(config: &StationConfig) -> anyhow::Result<Endpoints> {
+        use crate::ros::NetworkContext as _;
+        let context = config.network.context()?;
+        let mut node = RosNode::new(&context, "/", "pomdar_station")?;
+        let (input_qos, output_qos) = (config.input.qos, config.output.qos);
+        let topic = &config.input.keypoints_topic;
+        let keypoints = match config.input.keypoints_format {
+            KeypointFormat::Float32MultiArray => {
+                KeypointSubscription::Array(node.subscription(topic, input_qos)?)
+            }
+            KeypointFormat::PoseArray => {
+                KeypointSubscription::Poses(node.subscription(topic, input_qos)?)
+            }
+        };
+        let arm_topic = &config.output.arm_target_topic;
+        let (arm, arm_monitor) = if arm_topic.is_empty() {
+            (None, None)
+        } else {
+            (
+                Some(node.publisher(arm_topic, output_qos)?),
+                Some(node.subscription(arm_topic, output_qos)?),
+            )
+        };
+        let policy = match config.policy_output.topic.as_str() {
+            "" => None,
+            topic => Some(node.publisher(topic, output_qos)?),
+        };
+        Ok(Endpoints {
+            joint: node.publisher(&config.output.joint_targets_topic, output_qos)?,
+            policy,
+            arm,
+            arm_monitor,
+            status: node.publisher(&config.output.status_topic, QosConfig::reliable(10))?,
+            keypoints,
+            wrist: node.subscription(&config.input.wrist_topic, input_qos)?,
+            feedback: node
+                .subscription(&config.input.arm_feedback_topic, QosConfig::best_effort(10))?,
+            node,
+        })
+    }
+
+    fn streams(&self, config: &StationConfig) -> Streams<'_> {
+        let keypoints = match &self.keypoints {
+            KeypointSubscription::Array(sub) => sub
+                .async_stream()
+                .map(|r| r.map(|(m, info)| (KeypointMessage::Array(m), info)))
+                .boxed(),
+            KeypointSubscription::Poses(sub) => sub
+                .async_stream()
+                .map(|r| r.map(|(m, info)| (KeypointMessage::Poses(m), info)))
+                .boxed(),
+        };
+        let mut tick = tokio::time::interval(Duration::from_secs_f64(1.0 / config.control.rate_hz));
+        tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+        Streams {
+            keypoints,
+            wrist: self.wrist.async_stream().boxed(),
+            feedback: self.feedback.async_stream().boxed(),
+            tick,
+            status_tick: tokio::time::interval(Duration::from_secs_f64(
+                1.0 / config.output.status_rate_hz,
+            )),
+        }
+    }
+
+    /// Matched readers of the commands (the station's own arm monitor is one of the arm's).
+    fn listeners(&self) -> serde_json::Value {
+        let node = self.node.node();
+        json!({
+            "hand": self.joint.get_subscription_count(node),
+            "arm": self.arm.as_ref().map(|p| p.get_subscription_count(node).saturating_sub(1)),
+        })
+    }
+
+    /// Whether another publisher drives the arm command topic.
+    fn arm_topic_contested(&self) -> bool {
+        self.arm_monitor
+            .as_ref()
+            .is_some_and(|m| m.get_publisher_count(self.node.node()) > 1)
+    }
+}
+
+/// The sender's stamp of a sample, else its receive time.
+fn source_or(info: &MessageInfo, received_ns: i64) -> i64 {
+    info.source_timestamp()
+        .map_or(received_ns, |t| t.to_nanos())
+}
+
+/// The node's state: the station, and what only the node knows.
+struct StationNode {
+    station: Station,
+    config: StationConfig,
+    clock: StationClock,
+    recorder: Option<StationRecorder>,
+    hooks: StationHooks,
+    faults: NodeFaults,
+    second_publisher_seen: bool,
+    last_latency_ms: Option<f64>,
+    step_time: Samples,
+    tip_error_mm: Samples,
+    recorded: Vec<std::path::PathBuf>,
+}
+
+impl StationNode {
+    async fn on_operator(&mut self, command: OperatorCommand, endpoints: &Endpoints) {
+        let now = self.clock.now_ns();
+        match command {
+            OperatorCommand::Engage => {
+                self.drive(StationInput::Control(ControlInput::Engage), endpoints)
+                    .await;
+            }
+            OperatorCommand::Disengage => {
+                self.drive(StationInput::Control(ControlInput::Disengage), endpoints)
+                    .await;
+            }
+            OperatorCommand::TrialEvent(event) => {
+                if let Some(r) = self.recorder.as_mut() {
+                    r.event(now, &event);
+                }
+            }
+            OperatorCommand::StartTrial(options) => self.start_trial(&options, now),
+            OperatorCommand::StopTrial => self.finish_trial(now),
+        }
+    }
+
+    async fn on_keypoints(&mut self, item: Received<KeypointMessage>, endpoints: &Endpoints) {
+        let now = self.clock.now_ns();
+        let topic = self.config.input.keypoints_topic.clone();
+        let Ok((message, info)) = item else {
+            NodeFaults::count(&mut self.faults.input_errors, &topic);
+            return;
+        };
+        let source_ns = source_or(&info, now);
+        if let Some(r) = self.recorder.as_mut() {
+            r.keypoints(&topic, now, Some(source_ns), &message);
+        }
+        let frame = KeypointFrame {
+            points: message.points(),
+            source_ns,
+        };
+        self.step_and_send(StationInput::Keypoints(frame), now, endpoints)
+            .await;
+    }
+
+    fn on_wrist(&mut self, item: Received<PoseStamped>) {
+        let topic = self.config.input.wrist_topic.clone();
+        if let Some((pose, now)) = self.record_pose(&topic, item) {
+            self.station.step(StationInput::Wrist(pose), now);
+        }
+    }
+
+    fn on_feedback(&mut self, item: Received<PoseStamped>) {
+        let topic = self.config.input.arm_feedback_topic.clone();
+        if let Some((pose, now)) = self.record_pose(&topic, item) {
+            self.station.step(StationInput::ArmFeedback(pose), now);
+        }
+    }
+
+    /// Record a received pose (or count it as unreadable); its pose for the station and its
+    /// receive time.
+    fn record_pose(
+        &mut self,
+        topic: &str,
+        item: Received<PoseStamped>,
+    ) -> Option<(msgs::Pose, i64)> {
+        let now = self.clock.now_ns();
+        let Ok((message, info)) = item else {
+            NodeFaults::count(&mut self.faults.input_errors, topic);
+            return None;
+        };
+        if let Some(r) = self.recorder.as_mut() {
+            r.input(topic, now, Some(source_or(&info, now)), &message);
+        }
+        Some((message.pose, now))
+    }
+
+    /// Record a control input and step the station with it.
+    async fn drive(&mut self, input: StationInput, endpoints: &Endpoints) {
+        let now = self.clock.now_ns();
+        if let (Some(r), StationInput::Control(control)) = (self.recorder.as_mut(), &input) {
+            r.control(now, *control);
+        }
+        self.step_and_send(input, now, endpoints).await;
+    }
+
+    /// Step the station and send what it returns.
+    async fn step_and_send(&mut self, input: StationInput, now: i64, endpoints: &Endpoints) {
+        let started = Instant::now();
+        let outputs = self.station.step(input, now);
+        if outputs.fresh_frame_received_ns.is_some() {
+            self.step_time.push(started.elapsed().as_secs_f64() * 1e3);
+            self.tip_error_mm
+                .push(self.station.counters().last_tip_error_mm);
+        }
+        self.send(outputs, now, endpoints).await;
+    }
+
+    async fn send(&mut self, outputs: StationOutputs, now: i64, endpoints: &Endpoints) {
+        for notice in &outputs.notices {
+            self.hooks.send(StationEvent::Message(notice.to_string()));
+        }
+        let output = self.config.output.clone();
+        if let Some(hand) = outputs.hand {
+            let sent = self
+                .publish(
+                    &endpoints.joint,
+                    &output.joint_targets_topic,
+                    now,
+                    hand.joint_state,
+                )
+                .await;
+            if let (true, Some(received)) = (sent, outputs.fresh_frame_received_ns) {
+                self.last_latency_ms = Some((self.clock.now_ns() - received) as f64 * 1e-6);
+            }
+            if let (Some(message), Some(publisher)) = (hand.policy, &endpoints.policy) {
+                let topic = self.config.policy_output.topic.clone();
+                self.publish(publisher, &topic, now, message).await;
+            }
+        }
+        if let (Some(message), Some(publisher)) = (outputs.arm, &endpoints.arm) {
+            self.publish(publisher, &output.arm_target_topic, now, message)
+                .await;
+        }
+    }
+
+    /// Record and publish `message`; whether it went out (a failure is counted).
+    async fn publish<M: msgs::RosMessage + Serialize>(
+        &mut self,
+        publisher: &Publisher<M>,
+        topic: &str,
+        now: i64,
+        message: M,
+    ) -> bool {
+        if let Some(r) = self.recorder.as_mut() {
+            r.output(topic, now, &message);
+        }
+        let sent = publisher.async_publish(message).await.is_ok();
+        if !sent {
+            NodeFaults::count(&mut self.faults.publish_failed, topic);
+        }
+        sent
+    }
+
+    async fn on_status_tick(&mut self, endpoints: &Endpoints) {
+        let contested = endpoints.arm_topic_contested();
+        if contested != self.station.arm_blocked() {
+            self.second_publisher_seen |= contested;
+            let blocked = ControlInput::ArmBlocked { blocked: contested };
+            self.drive(StationInput::Control(blocked), endpoints).await;
+        }
+        let now = self.clock.now_ns();
+        let status = self.status_document(now, endpoints);
+        if let Some(tx) = &self.hooks.status {
+            tx.send(Some(status.clone())).ok();
+        }
+        let message = StringMsg {
+            data: status.to_string(),
+        };
+        if let Some(r) = self.recorder.as_mut() {
+            r.output(&self.config.output.status_topic, now, &message);
+            r.tick(now);
+            if let Some(error) = r.take_error() {
+                self.hooks.send(StationEvent::Message(error));
+            }
+        }
+        if endpoints.status.async_publish(message).await.is_err() {
+            let topic = self.config.output.status_topic.clone();
+            NodeFaults::count(&mut self.faults.publish_failed, &topic);
+        }
+    }
+
+    /// The station's status with what only the node knows.
+    fn status_document(&mut self, now: i64, endpoints: &Endpoints) -> serde_json::Value {
+        let mut status = serde_json::to_value(self.station.status(now)).unwrap_or_default();
+        if let Some(fields) = status.as_object_mut() {
+            fields.insert("stamp_ns".into(), json!(now));
+            fields.insert("processing_latency_ms".into(), json!(self.last_latency_ms));
+            fields.insert("last_step_ms".into(), json!(self.step_time.last()));
+            fields.insert("listeners".into(), endpoints.listeners());
+            fields.insert("node".into(), json!(self.faults));
+        }
+        status
+    }
+
+    fn start_trial(&mut self, options: &RecordingOptions, now: i64) {
+        self.finish_trial(now);
+        match StationRecorder::start(options, &self.config, now) {
+            Ok(r) => {
+                self.recorder = Some(r);
+                self.hooks
+                    .send(StationEvent::TrialStarted(options.path.clone()));
+            }
+            Err(e) => self.hooks.send(StationEvent::TrialStartFailed {
+                path: options.path.clone(),
+                error: format!("{e:#}"),
+            }),
+        }
+    }
+
+    /// Finish the current trial's log with the run's totals so far; a failure is reported,
+    /// never fatal.
+    fn finish_trial(&mut self, now_ns: i64) {
+        let Some(mut recorder) = self.recorder.take() else {
+            return;
+        };
+        let totals = self.station.totals();
+        let summary = json!({
+            "frames_new": self.station.counters().frames_new,
+            "hand_commands": totals.hand_commands,
+            "arm_targets": totals.arm_targets,
+        });
+        if let Some(error) = recorder.take_error() {
+            self.hooks.send(StationEvent::Message(error));
+        }
+        let path = recorder.path().to_path_buf();
+        match recorder.finish(now_ns, summary) {
+            Ok(finished) => {
+                self.hooks
+                    .send(StationEvent::TrialFinished(finished.path.clone()));
+                self.recorded.push(finished.path);
+            }
+            Err(e) => self.hooks.send(StationEvent::TrialFinishFailed {
+                path,
+                error: format!("{e:#}"),
+            }),
+        }
+    }
+
+    fn finish(mut self) -> StationSummary {
+        self.finish_trial(self.clock.now_ns());
+        StationSummary {
+            counters: self.station.counters().clone(),
+            totals: self.station.totals().clone(),
+            faults: self.faults,
+            second_publisher_seen: self.second_publisher_seen,
+            step_time: self.step_time,
+            tip_error_mm: self.tip_error_mm,
+            recorded: self.recorded,
+        }
+    }
+}

@@ -1,0 +1,115 @@
+//! The one place a station is set up from files: the configuration (`--config FILE`, else the
+//! built-in ETH lab preset), the user's calibration profile over it (`--profile FILE`, else the
+//! configuration's `calibration_profile`), and the [`Station`] built from both. Errors name the
+//! file and the key.
+
+use std::path::Path;
+
+use anyhow::Context as _;
+use calibration::CalibrationProfile;
+use retarget::{HandModel, KeypointLayout};
+use station::{Station, StationConfig};
+
+/// Read, parse and validate a station configuration file; errors name it. A relative
+/// `calibration_profile` is resolved against the file's directory.
+pub fn read_station_config(path: &Path) -> anyhow::Result<StationConfig> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut config =
+        StationConfig::from_toml_str(&text).with_context(|| format!("{}", path.display()))?;
+    if let Some(profile) = &config.calibration_profile
+        && profile.is_relative()
+    {
+        let dir = path.parent().unwrap_or(Path::new(""));
+        config.calibration_profile = Some(dir.join(profile));
+    }
+    Ok(config)
+}
+
+/// The configuration of `config` (else the built-in default), with `profile` (when given) in
+/// place of its calibration profile.
+pub fn load_station_config(
+    config: Option<&Path>,
+    profile: Option<&Path>,
+) -> anyhow::Result<StationConfig> {
+    let mut loaded = match config {
+        Some(path) => read_station_config(path)?,
+        None => StationConfig::default(),
+    };
+    if let Some(profile) = profile {
+        loaded.calibration_profile = Some(profile.to_path_buf());
+    }
+    Ok(loaded)
+}
+
+/// A station for `config` on `model`, with its calibration profile loaded (checked against the
+/// model and the layout), and the profile's one-line description.
+pub fn build_station(
+    config: &StationConfig,
+    model: HandModel,
+) -> anyhow::Result<(Station, Option<String>)> {
+    let profile = match &config.calibration_profile {
+        Some(path) => Some(load_profile(path, &model, config.retarget.layout)?),
+        None => None,
+    };
+    let description = profile.as_ref().map(describe);
+    let station = Station::new(config, model, profile.map(|p| p.parameters))?;
+    Ok((station, description))
+}
+
+/// Read, parse and validate the profile at `path` and check that it was made for `model` and
+/// `layout`; errors name the file (and the key, from the calibration crate's error).
+pub fn load_profile(
+    path: &Path,
+    model: &HandModel,
+    layout: KeypointLayout,
+) -> anyhow::Result<CalibrationProfile> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read calibration profile {}", path.display()))?;
+    let profile = CalibrationProfile::from_toml_str(&text)
+        .map_err(|e| anyhow::anyhow!("calibration profile {}: {e}", path.display()))?;
+    profile
+        .check_fits(model, layout)
+        .map_err(|e| anyhow::anyhow!("calibration profile {}: {e}", path.display()))?;
+    Ok(profile)
+}
+
+/// One line: who, when, and the transform (scale, roll/pitch/yaw in degrees).
+pub fn describe(profile: &CalibrationProfile) -> String {
+    let p = &profile.parameters;
+    format!(
+        "calibration profile: user {}, date {}, scale {:.3}, roll {:.1}°, pitch {:.1}°, yaw {:.1}°",
+        profile.user,
+        profile.date,
+        p.scale,
+        p.roll_rad.to_degrees(),
+        p.pitch_rad.to_degrees(),
+        p.yaw_rad.to_degrees()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    #[test]
+    fn a_relative_profile_is_relative_to_the_config_file() {
+        let dir = std::env::temp_dir().join(format!("pomdar-station-cfg-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("station.toml");
+        std::fs::write(&path, "calibration_profile = \"profiles/alice.toml\"\n").unwrap();
+        let config = read_station_config(&path).unwrap();
+        let overridden = load_station_config(Some(&path), Some(Path::new("/p.toml"))).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(
+            config.calibration_profile,
+            Some(dir.join("profiles/alice.toml"))
+        );
+        assert_eq!(
+            overridden.calibration_profile,
+            Some(Path::new("/p.toml").to_path_buf())
+        );
+    }
+}
