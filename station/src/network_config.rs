@@ -4,7 +4,7 @@
 //! RustDDS drops samples silently when a burst exceeds the history depth (even Reliable), so
 //! depths are sized above any burst the rates allow (DOMAIN.md §7).
 
-use std::net::IpAddr;
+use core::net::IpAddr; // an address as data (no socket): the core one
 
 use serde::{Deserialize, Serialize};
 
