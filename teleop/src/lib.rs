@@ -25,3 +25,4 @@ pub mod ros;
 pub mod score;
 pub mod sim;
 pub mod station;
+pub mod utc_date;

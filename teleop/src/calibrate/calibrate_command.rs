@@ -20,9 +20,9 @@ use crate::calibrate::session_node::{SessionOptions, run_session};
 use crate::calibrate::simulated_user::{
     SIMULATED_NOISE_M, loopback, publish_simulated_user, synthetic_user, true_transform,
 };
-use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::clock::StationClock;
 use crate::station::station_config::StationConfig;
+use crate::utc_date::{compact_utc, now_unix_s};
 
 /// `pomdar calibrate` options.
 #[derive(Debug, Args)]

@@ -16,7 +16,6 @@ use scoring::ArmConstraint;
 use tokio::sync::{mpsc, watch};
 
 use crate::arm::Constraint;
-use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::cli::NodeArgs;
 use crate::clock::StationClock;
 use crate::demo::default_domain_id;
@@ -30,6 +29,7 @@ use crate::station::ros_station::{
     OperatorCommand, StationEvent, StationHooks, run_station_observed, station_core_described,
 };
 use crate::station::station_config::StationConfig;
+use crate::utc_date::{compact_utc, now_unix_s};
 
 use super::health::{Health, StartLimits};
 use super::keys::{Action, key_action, parse_action};
