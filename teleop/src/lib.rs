@@ -27,3 +27,4 @@ pub mod score;
 pub mod sim;
 pub mod station_node;
 pub mod station_setup;
+pub mod utc_date;

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
-use calibration::{CalibrationSettings, CaptureSchedule};
+use calibration::{CalibrationProfile, CalibrationSettings, CaptureSchedule, SyntheticUser};
 use clap::Args;
 use retarget::HandModel;
 use tokio::sync::watch;
@@ -16,12 +16,12 @@ use tokio::sync::watch;
 use crate::calibrate::calibration_console::ConsoleFront;
 use crate::calibrate::calibration_script::load_calibration_script;
 use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
-use crate::calibrate::session_node::{SessionOptions, run_session};
+use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
 use crate::calibrate::simulated_user::{
     SIMULATED_NOISE_M, loopback, publish_simulated_user, synthetic_user, true_transform,
 };
-use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::clock::StationClock;
+use crate::utc_date::{compact_utc, now_unix_s};
 
 /// `pomdar calibrate` options.
 #[derive(Debug, Args)]
@@ -137,6 +137,56 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
     if args.user.trim().is_empty() {
         bail!("--user must name the user");
     }
+    let mut fit = fit_options(&args)?;
+    if let Some(session) = &args.from {
+        return fit_recorded(fit, session);
+    }
+    let session_out = session_log_path(&args, &fit.out)?;
+    check_glove_wait(args.glove_wait_s)?;
+    let script = args
+        .script
+        .as_deref()
+        .map(load_calibration_script)
+        .transpose()?;
+    let session = session_options(&args, &fit, &session_out);
+    let user = simulated_user(&args)?;
+    let bad_pose = args
+        .simulate_bad_pose
+        .as_deref()
+        .and_then(|name| calibration::POSE_NAMES.iter().position(|p| *p == name));
+    if let Some(user) = &user {
+        fit.source = Some(simulated_source(&args, user, &session_out));
+    }
+    let domain = args
+        .domain_id
+        .unwrap_or_else(crate::demo::default_domain_id);
+    let setup = console_setup(&args, &fit, user.as_ref(), domain, &session_out);
+    let mut front = ConsoleFront::open(args.plain, script, setup)?;
+    let fit_in_console = FitOptions {
+        verbose: false,
+        ..fit.clone()
+    };
+    let run = ConsoleSession {
+        session,
+        user,
+        bad_pose,
+        domain,
+        fit_in_console,
+    };
+    let report = run_in_console(&args, run, &mut front);
+    // Leave the full screen before printing.
+    drop(front);
+    let report = report?;
+    print_session_report(&report, &fit.out);
+    if let Some(user) = &user {
+        print_recovery(user, &fit, &report.fit.profile)?;
+    }
+    Ok(())
+}
+
+/// The fit's options from the flags: the station configuration, the calibration settings,
+/// the profile's path, the user and the glove (the session is set later).
+fn fit_options(args: &CalibrateArgs) -> anyhow::Result<FitOptions> {
     let station = crate::station_setup::load_station_config(args.config.as_deref(), None)?;
     let settings = match &args.settings {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
@@ -147,7 +197,7 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
         Some(path) => path.clone(),
         None => default_profile_path(&args.user)?,
     };
-    let mut fit = FitOptions {
+    Ok(FitOptions {
         session: PathBuf::new(),
         user: args.user.clone(),
         glove: args.glove.clone().unwrap_or_else(|| {
@@ -158,80 +208,97 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
             }
             .to_string()
         }),
-        out: out.clone(),
-        station: station.clone(),
+        out,
+        station,
         settings,
         source: None,
         verbose: true,
-    };
-    if let Some(session) = &args.from {
-        fit.session = session.clone();
-        let profile = fit_session(&fit)?;
-        println!("wrote {} (user {})", out.display(), profile.user);
-        return Ok(());
-    }
+    })
+}
+
+/// `--from`: fits a recorded session.
+fn fit_recorded(mut fit: FitOptions, session: &Path) -> anyhow::Result<()> {
+    fit.session = session.to_path_buf();
+    let profile = fit_session(&fit)?;
+    println!("wrote {} (user {})", fit.out.display(), profile.user);
+    Ok(())
+}
+
+/// Where the session is recorded (`--session-out`, or beside the profile `out`); its
+/// directory is created.
+fn session_log_path(args: &CalibrateArgs, out: &Path) -> anyhow::Result<PathBuf> {
     let session_out = args
         .session_out
         .clone()
-        .unwrap_or_else(|| session_path(&out));
+        .unwrap_or_else(|| session_path(out));
     if let Some(dir) = session_out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    if !(args.glove_wait_s > 0.0 && args.glove_wait_s <= 600.0) {
-        bail!(
-            "--glove-wait-s {} must be in (0, 600] seconds",
-            args.glove_wait_s
-        );
+    Ok(session_out)
+}
+
+fn check_glove_wait(glove_wait_s: f64) -> anyhow::Result<()> {
+    if !(glove_wait_s > 0.0 && glove_wait_s <= 600.0) {
+        bail!("--glove-wait-s {glove_wait_s} must be in (0, 600] seconds");
     }
-    let script = args
-        .script
-        .as_deref()
-        .map(load_calibration_script)
-        .transpose()?;
-    let session = SessionOptions {
-        station: station.clone(),
+    Ok(())
+}
+
+/// The session node's options: the station, the capture schedule and thresholds, the log.
+fn session_options(args: &CalibrateArgs, fit: &FitOptions, session_out: &Path) -> SessionOptions {
+    SessionOptions {
+        station: fit.station.clone(),
         schedule: CaptureSchedule::default(),
         thresholds: fit.settings.capture,
-        out: session_out.clone(),
+        out: session_out.to_path_buf(),
         glove_wait: Duration::from_secs_f64(args.glove_wait_s),
         metadata: BTreeMap::from([
             ("user".to_string(), args.user.clone()),
             ("glove".to_string(), fit.glove.clone()),
         ]),
-    };
-    let user = if args.simulate {
-        Some(synthetic_user(
+    }
+}
+
+/// `--simulate`: the synthetic user of the flags.
+fn simulated_user(args: &CalibrateArgs) -> anyhow::Result<Option<SyntheticUser>> {
+    if args.simulate {
+        Ok(Some(synthetic_user(
             args.hand_scale,
             args.glove_rpy.unwrap_or([0.0; 3]),
             args.seed,
-        )?)
+        )?))
     } else {
-        None
-    };
-    let bad_pose = args
-        .simulate_bad_pose
-        .as_deref()
-        .and_then(|name| calibration::POSE_NAMES.iter().position(|p| *p == name));
-    if let Some(user) = &user {
-        let [r, p, y] = args.glove_rpy.unwrap_or([0.0; 3]);
-        fit.source = Some(format!(
-            "simulated user (hand scale {}, glove rpy {r},{p},{y} deg, noise {} m, seed {}), session {}",
-            user.hand_scale,
-            SIMULATED_NOISE_M,
-            user.seed,
-            session_out.display()
-        ));
+        Ok(None)
     }
-    let domain = args
-        .domain_id
-        .unwrap_or_else(crate::demo::default_domain_id);
+}
+
+/// The profile's `source` for a simulated user's session.
+fn simulated_source(args: &CalibrateArgs, user: &SyntheticUser, session_out: &Path) -> String {
+    let [r, p, y] = args.glove_rpy.unwrap_or([0.0; 3]);
+    format!(
+        "simulated user (hand scale {}, glove rpy {r},{p},{y} deg, noise {} m, seed {}), session {}",
+        user.hand_scale,
+        SIMULATED_NOISE_M,
+        user.seed,
+        session_out.display()
+    )
+}
+
+/// The console's setup pane; says on stderr which kind of session this is.
+fn console_setup(
+    args: &CalibrateArgs,
+    fit: &FitOptions,
+    user: Option<&SyntheticUser>,
+    domain: u16,
+    session_out: &Path,
+) -> Vec<(String, String)> {
     let mut setup = vec![
         ("user".to_string(), args.user.clone()),
         ("glove".to_string(), fit.glove.clone()),
-        ("profile".to_string(), out.display().to_string()),
+        ("profile".to_string(), fit.out.display().to_string()),
         ("log".to_string(), session_out.display().to_string()),
     ];
-    match &user {
+    match user {
         Some(user) => {
             let intro = format!(
                 "simulated user: hand scale {}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}; loopback DDS, domain {domain}",
@@ -255,12 +322,38 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
             setup.push(("mode".to_string(), "live".to_string()));
         }
     }
-    let mut front = ConsoleFront::open(args.plain, script, setup)?;
-    let fit_in_console = FitOptions {
-        verbose: false,
-        ..fit.clone()
-    };
-    let report = crate::cli::run_async(async {
+    setup
+}
+
+/// A session to run in the console: live, or with a simulated user on loopback.
+struct ConsoleSession {
+    /// The session node's options.
+    session: SessionOptions,
+    /// `--simulate`: the synthetic user.
+    user: Option<SyntheticUser>,
+    /// `--simulate-bad-pose`: the pose the simulated user shakes at first.
+    bad_pose: Option<usize>,
+    /// The simulated session's loopback domain.
+    domain: u16,
+    /// The fit, quiet (its progress shows in the console).
+    fit_in_console: FitOptions,
+}
+
+/// Runs the session (and the simulated user's glove) until the profile is written or the
+/// session ends otherwise.
+fn run_in_console(
+    args: &CalibrateArgs,
+    run: ConsoleSession,
+    front: &mut ConsoleFront,
+) -> anyhow::Result<SessionReport> {
+    let ConsoleSession {
+        session,
+        user,
+        bad_pose,
+        domain,
+        fit_in_console,
+    } = run;
+    crate::cli::run_async(async {
         let shutdown = ctrl_c_shutdown();
         let clock = StationClock::new();
         let model = HandModel::orca_v1_right();
@@ -285,7 +378,7 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
                     &model,
                     clock,
                     Some(cue_tx),
-                    &mut front,
+                    front,
                     fit_in_console,
                     shutdown,
                 )
@@ -304,17 +397,18 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
                     &model,
                     clock,
                     None,
-                    &mut front,
+                    front,
                     fit_in_console,
                     shutdown,
                 )
                 .await
             }
         }
-    });
-    // Leave the full screen before printing.
-    drop(front);
-    let report = report?;
+    })
+}
+
+/// What the session recorded and the fit's table.
+fn print_session_report(report: &SessionReport, out: &Path) {
     let retried: Vec<String> = calibration::POSE_NAMES
         .iter()
         .zip(&report.captures_per_pose)
@@ -335,39 +429,44 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
     for line in &report.fit.table {
         println!("{line}");
     }
-    let profile = report.fit.profile.clone();
-    println!("wrote {} (user {})", out.display(), profile.user);
-    if let Some(user) = &user {
-        let truth = true_transform(user, &fit.station, &fit.settings)?;
-        let got = profile.parameters;
+    println!("wrote {} (user {})", out.display(), report.fit.profile.user);
+}
+
+/// `--simulate`: the recovered transform against the simulated user's true one.
+fn print_recovery(
+    user: &SyntheticUser,
+    fit: &FitOptions,
+    profile: &CalibrationProfile,
+) -> anyhow::Result<()> {
+    let truth = true_transform(user, &fit.station, &fit.settings)?;
+    let got = profile.parameters;
+    println!(
+        "recovered vs true (the user's hand size and glove misalignment on top of the average hand's calibration):"
+    );
+    println!("  {:<10} {:>10} {:>10}", "", "recovered", "true");
+    println!(
+        "  {:<10} {:>10.4} {:>10.4}",
+        "scale", got.scale, truth.scale
+    );
+    for (name, a, b) in [
+        ("roll", got.roll_rad, truth.roll_rad),
+        ("pitch", got.pitch_rad, truth.pitch_rad),
+        ("yaw", got.yaw_rad, truth.yaw_rad),
+    ] {
         println!(
-            "recovered vs true (the user's hand size and glove misalignment on top of the average hand's calibration):"
-        );
-        println!("  {:<10} {:>10} {:>10}", "", "recovered", "true");
-        println!(
-            "  {:<10} {:>10.4} {:>10.4}",
-            "scale", got.scale, truth.scale
-        );
-        for (name, a, b) in [
-            ("roll", got.roll_rad, truth.roll_rad),
-            ("pitch", got.pitch_rad, truth.pitch_rad),
-            ("yaw", got.yaw_rad, truth.yaw_rad),
-        ] {
-            println!(
-                "  {:<10} {:>9.2}° {:>9.2}°",
-                name,
-                a.to_degrees(),
-                b.to_degrees()
-            );
-        }
-        let scale_error = got.scale / truth.scale - 1.0;
-        let rotation_error = (got.rotation().inverse() * truth.rotation())
-            .angle()
-            .to_degrees();
-        println!(
-            "  scale error {:+.1} %, rotation error {rotation_error:.2}° (the acceptance test asks 3 % and 3° for 90 % of users)",
-            100.0 * scale_error
+            "  {:<10} {:>9.2}° {:>9.2}°",
+            name,
+            a.to_degrees(),
+            b.to_degrees()
         );
     }
+    let scale_error = got.scale / truth.scale - 1.0;
+    let rotation_error = (got.rotation().inverse() * truth.rotation())
+        .angle()
+        .to_degrees();
+    println!(
+        "  scale error {:+.1} %, rotation error {rotation_error:.2}° (the acceptance test asks 3 % and 3° for 90 % of users)",
+        100.0 * scale_error
+    );
     Ok(())
 }

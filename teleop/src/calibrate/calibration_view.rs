@@ -127,152 +127,197 @@ impl CalibrationView {
         now_ns: i64,
     ) -> CalibrationView {
         let state = CalState::of(session);
-        let poses = session.poses();
-        let n = poses.len();
-        let current = match *session.phase() {
-            Phase::Settling { pose, attempt, .. }
-            | Phase::Capturing { pose, attempt, .. }
-            | Phase::Review { pose, attempt } => Some((pose, attempt)),
-            _ => None,
-        };
-        let (title, instruction) = match current {
-            Some((k, attempt)) => (
-                format!(
-                    "[{}/{n}] {}{}",
-                    k + 1,
-                    poses[k].name,
-                    if attempt > 1 {
-                        format!(" · capture {attempt}")
-                    } else {
-                        String::new()
-                    }
-                ),
-                poses[k].instruction.clone(),
-            ),
-            None => (
-                "seven poses, then the fit".to_string(),
-                match state {
-                    CalState::WaitingGlove => "Put the glove on and start streaming.".to_string(),
-                    CalState::Fitting => "The fit runs: the user may rest.".to_string(),
-                    _ => String::new(),
-                },
-            ),
-        };
-        let mut detail = Vec::new();
-        let timing = session.timing();
-        let banner = match *session.phase() {
-            Phase::Settling { capture_ns, .. } => {
-                detail.push(format!(
-                    "the hand shows the pose: copy it and settle; capture of {:.1} s in a moment",
-                    timing.capture_s
-                ));
-                format!(
-                    "{}  {:.1} s",
-                    state.banner(),
-                    ((capture_ns - now_ns) as f64 * 1e-9).max(0.0)
-                )
-            }
-            Phase::Capturing { end_ns, .. } => {
-                detail.push("keep the pose still until the capture ends".to_string());
-                format!(
-                    "{}  {:.1} s",
-                    state.banner(),
-                    ((end_ns - now_ns) as f64 * 1e-9).max(0.0)
-                )
-            }
-            Phase::Review { .. } => {
-                let bad = current
-                    .and_then(|(k, _)| session.attempts()[k].last())
-                    .is_some_and(|a| a.quality.level == QualityLevel::Bad);
-                detail.push(if bad {
-                    "bad capture: r captures the pose again".to_string()
-                } else {
-                    "poor capture: space / Enter accepts it · r captures the pose again".to_string()
-                });
-                state.banner().to_string()
-            }
-            Phase::Failed(ref reason) => {
-                detail.push(reason.clone());
-                detail.push("q quits".to_string());
-                state.banner().to_string()
-            }
-            Phase::Complete => {
-                detail.push("q quits".to_string());
-                state.banner().to_string()
-            }
-            _ => state.banner().to_string(),
-        };
-        if let Policy::Automatic { max_attempts } = session.policy() {
-            detail.push(format!(
-                "no operator: poor captures are accepted, bad ones retried (at most {max_attempts} per pose)"
-            ));
-        }
-        let meter = session.last_capture().map(|(k, i)| {
-            let a = &session.attempts()[k][i];
-            (
-                a.quality.meter_fill(),
-                format!(
-                    "{} capture {}: {} · {}",
-                    poses[k].name,
-                    i + 1,
-                    a.quality.level.name().to_uppercase(),
-                    a.quality.summary()
-                ),
-                quality_level(a.quality.level),
-            )
-        });
-        let pose_rows = poses
-            .iter()
-            .zip(session.attempts())
-            .enumerate()
-            .map(|(k, (p, attempts))| {
-                let history: Vec<&str> = attempts.iter().map(|a| a.quality.level.name()).collect();
-                let accepted = attempts.iter().find(|a| a.accepted);
-                let (status, level) = match (accepted, current) {
-                    (Some(a), _) => (
-                        format!("accepted ({})", history.join(", ")),
-                        quality_level(a.quality.level),
-                    ),
-                    (None, Some((c, _))) if c == k => (
-                        if history.is_empty() {
-                            "now".to_string()
-                        } else {
-                            format!("now (so far: {})", history.join(", "))
-                        },
-                        Level::Warn,
-                    ),
-                    _ => ("-".to_string(), Level::Ok),
-                };
-                (p.name.clone(), status, level)
-            })
-            .collect();
-        let progress = session.fit_progress().map(|p| {
-            (
-                if p.budget == 0 {
-                    0.0
-                } else {
-                    (p.done as f64 / p.budget as f64).min(1.0)
-                },
-                format!(
-                    "{}/{} evaluations · best {:.3} rad",
-                    p.done, p.budget, p.best
-                ),
-            )
-        });
+        let current = current_pose(session);
+        let (title, instruction) = pose_title(session, state, current);
+        let (banner, mut detail) = phase_banner(session, state, current, now_ns);
+        detail.extend(policy_line(session));
         CalibrationView {
             state,
             title,
             instruction,
             setup: setup.to_vec(),
-            poses: pose_rows,
+            poses: pose_rows(session, current),
             banner,
             detail,
-            meter,
-            progress,
+            meter: capture_meter(session),
+            progress: fit_progress(session),
             results: results.to_vec(),
             messages: session.messages().map(str::to_string).collect(),
         }
     }
+}
+
+/// The pose and attempt the session is at, while it is at one.
+fn current_pose(session: &PoseSession) -> Option<(usize, u32)> {
+    match *session.phase() {
+        Phase::Settling { pose, attempt, .. }
+        | Phase::Capturing { pose, attempt, .. }
+        | Phase::Review { pose, attempt } => Some((pose, attempt)),
+        _ => None,
+    }
+}
+
+/// The current pose's line and what the user does now.
+fn pose_title(
+    session: &PoseSession,
+    state: CalState,
+    current: Option<(usize, u32)>,
+) -> (String, String) {
+    let poses = session.poses();
+    let n = poses.len();
+    match current {
+        Some((k, attempt)) => (
+            format!(
+                "[{}/{n}] {}{}",
+                k + 1,
+                poses[k].name,
+                if attempt > 1 {
+                    format!(" · capture {attempt}")
+                } else {
+                    String::new()
+                }
+            ),
+            poses[k].instruction.clone(),
+        ),
+        None => (
+            "seven poses, then the fit".to_string(),
+            match state {
+                CalState::WaitingGlove => "Put the glove on and start streaming.".to_string(),
+                CalState::Fitting => "The fit runs: the user may rest.".to_string(),
+                _ => String::new(),
+            },
+        ),
+    }
+}
+
+/// The banner with its clock, and the lines under it.
+fn phase_banner(
+    session: &PoseSession,
+    state: CalState,
+    current: Option<(usize, u32)>,
+    now_ns: i64,
+) -> (String, Vec<String>) {
+    let mut detail = Vec::new();
+    let timing = session.timing();
+    let banner = match *session.phase() {
+        Phase::Settling { capture_ns, .. } => {
+            detail.push(format!(
+                "the hand shows the pose: copy it and settle; capture of {:.1} s in a moment",
+                timing.capture_s
+            ));
+            format!(
+                "{}  {:.1} s",
+                state.banner(),
+                ((capture_ns - now_ns) as f64 * 1e-9).max(0.0)
+            )
+        }
+        Phase::Capturing { end_ns, .. } => {
+            detail.push("keep the pose still until the capture ends".to_string());
+            format!(
+                "{}  {:.1} s",
+                state.banner(),
+                ((end_ns - now_ns) as f64 * 1e-9).max(0.0)
+            )
+        }
+        Phase::Review { .. } => {
+            let bad = current
+                .and_then(|(k, _)| session.attempts()[k].last())
+                .is_some_and(|a| a.quality.level == QualityLevel::Bad);
+            detail.push(if bad {
+                "bad capture: r captures the pose again".to_string()
+            } else {
+                "poor capture: space / Enter accepts it · r captures the pose again".to_string()
+            });
+            state.banner().to_string()
+        }
+        Phase::Failed(ref reason) => {
+            detail.push(reason.clone());
+            detail.push("q quits".to_string());
+            state.banner().to_string()
+        }
+        Phase::Complete => {
+            detail.push("q quits".to_string());
+            state.banner().to_string()
+        }
+        _ => state.banner().to_string(),
+    };
+    (banner, detail)
+}
+
+/// Without an operator: how captures that are not good are decided.
+fn policy_line(session: &PoseSession) -> Option<String> {
+    match session.policy() {
+        Policy::Automatic { max_attempts } => Some(format!(
+            "no operator: poor captures are accepted, bad ones retried (at most {max_attempts} per pose)"
+        )),
+        Policy::Operator => None,
+    }
+}
+
+/// The last capture's meter: fill, line and level.
+fn capture_meter(session: &PoseSession) -> Option<(f64, String, Level)> {
+    let poses = session.poses();
+    session.last_capture().map(|(k, i)| {
+        let a = &session.attempts()[k][i];
+        (
+            a.quality.meter_fill(),
+            format!(
+                "{} capture {}: {} · {}",
+                poses[k].name,
+                i + 1,
+                a.quality.level.name().to_uppercase(),
+                a.quality.summary()
+            ),
+            quality_level(a.quality.level),
+        )
+    })
+}
+
+/// Each pose: its name, its captures so far and whether one was accepted.
+fn pose_rows(session: &PoseSession, current: Option<(usize, u32)>) -> Vec<(String, String, Level)> {
+    session
+        .poses()
+        .iter()
+        .zip(session.attempts())
+        .enumerate()
+        .map(|(k, (p, attempts))| {
+            let history: Vec<&str> = attempts.iter().map(|a| a.quality.level.name()).collect();
+            let accepted = attempts.iter().find(|a| a.accepted);
+            let (status, level) = match (accepted, current) {
+                (Some(a), _) => (
+                    format!("accepted ({})", history.join(", ")),
+                    quality_level(a.quality.level),
+                ),
+                (None, Some((c, _))) if c == k => (
+                    if history.is_empty() {
+                        "now".to_string()
+                    } else {
+                        format!("now (so far: {})", history.join(", "))
+                    },
+                    Level::Warn,
+                ),
+                _ => ("-".to_string(), Level::Ok),
+            };
+            (p.name.clone(), status, level)
+        })
+        .collect()
+}
+
+/// The fit's progress: fraction done and its line.
+fn fit_progress(session: &PoseSession) -> Option<(f64, String)> {
+    session.fit_progress().map(|p| {
+        (
+            if p.budget == 0 {
+                0.0
+            } else {
+                (p.done as f64 / p.budget as f64).min(1.0)
+            },
+            format!(
+                "{}/{} evaluations · best {:.3} rad",
+                p.done, p.budget, p.best
+            ),
+        )
+    })
 }
 
 /// The line console: a line for each change of state and each message, on stderr.

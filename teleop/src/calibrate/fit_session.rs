@@ -16,8 +16,8 @@ use retarget::{EmbodimentCatalog, HandModel};
 use crate::calibrate::profile_file::write_atomically;
 use crate::calibrate::progress_bar::ProgressBar;
 use crate::calibrate::session_frames::read_session;
-use crate::calibrate::utc_date::{iso8601_utc, now_unix_s};
 use crate::mcap_log::TrialReader;
+use crate::utc_date::{iso8601_utc, now_unix_s};
 use station::StationConfig;
 
 /// What a fit needs.

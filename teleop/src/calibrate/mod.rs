@@ -18,7 +18,6 @@
 //! | `calibrate_command.rs` | the `pomdar calibrate` flags and modes |
 //! | `profile_file.rs` | loading a profile for the station, its one-line description, atomic writes |
 //! | `progress_bar.rs` | the fit's progress on stderr |
-//! | `utc_date.rs` | ISO 8601 UTC dates |
 
 pub mod calibrate_command;
 pub mod calibration_console;
@@ -34,4 +33,3 @@ pub mod session_events;
 pub mod session_frames;
 pub mod session_node;
 pub mod simulated_user;
-pub mod utc_date;

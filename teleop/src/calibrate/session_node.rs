@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
-use calibration::{CaptureSchedule, CaptureThresholds, PoseSet};
+use calibration::{CaptureSchedule, CaptureThresholds, FitProgress, PoseSet};
 use futures::StreamExt;
 use msgs::{Float32MultiArray, JointState, PoseArray};
 use retarget::HandModel;
@@ -27,9 +27,12 @@ use tokio::time::Instant;
 use crate::calibrate::calibration_console::{ConsoleFront, FrontAction};
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::fit_session::{FitOptions, FitOutcome, fit_session_with};
-use crate::calibrate::pose_session::{Effect, Phase, PoseSession, PoseStep, SessionTiming};
+use crate::calibrate::pose_session::{
+    CalibrationAction, Effect, Phase, PoseSession, PoseStep, SessionTiming,
+};
 use crate::calibrate::session_events::SESSION_METADATA;
 use crate::clock::StationClock;
+use crate::console::terminal::Input;
 use crate::mcap_log::{OfferedQos, TrialWriter, TrialWriterOptions};
 use crate::ros::NetworkContext as _;
 use crate::ros::RosNode;
@@ -103,7 +106,7 @@ pub async fn run_session(
     clock: StationClock,
     cue: Option<watch::Sender<Option<PoseCue>>>,
     front: &mut ConsoleFront,
-    mut fit: FitOptions,
+    fit: FitOptions,
     mut shutdown: watch::Receiver<bool>,
 ) -> anyhow::Result<SessionReport> {
     options.schedule.validate()?;
@@ -112,14 +115,10 @@ pub async fn run_session(
         capture_s: options.schedule.capture_s,
     };
     let config = &options.station;
-    let pose_set = PoseSet::orca_v1();
-    let targets: Vec<Vec<f64>> = pose_set
-        .poses
-        .iter()
-        .map(|p| p.joint_vector(model))
-        .collect::<Result<_, _>>()?;
+    let targets = pose_targets(model)?;
     let names: Vec<String> = model.dof_names().map(str::to_string).collect();
 
+    // The glove's keypoints in, the hand's pose out, on the station's topics.
     let context = config.network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_calibration")?;
     let topic = config.input.keypoints_topic.clone();
@@ -147,6 +146,84 @@ pub async fn run_session(
     let joint_pub =
         node.publisher::<JointState>(&config.output.joint_targets_topic, config.output.qos)?;
 
+    let writer = open_session_log(&options, model, timing)?;
+    let mut run = SessionRun {
+        options: &options,
+        session: PoseSession::new(
+            pose_steps(),
+            config.retarget.layout,
+            options.thresholds,
+            timing,
+            front.policy(),
+        ),
+        log: SessionLog {
+            writer: Some(writer),
+            frames: 0,
+            path: None,
+        },
+        fit: FitRun::new(fit),
+        hand: HandCommand::new(targets, names),
+        front,
+        cue,
+        cued: None,
+        clock,
+        started: Instant::now(),
+        end: SessionEnd::default(),
+    };
+    let mut tick = tokio::time::interval(Duration::from_millis(50));
+    loop {
+        let mut turn = Turn::default();
+        tokio::select! {
+            changed = shutdown.changed() => {
+                if changed.is_err() || *shutdown.borrow() {
+                    run.end.interrupted = true;
+                }
+            }
+            item = keypoints.next() => {
+                if let Some(Ok((message, source))) = item {
+                    let now = clock.now_ns();
+                    let source_ns = source.map_or(now, |t| t.to_nanos());
+                    turn.effects.extend(run.keypoints_received(&message, now, source_ns)?);
+                }
+            }
+            _ = run.hand.resend.tick() => {
+                if let Some(message) = run.pose_to_resend()? {
+                    joint_pub.async_publish(message).await.ok();
+                }
+            }
+            _ = tick.tick() => {}
+            Some(input) = run.front.next_input() => run.key_pressed(&input, &mut turn.actions),
+            Some(p) = run.fit.progress_rx.recv() => run.session.fit_progressed(p),
+            result = joined(&mut run.fit.task), if run.fit.task.is_some() => {
+                turn.effects.extend(run.fit_finished(result));
+            }
+        }
+        if run.finish_turn(turn)? == Next::Quit {
+            break;
+        }
+    }
+    run.finish()
+}
+
+/// Each pose's joint targets, in capture order.
+fn pose_targets(model: &HandModel) -> anyhow::Result<Vec<Vec<f64>>> {
+    let pose_set = PoseSet::orca_v1();
+    Ok(pose_set
+        .poses
+        .iter()
+        .map(|p| p.joint_vector(model))
+        .collect::<Result<_, _>>()?)
+}
+
+/// Creates the session log (`.part` while recording): the keypoint and joint-target
+/// channels and the session's metadata.
+fn open_session_log(
+    options: &SessionOptions,
+    model: &HandModel,
+    timing: SessionTiming,
+) -> anyhow::Result<TrialWriter> {
+    let config = &options.station;
+    let topic = config.input.keypoints_topic.clone();
     let mut writer = TrialWriter::create(&options.out, TrialWriterOptions::default())?;
     let input_qos = OfferedQos::from(config.input.qos);
     match config.input.keypoints_format {
@@ -181,115 +258,258 @@ pub async fn run_session(
         ),
     ]);
     writer.write_metadata(SESSION_METADATA, metadata)?;
+    Ok(writer)
+}
 
-    let mut session = PoseSession::new(
-        pose_steps(),
-        config.retarget.layout,
-        options.thresholds,
-        timing,
-        front.policy(),
-    );
-    let mut writer = Some(writer);
-    let mut current: Option<usize> = None;
-    let mut cued: Option<PoseCue> = None;
-    let mut frames = 0u64;
-    let (progress_tx, mut progress_rx) = mpsc::unbounded_channel();
-    let mut fit_task: Option<tokio::task::JoinHandle<anyhow::Result<FitOutcome>>> = None;
-    let mut fit_outcome: Option<FitOutcome> = None;
-    let mut session_path: Option<PathBuf> = None;
-    let mut resend = tokio::time::interval(Duration::from_secs_f64(RESEND_S));
-    let mut tick = tokio::time::interval(Duration::from_millis(50));
-    let started = Instant::now();
-    let mut interrupted = false;
-    let mut failure: Option<String> = None;
-    let mut completed = false;
-    loop {
-        let mut effects = Vec::new();
-        let mut actions = Vec::new();
-        tokio::select! {
-            changed = shutdown.changed() => {
-                if changed.is_err() || *shutdown.borrow() {
-                    interrupted = true;
-                }
-            }
-            item = keypoints.next() => {
-                if let Some(Ok((message, source))) = item {
-                    let now = clock.now_ns();
-                    if let Some(w) = writer.as_mut() {
-                        let source_ns = source.map_or(now, |t| t.to_nanos());
-                        match &message {
-                            KeypointMessage::Array(m) => w.write(&topic, now, source_ns, m)?,
-                            KeypointMessage::Poses(m) => w.write(&topic, now, source_ns, m)?,
-                        }
-                        frames += 1;
-                    }
-                    effects.extend(session.frame(message.points(), now));
-                }
-            }
-            _ = resend.tick() => {
-                if let Some(k) = current {
-                    let now = clock.now_ns();
-                    let message = JointState {
-                        header: header(now, ""),
-                        name: names.clone(),
-                        position: targets[k].clone(),
-                        velocity: Vec::new(),
-                        effort: Vec::new(),
-                    };
-                    if let Some(w) = writer.as_mut() {
-                        w.write(&config.output.joint_targets_topic, now, now, &message)?;
-                    }
-                    joint_pub.async_publish(message).await.ok();
-                }
-            }
-            _ = tick.tick() => {}
-            Some(input) = front.next_input() => match ConsoleFront::key_action(&input) {
-                Some(FrontAction::Interrupt) => interrupted = true,
-                Some(FrontAction::Act(a)) => actions.push(a),
-                None => {}
-            },
-            Some(p) = progress_rx.recv() => session.fit_progressed(p),
-            result = async {
-                match fit_task.as_mut() {
-                    Some(task) => task.await,
-                    None => std::future::pending().await,
-                }
-            }, if fit_task.is_some() => {
-                fit_task = None;
-                let outcome = match result {
-                    Ok(Ok(outcome)) => Ok(outcome),
-                    Ok(Err(e)) => Err(format!("{e:#}")),
-                    Err(e) => Err(format!("the fit task failed: {e}")),
-                };
-                let line = outcome.as_ref().map(|o| format!("profile written: {} (user {})", fit.out.display(), o.profile.user)).map_err(Clone::clone);
-                if let Ok(o) = &outcome {
-                    let mut lines = o.table.clone();
-                    lines.push(format!("profile: {}", fit.out.display()));
-                    front.set_results(lines);
-                }
-                fit_outcome = outcome.ok();
-                effects.extend(session.fit_finished(line));
-            }
+/// The fit task's result, once it has ended (pending while there is none).
+async fn joined<T>(
+    task: &mut Option<tokio::task::JoinHandle<T>>,
+) -> Result<T, tokio::task::JoinError> {
+    match task.as_mut() {
+        Some(task) => task.await,
+        None => std::future::pending().await,
+    }
+}
+
+/// What happens after a turn of the session's loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Next {
+    /// Wait for the next key, frame, tick or fit result.
+    Continue,
+    /// Leave the console.
+    Quit,
+}
+
+/// What one wake-up of the session's loop brought: the operator's actions and the session's
+/// effects so far.
+#[derive(Default)]
+struct Turn {
+    actions: Vec<CalibrationAction>,
+    effects: Vec<Effect>,
+}
+
+/// The session log while it is written.
+struct SessionLog {
+    /// The log, until it is finished (for the fit, or at the end).
+    writer: Option<TrialWriter>,
+    /// Keypoint messages logged.
+    frames: u64,
+    /// The finished log.
+    path: Option<PathBuf>,
+}
+
+/// The pose the hand is sent to, re-sent every [`RESEND_S`].
+struct HandCommand {
+    /// Each pose's joint targets.
+    targets: Vec<Vec<f64>>,
+    /// The hand's joint names.
+    names: Vec<String>,
+    /// The pose being commanded.
+    current: Option<usize>,
+    /// When to re-send it.
+    resend: tokio::time::Interval,
+}
+
+/// The fit, once the session is recorded.
+struct FitRun {
+    /// What to fit and where the profile goes (`session` is set to the log).
+    options: FitOptions,
+    /// The fit's progress, from its blocking task.
+    progress_tx: mpsc::UnboundedSender<FitProgress>,
+    progress_rx: mpsc::UnboundedReceiver<FitProgress>,
+    /// The running fit.
+    task: Option<tokio::task::JoinHandle<anyhow::Result<FitOutcome>>>,
+    /// Its result.
+    outcome: Option<FitOutcome>,
+}
+
+/// How the session ends.
+#[derive(Default)]
+struct SessionEnd {
+    /// Ctrl-C or the shutdown signal.
+    interrupted: bool,
+    /// A script that timed out or ended at a review.
+    failure: Option<String>,
+    /// The session quit complete.
+    completed: bool,
+}
+
+/// A running session: the pose session, its log, the hand, the fit and the console.
+struct SessionRun<'a> {
+    options: &'a SessionOptions,
+    /// The session pose by pose (pure).
+    session: PoseSession,
+    log: SessionLog,
+    hand: HandCommand,
+    fit: FitRun,
+    /// The operator's side.
+    front: &'a mut ConsoleFront,
+    /// The pose and attempt a simulated user follows, and the last sent.
+    cue: Option<watch::Sender<Option<PoseCue>>>,
+    cued: Option<PoseCue>,
+    clock: StationClock,
+    /// When the session started waiting for the glove.
+    started: Instant,
+    end: SessionEnd,
+}
+
+impl HandCommand {
+    fn new(targets: Vec<Vec<f64>>, names: Vec<String>) -> HandCommand {
+        HandCommand {
+            targets,
+            names,
+            current: None,
+            resend: tokio::time::interval(Duration::from_secs_f64(RESEND_S)),
         }
-        let now = clock.now_ns();
-        if interrupted {
-            if let Some(mut w) = writer.take() {
-                w.write_event(now, &json!({"event": "abort", "reason": "interrupted"}))?;
-                let finished = w.finish()?;
-                bail!(
-                    "calibration session interrupted; partial log {}",
-                    finished.path.display()
-                );
+    }
+}
+
+impl FitRun {
+    fn new(options: FitOptions) -> FitRun {
+        let (progress_tx, progress_rx) = mpsc::unbounded_channel();
+        FitRun {
+            options,
+            progress_tx,
+            progress_rx,
+            task: None,
+            outcome: None,
+        }
+    }
+}
+
+impl SessionRun<'_> {
+    /// A keypoint message: logged at its receive time `now` and given to the session.
+    fn keypoints_received(
+        &mut self,
+        message: &KeypointMessage,
+        now: i64,
+        source_ns: i64,
+    ) -> anyhow::Result<Vec<Effect>> {
+        let topic = &self.options.station.input.keypoints_topic;
+        if let Some(w) = self.log.writer.as_mut() {
+            match message {
+                KeypointMessage::Array(m) => w.write(topic, now, source_ns, m)?,
+                KeypointMessage::Poses(m) => w.write(topic, now, source_ns, m)?,
             }
+            self.log.frames += 1;
+        }
+        Ok(self.session.frame(message.points(), now))
+    }
+
+    /// The commanded pose to send again (logged), if the hand is being sent to one.
+    fn pose_to_resend(&mut self) -> anyhow::Result<Option<JointState>> {
+        let Some(k) = self.hand.current else {
+            return Ok(None);
+        };
+        let config = &self.options.station;
+        let now = self.clock.now_ns();
+        let message = JointState {
+            header: header(now, ""),
+            name: self.hand.names.clone(),
+            position: self.hand.targets[k].clone(),
+            velocity: Vec::new(),
+            effort: Vec::new(),
+        };
+        if let Some(w) = self.log.writer.as_mut() {
+            w.write(&config.output.joint_targets_topic, now, now, &message)?;
+        }
+        Ok(Some(message))
+    }
+
+    /// A key: an action on the session, or Ctrl-C.
+    fn key_pressed(&mut self, input: &Input, actions: &mut Vec<CalibrationAction>) {
+        match ConsoleFront::key_action(input) {
+            Some(FrontAction::Interrupt) => self.end.interrupted = true,
+            Some(FrontAction::Act(a)) => actions.push(a),
+            None => {}
+        }
+    }
+
+    /// The fit task ended: its table in the console, its line and outcome to the session.
+    fn fit_finished(
+        &mut self,
+        result: Result<anyhow::Result<FitOutcome>, tokio::task::JoinError>,
+    ) -> Vec<Effect> {
+        let fit = &self.fit.options;
+        self.fit.task = None;
+        let outcome = match result {
+            Ok(Ok(outcome)) => Ok(outcome),
+            Ok(Err(e)) => Err(format!("{e:#}")),
+            Err(e) => Err(format!("the fit task failed: {e}")),
+        };
+        let line = outcome
+            .as_ref()
+            .map(|o| {
+                format!(
+                    "profile written: {} (user {})",
+                    fit.out.display(),
+                    o.profile.user
+                )
+            })
+            .map_err(Clone::clone);
+        if let Ok(o) = &outcome {
+            let mut lines = o.table.clone();
+            lines.push(format!("profile: {}", fit.out.display()));
+            self.front.set_results(lines);
+        }
+        self.fit.outcome = outcome.ok();
+        self.session.fit_finished(line)
+    }
+
+    /// The rest of a turn after a wake-up: an interruption or a glove that never came ends
+    /// the session; the script's and the operator's actions and the clock go to the session,
+    /// its effects are carried out, the simulated user cued, the console shown.
+    fn finish_turn(&mut self, mut turn: Turn) -> anyhow::Result<Next> {
+        let now = self.clock.now_ns();
+        self.stop_if_interrupted(now)?;
+        self.stop_if_no_glove()?;
+        self.play_script(&mut turn.actions);
+        for action in turn.actions {
+            turn.effects.extend(self.session.act(action, now));
+        }
+        turn.effects.extend(self.session.tick(now));
+        let mut next = self.carry_out(turn.effects)?;
+        self.cue_pose();
+        if next == Next::Continue {
+            next = self.after_the_script();
+        }
+        self.front.show(&self.session, now)?;
+        Ok(next)
+    }
+
+    /// Ctrl-C or the shutdown: the log is finished as aborted (or, during the fit, kept) and
+    /// the session ends with an error.
+    fn stop_if_interrupted(&mut self, now: i64) -> anyhow::Result<()> {
+        if !self.end.interrupted {
+            return Ok(());
+        }
+        if let Some(mut w) = self.log.writer.take() {
+            w.write_event(now, &json!({"event": "abort", "reason": "interrupted"}))?;
+            let finished = w.finish()?;
             bail!(
-                "calibration interrupted during the fit; the session is kept in {}: fit it again with --from",
-                session_path
-                    .as_ref()
-                    .map_or(String::new(), |p| p.display().to_string())
+                "calibration session interrupted; partial log {}",
+                finished.path.display()
             );
         }
-        if *session.phase() == Phase::WaitingGlove && started.elapsed() > options.glove_wait {
-            if let Some(w) = writer.take() {
+        bail!(
+            "calibration interrupted during the fit; the session is kept in {}: fit it again with --from",
+            self.log
+                .path
+                .as_ref()
+                .map_or(String::new(), |p| p.display().to_string())
+        );
+    }
+
+    /// No glove keypoints within the wait: the empty log is removed and the session ends
+    /// with an error.
+    fn stop_if_no_glove(&mut self) -> anyhow::Result<()> {
+        let options = self.options;
+        let config = &options.station;
+        let topic = &config.input.keypoints_topic;
+        if *self.session.phase() == Phase::WaitingGlove
+            && self.started.elapsed() > options.glove_wait
+        {
+            if let Some(w) = self.log.writer.take() {
                 drop(w.finish());
             }
             std::fs::remove_file(&options.out).ok();
@@ -299,122 +519,157 @@ pub async fn run_session(
                 crate::ros::domain_id(config.network.domain_id)?
             );
         }
-        match front.script_action(CalState::of(&session)) {
+        Ok(())
+    }
+
+    /// The script's due action; a script that timed out quits the session as a failure.
+    fn play_script(&mut self, actions: &mut Vec<CalibrationAction>) {
+        match self.front.script_action(CalState::of(&self.session)) {
             Ok(Some(a)) => actions.push(a),
             Ok(None) => {}
             Err(e) => {
-                session.say(e.clone());
-                failure = Some(e);
-                actions.push(crate::calibrate::pose_session::CalibrationAction::Quit);
+                self.session.say(e.clone());
+                self.end.failure = Some(e);
+                actions.push(CalibrationAction::Quit);
             }
         }
-        for action in actions {
-            effects.extend(session.act(action, now));
-        }
-        effects.extend(session.tick(now));
-        let mut quit = false;
+    }
+
+    /// Carries out the session's effects: the pose to command, log events, the fit, quitting.
+    fn carry_out(&mut self, effects: Vec<Effect>) -> anyhow::Result<Next> {
+        let mut next = Next::Continue;
         for effect in effects {
             match effect {
                 Effect::Command(k) => {
-                    current = Some(k);
-                    resend.reset_immediately();
+                    self.hand.current = Some(k);
+                    self.hand.resend.reset_immediately();
                 }
                 Effect::Log { at_ns, event } => {
-                    if let Some(w) = writer.as_mut() {
+                    if let Some(w) = self.log.writer.as_mut() {
                         w.write_event(at_ns, &event)?;
                     }
                 }
                 Effect::Fit { .. } => {
-                    current = None;
-                    if let Some(w) = writer.take() {
-                        let finished = w.finish().context("finishing the session log")?;
-                        session.say(format!("session recorded: {}", finished.path.display()));
-                        fit.session = finished.path.clone();
-                        session_path = Some(finished.path);
-                        let options = fit.clone();
-                        let tx = progress_tx.clone();
-                        fit_task = Some(tokio::task::spawn_blocking(move || {
-                            fit_session_with(&options, &mut |p| {
-                                tx.send(p).ok();
-                            })
-                        }));
-                    }
+                    self.hand.current = None;
+                    self.start_fit()?;
                 }
                 Effect::Quit { completed: done } => {
-                    quit = true;
-                    completed = done;
+                    next = Next::Quit;
+                    self.end.completed = done;
                 }
             }
         }
-        if let Phase::Settling { pose, attempt, .. } = *session.phase() {
+        Ok(next)
+    }
+
+    /// Every pose accepted: the log is finished and fitted in a blocking task, its progress
+    /// sent back.
+    fn start_fit(&mut self) -> anyhow::Result<()> {
+        let Some(w) = self.log.writer.take() else {
+            return Ok(());
+        };
+        let finished = w.finish().context("finishing the session log")?;
+        self.session
+            .say(format!("session recorded: {}", finished.path.display()));
+        self.fit.options.session = finished.path.clone();
+        self.log.path = Some(finished.path);
+        let options = self.fit.options.clone();
+        let tx = self.fit.progress_tx.clone();
+        self.fit.task = Some(tokio::task::spawn_blocking(move || {
+            fit_session_with(&options, &mut |p| {
+                tx.send(p).ok();
+            })
+        }));
+        Ok(())
+    }
+
+    /// A simulated user is told each new pose and attempt.
+    fn cue_pose(&mut self) {
+        if let Phase::Settling { pose, attempt, .. } = *self.session.phase() {
             let now_cue = PoseCue { pose, attempt };
-            if cued != Some(now_cue) {
-                cued = Some(now_cue);
-                if let Some(cue) = &cue {
+            if self.cued != Some(now_cue) {
+                self.cued = Some(now_cue);
+                if let Some(cue) = &self.cue {
                     cue.send(Some(now_cue)).ok();
                 }
             }
         }
-        // A script that has ended decides nothing more: a finished session ends the console,
-        // a capture left under review is an error.
-        if front.script_finished() == Some(true) && !quit {
-            match CalState::of(&session) {
-                CalState::Complete => {
-                    quit = true;
-                    completed = true;
-                }
-                CalState::Failed => quit = true,
-                CalState::Review => {
-                    let e = "the script ended with a capture under review: add 'retry' or 'accept'"
-                        .to_string();
-                    session.say(e.clone());
-                    failure = Some(e);
-                    quit = true;
-                }
-                _ => {}
+    }
+
+    /// A script that has ended decides nothing more: a finished session ends the console,
+    /// a capture left under review is an error.
+    fn after_the_script(&mut self) -> Next {
+        if self.front.script_finished() != Some(true) {
+            return Next::Continue;
+        }
+        match CalState::of(&self.session) {
+            CalState::Complete => {
+                self.end.completed = true;
+                Next::Quit
             }
-        }
-        front.show(&session, now)?;
-        if quit {
-            break;
+            CalState::Failed => Next::Quit,
+            CalState::Review => {
+                let e = "the script ended with a capture under review: add 'retry' or 'accept'"
+                    .to_string();
+                self.session.say(e.clone());
+                self.end.failure = Some(e);
+                Next::Quit
+            }
+            _ => Next::Continue,
         }
     }
-    if let Some(mut w) = writer.take() {
-        if failure.is_some() {
-            w.write_event(
-                clock.now_ns(),
-                &json!({"event": "abort", "reason": failure.clone()}),
-            )?;
+
+    /// The session has quit: the log is finished (as aborted after a failure) and the
+    /// session's outcome returned.
+    fn finish(mut self) -> anyhow::Result<SessionReport> {
+        let failure = self.end.failure.take();
+        if let Some(mut w) = self.log.writer.take() {
+            if failure.is_some() {
+                w.write_event(
+                    self.clock.now_ns(),
+                    &json!({"event": "abort", "reason": failure.clone()}),
+                )?;
+            }
+            let finished = w.finish()?;
+            self.log.path = Some(finished.path);
         }
-        let finished = w.finish()?;
-        session_path = Some(finished.path);
-    }
-    let path = session_path.unwrap_or_else(|| options.out.clone());
-    if let Some(reason) = failure {
-        bail!("{reason}; the session log is kept in {}", path.display());
-    }
-    match (completed, fit_outcome, session.phase()) {
-        (true, Some(fit), _) => {
-            let accepted = |k: usize| session.attempts()[k].iter().find(|a| a.accepted);
-            Ok(SessionReport {
-                path,
-                frames_per_pose: (0..session.poses().len())
-                    .map(|k| accepted(k).map_or(0, |a| a.quality.frames))
-                    .collect(),
-                captures_per_pose: session.attempts().iter().map(Vec::len).collect(),
-                frames,
-                fit,
-            })
+        let path = self
+            .log
+            .path
+            .take()
+            .unwrap_or_else(|| self.options.out.clone());
+        if let Some(reason) = failure {
+            bail!("{reason}; the session log is kept in {}", path.display());
         }
-        (_, _, Phase::Failed(reason)) => {
-            bail!(
-                "{reason}; the session log is kept in {} (once the problem is fixed, fit it again with --from if every pose was accepted)",
+        self.report(path)
+    }
+
+    /// The report of a complete session with its fit; otherwise why there is none.
+    fn report(self, path: PathBuf) -> anyhow::Result<SessionReport> {
+        let session = &self.session;
+        match (self.end.completed, self.fit.outcome, session.phase()) {
+            (true, Some(fit), _) => {
+                let accepted = |k: usize| session.attempts()[k].iter().find(|a| a.accepted);
+                Ok(SessionReport {
+                    path,
+                    frames_per_pose: (0..session.poses().len())
+                        .map(|k| accepted(k).map_or(0, |a| a.quality.frames))
+                        .collect(),
+                    captures_per_pose: session.attempts().iter().map(Vec::len).collect(),
+                    frames: self.log.frames,
+                    fit,
+                })
+            }
+            (_, _, Phase::Failed(reason)) => {
+                bail!(
+                    "{reason}; the session log is kept in {} (once the problem is fixed, fit it again with --from if every pose was accepted)",
+                    path.display()
+                )
+            }
+            _ => bail!(
+                "calibration session abandoned; its log is kept in {}",
                 path.display()
-            )
+            ),
         }
-        _ => bail!(
-            "calibration session abandoned; its log is kept in {}",
-            path.display()
-        ),
     }
 }

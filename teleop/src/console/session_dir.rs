@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::mcap_log::recover;
+use crate::utc_date::{compact_utc, now_unix_s};
 
 use super::manifest::{MANIFEST_FILE, MANIFEST_FORMAT, Manifest, ManifestTrial, TrialStatus};
 

@@ -12,10 +12,11 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
-use scoring::ArmConstraint;
+use scoring::{ArmConstraint, TaskSpec};
+use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
+use tokio::task::JoinHandle;
 
-use crate::calibrate::utc_date::{compact_utc, now_unix_s};
 use crate::cli::NodeArgs;
 use crate::clock::StationClock;
 use crate::demo::default_domain_id;
@@ -26,9 +27,9 @@ use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station_node::recorder::{RecordingOptions, config_digest};
 use crate::station_node::ros_node::{
-    OperatorCommand, StationEvent, StationHooks, run_station_observed,
+    OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
 };
-use crate::station_setup::{build_station, load_station_config};
+use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
 use station::arm::Constraint;
 
@@ -37,11 +38,11 @@ use super::keys::{Action, key_action, parse_action};
 use super::manifest::{MANIFEST_FILE, TrialStatus};
 use super::plain_output::PlainOutput;
 use super::screen::draw;
-use super::script::load_script;
+use super::script::{TrialScriptLine, load_script};
 use super::script_player::ScriptPlayer;
 use super::session_dir::{SessionPlan, check_name, open_session, session_dir};
 use super::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
-use super::trial_flow::{Effect, Phase, TrialFlow};
+use super::trial_flow::{Effect, Phase, Slot, TrialFlow};
 use super::view::{ConsoleView, Screen, SessionInfo};
 
 /// Exit status after Ctrl-C (or SIGTERM).
@@ -141,56 +142,16 @@ enum Prompt {
 
 /// `pomdar trial`.
 pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
-    check_name("--user", &args.user)?;
-    check_name("--operator", &args.operator)?;
-    check_name("--embodiment", &args.embodiment)?;
-    check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
-    check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
-    check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
+    check_args(&args)?;
     let inputs = args.scoring.load()?;
-    let task = inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
-        anyhow::anyhow!(
-            "--task {:?} is not in the {} ({})",
-            args.task,
-            inputs.catalog.origin,
-            inputs.catalog.ids()
-        )
-    })?;
-    let mut config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
-    config.network = args.node.network(&config.network);
-    if args.simulate {
-        config.network = NetworkConfig {
-            domain_id: Some(args.node.domain_id.unwrap_or_else(default_domain_id)),
-            interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
-        };
-    }
-    config.retarget.embodiment.clone_from(&args.embodiment);
-    config.arm.constraint = station_constraint(task.arm);
-    config.control.auto_engage = false;
-    config.validate()?;
+    let task = task_of(&args, &inputs)?;
+    let config = station_config_for(&args, &task)?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
-    build_station(&config, model.clone())?;
+    crate::station_setup::build_station(&config, model.clone())?;
     let script = args.script.as_deref().map(load_script).transpose()?;
 
-    let plan = SessionPlan {
-        task: task.id.clone(),
-        embodiment: args.embodiment.clone(),
-        user: args.user.clone(),
-        operator: args.operator.clone(),
-        practice: args.practice,
-        trials: args.trials,
-        calibration_profile: config
-            .calibration_profile
-            .as_ref()
-            .map(|p| p.display().to_string()),
-        config_digest: config_digest(&config),
-        baseline: args
-            .scoring
-            .baseline
-            .as_ref()
-            .map(|p| p.display().to_string()),
-    };
+    let plan = session_plan(&args, &task, &config);
     let dir = session_dir(&args.out, &plan);
     let (manifest, opened) = open_session(&dir, &plan)?;
     let limits = StartLimits {
@@ -202,12 +163,114 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     for line in opened {
         flow.say(line);
     }
+    let info = session_info(&args, &plan, &config, &dir, &inputs, task, limits)?;
+
+    // The station (and, with --simulate, the glove and the robot).
+    let clock = StationClock::new();
+    let station = spawn_station(&args, &config, &model, clock)?;
+    let operator = OperatorSide::open(args.plain, script)?;
+    let mut console = TrialConsole {
+        operator,
+        wakeups: Wakeups::start()?,
+        session: Session {
+            flow,
+            health: Health::default(),
+            info,
+            inputs,
+            manifest_path: dir.join(MANIFEST_FILE),
+            dir,
+            report_written: false,
+        },
+        station,
+        clock,
+        end: ConsoleEnd::default(),
+    };
+    console.run().await?;
+    console.finish().await
+}
+
+/// The names and ranges of the flags.
+fn check_args(args: &TrialArgs) -> anyhow::Result<()> {
+    check_name("--user", &args.user)?;
+    check_name("--operator", &args.operator)?;
+    check_name("--embodiment", &args.embodiment)?;
+    check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
+    check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
+    check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
+    Ok(())
+}
+
+/// The `--task` in the catalog.
+fn task_of(args: &TrialArgs, inputs: &ScoringInputs) -> anyhow::Result<TaskSpec> {
+    inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
+        anyhow::anyhow!(
+            "--task {:?} is not in the {} ({})",
+            args.task,
+            inputs.catalog.origin,
+            inputs.catalog.ids()
+        )
+    })
+}
+
+/// The station's configuration for this session: the file (or the preset) with the profile,
+/// the network (loopback with `--simulate`), the embodiment and the task's arm constraint;
+/// engaged by the operator only.
+fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<StationConfig> {
+    let mut config =
+        crate::station_setup::load_station_config(args.config.as_deref(), args.profile.as_deref())?;
+    config.network = args.node.network(&config.network);
+    if args.simulate {
+        config.network = NetworkConfig {
+            domain_id: Some(args.node.domain_id.unwrap_or_else(default_domain_id)),
+            interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
+        };
+    }
+    config.retarget.embodiment.clone_from(&args.embodiment);
+    config.arm.constraint = station_constraint(task.arm);
+    config.control.auto_engage = false;
+    config.validate()?;
+    Ok(config)
+}
+
+/// What the session is: its task, embodiment, people, plan and the files it depends on.
+fn session_plan(args: &TrialArgs, task: &TaskSpec, config: &StationConfig) -> SessionPlan {
+    SessionPlan {
+        task: task.id.clone(),
+        embodiment: args.embodiment.clone(),
+        user: args.user.clone(),
+        operator: args.operator.clone(),
+        practice: args.practice,
+        trials: args.trials,
+        calibration_profile: config
+            .calibration_profile
+            .as_ref()
+            .map(|p| p.display().to_string()),
+        config_digest: config_digest(config),
+        baseline: args
+            .scoring
+            .baseline
+            .as_ref()
+            .map(|p| p.display().to_string()),
+    }
+}
+
+/// The setting the console shows all session long: the task, the setup, the baseline and
+/// the start limits.
+fn session_info(
+    args: &TrialArgs,
+    plan: &SessionPlan,
+    config: &StationConfig,
+    dir: &Path,
+    inputs: &ScoringInputs,
+    task: TaskSpec,
+    limits: StartLimits,
+) -> anyhow::Result<SessionInfo> {
     let baseline_s = inputs
         .baseline
         .as_ref()
         .and_then(|b| b.get(&task.id))
         .map(|b| b.mean_s);
-    let info = SessionInfo {
+    Ok(SessionInfo {
         setup: vec![
             ("user".into(), args.user.clone()),
             ("operator".into(), args.operator.clone()),
@@ -246,15 +309,40 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
         task,
         baseline_s,
         limits,
-    };
+    })
+}
 
-    // The station (and, with --simulate, the glove and the robot).
-    let clock = StationClock::new();
+/// The station running in this process (and, with `--simulate`, the glove and the robot):
+/// what the console holds of it.
+struct StationHandles {
+    /// The station's task; its summary when it stops.
+    task: JoinHandle<anyhow::Result<StationSummary>>,
+    /// Commands to the station.
+    operator_tx: mpsc::UnboundedSender<OperatorCommand>,
+    /// The station's status, as published.
+    status_rx: watch::Receiver<Option<serde_json::Value>>,
+    /// Trial log starts and ends, and messages for the operator.
+    events_rx: mpsc::UnboundedReceiver<StationEvent>,
+    /// Stops the station and the simulation.
+    shutdown_tx: watch::Sender<bool>,
+    _shutdown_rx: watch::Receiver<bool>,
+    /// `--simulate`: the hand's, the arm's and the glove's tasks.
+    simulated: Vec<JoinHandle<anyhow::Result<()>>>,
+}
+
+/// Starts the station (status and trial-log events back to the console) and, with
+/// `--simulate`, the glove and the robot.
+fn spawn_station(
+    args: &TrialArgs,
+    config: &StationConfig,
+    model: &HandModel,
+    clock: StationClock,
+) -> anyhow::Result<StationHandles> {
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (operator_tx, operator_rx) = mpsc::unbounded_channel();
-    let (status_tx, mut status_rx) = watch::channel(None);
-    let (events_tx, mut events_rx) = mpsc::unbounded_channel();
-    let mut station = tokio::spawn(run_station_observed(
+    let (status_tx, status_rx) = watch::channel(None);
+    let (events_tx, events_rx) = mpsc::unbounded_channel();
+    let station = tokio::spawn(run_station_observed(
         config.clone(),
         model.clone(),
         clock,
@@ -268,190 +356,79 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     ));
     let mut simulated = Vec::new();
     if args.simulate {
-        simulated = spawn_simulation(&config, &model, clock, &shutdown_rx)?;
+        simulated = spawn_simulation(config, model, clock, &shutdown_rx)?;
+    }
+    Ok(StationHandles {
+        task: station,
+        operator_tx,
+        status_rx,
+        events_rx,
+        shutdown_tx,
+        _shutdown_rx: shutdown_rx,
+        simulated,
+    })
+}
+
+/// The operator's side: where the console shows itself and where its actions come from.
+struct OperatorSide {
+    display: Display,
+    /// Whether the console is full-screen (a keyboard says q).
+    full_screen: bool,
+    /// Keys, or lines of stdin.
+    input_rx: mpsc::UnboundedReceiver<Input>,
+    _keep_open: mpsc::UnboundedSender<Input>,
+    /// `--script`.
+    player: Option<ScriptPlayer<Action, Screen>>,
+    scripted: bool,
+    /// A prompt being typed (full-screen).
+    prompt: Option<(Prompt, String)>,
+    /// When the console started (the line console's time).
+    started: Instant,
+}
+
+impl OperatorSide {
+    /// Full-screen when wanted (not `plain`, on a terminal), else lines; the line console
+    /// without a script reads commands from stdin.
+    fn open(plain: bool, script: Option<Vec<TrialScriptLine>>) -> anyhow::Result<OperatorSide> {
+        let (input_tx, input_rx) = mpsc::unbounded_channel();
+        let full_screen = full_screen_wanted(plain);
+        let display = if full_screen {
+            Display::Full(FullScreen::enter(input_tx.clone())?)
+        } else {
+            if script.is_none() {
+                read_stdin_lines(input_tx.clone())?;
+                eprintln!(
+                    "pomdar trial: line console; type commands, one per line: {}",
+                    super::keys::ACTION_WORDS
+                        .iter()
+                        .map(|(w, _)| *w)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+            }
+            Display::Plain(PlainOutput::default())
+        };
+        let player = script.map(|s| ScriptPlayer::new(s, Instant::now()));
+        let scripted = player.is_some();
+        Ok(OperatorSide {
+            display,
+            full_screen,
+            input_rx,
+            _keep_open: input_tx,
+            player,
+            scripted,
+            prompt: None,
+            started: Instant::now(),
+        })
     }
 
-    let (input_tx, mut input_rx) = mpsc::unbounded_channel();
-    let full_screen = full_screen_wanted(args.plain);
-    let mut display = if full_screen {
-        Display::Full(FullScreen::enter(input_tx.clone())?)
-    } else {
-        if script.is_none() {
-            read_stdin_lines(input_tx.clone())?;
-            eprintln!(
-                "pomdar trial: line console; type commands, one per line: {}",
-                super::keys::ACTION_WORDS
-                    .iter()
-                    .map(|(w, _)| *w)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-        }
-        Display::Plain(PlainOutput::default())
-    };
-    let mut player = script.map(|s| ScriptPlayer::new(s, Instant::now()));
-    let scripted = player.is_some();
-    let started = Instant::now();
-
-    // Listening from the start, so a signal between two turns of the loop is not missed.
-    let mut terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
-        .context("cannot watch SIGTERM")?;
-    let mut interrupt = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::interrupt())
-        .context("cannot watch SIGINT")?;
-    let mut health = Health::default();
-    let mut prompt: Option<(Prompt, String)> = None;
-    let mut tick = tokio::time::interval(Duration::from_millis(50));
-    let mut interrupted = false;
-    let mut failure: Option<anyhow::Error> = None;
-    let mut report_written = false;
-    let manifest_path = dir.join(MANIFEST_FILE);
-
-    loop {
-        let mut actions: Vec<Action> = Vec::new();
-        let mut effects: Vec<Effect> = Vec::new();
-        tokio::select! {
-            _ = tick.tick() => {}
-            Ok(()) = status_rx.changed() => {
-                if let Some(status) = status_rx.borrow_and_update().as_ref() {
-                    health = Health::from_status(status, clock.now_ns());
-                }
-            }
-            Some(input) = input_rx.recv() => match input {
-                Input::CtrlC => actions.push(Action::Interrupt),
-                Input::Line(line) if !line.trim().is_empty() => match parse_action(&line) {
-                    Ok(action) => actions.push(action),
-                    Err(e) => flow.say(e),
-                },
-                Input::Line(_) => {}
-                Input::Closed => {
-                    flow.say("stdin closed: quitting (a running trial is set aside)");
-                    actions.push(Action::Interrupt);
-                }
-                key => {
-                    if let Some(action) = typed(&mut prompt, key) {
-                        actions.push(action);
-                    }
-                }
-            },
-            Some(event) = events_rx.recv() => match event {
-                StationEvent::TrialStarted(path) => flow.say(format!("recording {}", path.display())),
-                StationEvent::TrialStartFailed { path, error } => {
-                    effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
-                }
-                StationEvent::TrialFinished(path) => {
-                    effects.extend(flow.trial_logged(inputs.score_file(&path)));
-                }
-                StationEvent::TrialFinishFailed { path, error } => {
-                    effects.extend(flow.trial_logged(Err(format!(
-                        "the log {} could not be finished: {error} (its .part is kept for pomdar recover)",
-                        path.display()
-                    ))));
-                }
-                StationEvent::Message(text) => flow.say(text),
-            },
-            result = &mut station => {
-                let error = match result {
-                    Ok(Ok(_)) => anyhow::anyhow!("the station stopped unexpectedly"),
-                    Ok(Err(e)) => e.context("the station stopped"),
-                    Err(e) => anyhow::anyhow!("the station task failed: {e}"),
-                };
-                drop(display);
-                return Err(error);
-            }
-            _ = interrupt.recv() => actions.push(Action::Interrupt),
-            _ = terminate.recv() => actions.push(Action::Interrupt),
-        }
-        let now = clock.now_ns();
-        let screen_now = Screen::of(&flow, &health);
-        if let Some(p) = player.as_mut() {
-            match p.next(screen_now, Instant::now()) {
-                Ok(Some(action)) => actions.push(action),
-                Ok(None) => {}
-                Err(e) => {
-                    flow.say(e.clone());
-                    failure = Some(anyhow::anyhow!(e));
-                    actions.push(Action::Interrupt);
-                }
-            }
-        }
-        for action in actions {
-            if action == Action::Interrupt {
-                interrupted = true;
-            }
-            match action {
-                Action::PromptProgress => prompt = Some((Prompt::Progress, String::new())),
-                Action::PromptNote => prompt = Some((Prompt::Note, String::new())),
-                other => effects.extend(flow.act(other, &health, now)),
-            }
-        }
-        effects.extend(flow.tick(&health, now));
-        let mut quit = false;
-        for effect in effects {
-            match effect {
-                Effect::Engage => send(&operator_tx, OperatorCommand::Engage),
-                Effect::Disengage => send(&operator_tx, OperatorCommand::Disengage),
-                Effect::TrialEvent(event) => send(&operator_tx, OperatorCommand::TrialEvent(event)),
-                Effect::StopTrial => send(&operator_tx, OperatorCommand::StopTrial),
-                Effect::StartTrial { file, slot } => {
-                    let metadata = BTreeMap::from([
-                        ("task".to_string(), flow.manifest.task.clone()),
-                        ("user".to_string(), flow.manifest.user.clone()),
-                        ("operator".to_string(), flow.manifest.operator.clone()),
-                        (
-                            "calibration_profile".to_string(),
-                            flow.manifest
-                                .calibration_profile
-                                .clone()
-                                .unwrap_or_else(|| "none".into()),
-                        ),
-                        ("trial_index".to_string(), slot.index.to_string()),
-                        ("practice".to_string(), slot.practice.to_string()),
-                        ("session".to_string(), dir.display().to_string()),
-                        ("source".to_string(), "pomdar trial".to_string()),
-                    ]);
-                    send(
-                        &operator_tx,
-                        OperatorCommand::StartTrial(RecordingOptions {
-                            path: dir.join(&file),
-                            metadata,
-                        }),
-                    );
-                }
-                Effect::SaveManifest => {
-                    flow.manifest.updated_utc = compact_utc(now_unix_s());
-                    if let Err(e) = flow.manifest.save(&manifest_path) {
-                        flow.say(format!("error: cannot save the manifest: {e:#}"));
-                    }
-                }
-                Effect::SetAside { from, to } => {
-                    if let Err(e) = std::fs::rename(dir.join(&from), dir.join(&to)) {
-                        flow.say(format!("error: cannot rename {from} to {to}: {e}"));
-                    }
-                }
-                Effect::Quit => quit = true,
-            }
-        }
-        if *flow.phase() != Phase::Complete {
-            // A trial redone after the plan was complete: the report is written again.
-            report_written = false;
-        } else if !report_written {
-            report_written = true;
-            match write_session_report(&dir, &flow, &inputs) {
-                Ok(path) => flow.say(format!("session complete: report in {}", path.display())),
-                Err(e) => flow.say(format!("error: cannot write the session report: {e:#}")),
-            }
-        }
-        // Without a keyboard to say q, a finished plan (and script) ends the console.
-        if *flow.phase() == Phase::Complete
-            && !full_screen
-            && (!scripted || player.as_ref().is_some_and(ScriptPlayer::finished))
-        {
-            quit = true;
-        }
-        let view = ConsoleView::build(&flow, &health, &info, now);
-        match &mut display {
+    /// Draws the session full-screen (with the prompt being typed) or prints what changed.
+    fn show(&mut self, session: &Session, now: i64) -> anyhow::Result<()> {
+        let flow = &session.flow;
+        let view = ConsoleView::build(flow, &session.health, &session.info, now);
+        match &mut self.display {
             Display::Full(screen) => {
-                let typed_text = prompt.as_ref().map(|(kind, text)| match kind {
+                let typed_text = self.prompt.as_ref().map(|(kind, text)| match kind {
                     Prompt::Progress => {
                         format!("progress ({}): {text}", flow.kind().progress_unit())
                     }
@@ -459,48 +436,381 @@ pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
                 });
                 screen.draw(|frame| draw(frame, &view, typed_text.as_deref()))?;
             }
-            Display::Plain(out) => out.update(&view, flow.said(), started.elapsed().as_secs_f64()),
+            Display::Plain(out) => {
+                out.update(&view, flow.said(), self.started.elapsed().as_secs_f64());
+            }
         }
-        if quit {
-            break;
+        Ok(())
+    }
+}
+
+/// What wakes the console besides the station and the operator: its tick and the signals.
+struct Wakeups {
+    tick: tokio::time::Interval,
+    interrupt: Signal,
+    terminate: Signal,
+}
+
+impl Wakeups {
+    fn start() -> anyhow::Result<Wakeups> {
+        // Listening from the start, so a signal between two turns of the loop is not missed.
+        let terminate = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())
+            .context("cannot watch SIGTERM")?;
+        let interrupt = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::interrupt())
+            .context("cannot watch SIGINT")?;
+        Ok(Wakeups {
+            tick: tokio::time::interval(Duration::from_millis(50)),
+            interrupt,
+            terminate,
+        })
+    }
+}
+
+/// The session: its state machine, the station's last health, what is shown all along and
+/// the files.
+struct Session {
+    flow: TrialFlow,
+    health: Health,
+    info: SessionInfo,
+    /// The baseline, catalog and rules each trial is scored with.
+    inputs: ScoringInputs,
+    /// The session directory and its manifest.
+    dir: PathBuf,
+    manifest_path: PathBuf,
+    /// Whether the complete session's report is written.
+    report_written: bool,
+}
+
+impl Session {
+    /// The trial log's metadata.
+    fn trial_metadata(&self, slot: &Slot) -> BTreeMap<String, String> {
+        let flow = &self.flow;
+        BTreeMap::from([
+            ("task".to_string(), flow.manifest.task.clone()),
+            ("user".to_string(), flow.manifest.user.clone()),
+            ("operator".to_string(), flow.manifest.operator.clone()),
+            (
+                "calibration_profile".to_string(),
+                flow.manifest
+                    .calibration_profile
+                    .clone()
+                    .unwrap_or_else(|| "none".into()),
+            ),
+            ("trial_index".to_string(), slot.index.to_string()),
+            ("practice".to_string(), slot.practice.to_string()),
+            ("session".to_string(), self.dir.display().to_string()),
+            ("source".to_string(), "pomdar trial".to_string()),
+        ])
+    }
+
+    fn save_manifest(&mut self) {
+        self.flow.manifest.updated_utc = compact_utc(now_unix_s());
+        if let Err(e) = self.flow.manifest.save(&self.manifest_path) {
+            self.flow
+                .say(format!("error: cannot save the manifest: {e:#}"));
         }
     }
 
-    // The station stops commanding: the robot holds its last target.
-    send(&operator_tx, OperatorCommand::Disengage);
-    shutdown_tx.send(true).ok();
-    let summary = station.await.context("station task")??;
-    for task in simulated {
-        task.await.ok();
+    /// A trial set aside: its file renamed.
+    fn set_aside(&mut self, from: &str, to: &str) {
+        if let Err(e) = std::fs::rename(self.dir.join(from), self.dir.join(to)) {
+            self.flow
+                .say(format!("error: cannot rename {from} to {to}: {e}"));
+        }
     }
-    drop(display);
-    let m = &flow.manifest;
-    println!(
-        "session {}: {} of {} practice and {} of {} recorded trials done; manifest {}",
-        dir.display(),
-        m.done(true),
-        m.practice_planned,
-        m.done(false),
-        m.trials_planned,
-        manifest_path.display()
-    );
-    for trial in m.trials.iter().filter(|t| t.status != TrialStatus::Scored) {
-        println!("  {}: {:?}", trial.file, trial.status);
+
+    /// Writes the session's report once the plan is complete (again after a trial redone).
+    fn write_report_once_complete(&mut self) {
+        if *self.flow.phase() != Phase::Complete {
+            // A trial redone after the plan was complete: the report is written again.
+            self.report_written = false;
+        } else if !self.report_written {
+            self.report_written = true;
+            match write_session_report(&self.dir, &self.flow, &self.inputs) {
+                Ok(path) => self
+                    .flow
+                    .say(format!("session complete: report in {}", path.display())),
+                Err(e) => self
+                    .flow
+                    .say(format!("error: cannot write the session report: {e:#}")),
+            }
+        }
     }
-    if m.next_slot().is_some() {
-        println!("not complete: run the same command again to resume");
+
+    /// The session's state on stdout after the console: trials done, trials not scored,
+    /// whether it can be resumed.
+    fn print_summary(&self) {
+        let m = &self.flow.manifest;
+        println!(
+            "session {}: {} of {} practice and {} of {} recorded trials done; manifest {}",
+            self.dir.display(),
+            m.done(true),
+            m.practice_planned,
+            m.done(false),
+            m.trials_planned,
+            self.manifest_path.display()
+        );
+        for trial in m.trials.iter().filter(|t| t.status != TrialStatus::Scored) {
+            println!("  {}: {:?}", trial.file, trial.status);
+        }
+        if m.next_slot().is_some() {
+            println!("not complete: run the same command again to resume");
+        }
     }
-    if summary.counters.frames_new == 0 {
-        eprintln!("note: the station received no glove frames");
+}
+
+/// How the console ends.
+#[derive(Default)]
+struct ConsoleEnd {
+    /// Ctrl-C, SIGTERM, q or stdin closed: exit status [`EXIT_INTERRUPTED`].
+    interrupted: bool,
+    /// A script that failed (a wait timed out).
+    failure: Option<anyhow::Error>,
+}
+
+/// What one wake-up brought: the operator's actions and the session's effects so far.
+#[derive(Default)]
+struct Turn {
+    actions: Vec<Action>,
+    effects: Vec<Effect>,
+}
+
+/// What happens after a turn of the console's loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Next {
+    /// Wait for the next tick, key, status or station event.
+    Continue,
+    /// Leave the console.
+    Quit,
+}
+
+/// `pomdar trial` while it runs: the operator's side, the session, the station.
+struct TrialConsole {
+    operator: OperatorSide,
+    wakeups: Wakeups,
+    session: Session,
+    station: StationHandles,
+    clock: StationClock,
+    end: ConsoleEnd,
+}
+
+impl TrialConsole {
+    /// Turns until the console quits: wait for something, then act on it.
+    async fn run(&mut self) -> anyhow::Result<()> {
+        loop {
+            let mut turn = Turn::default();
+            self.wait(&mut turn).await?;
+            if self.finish_turn(turn)? == Next::Quit {
+                return Ok(());
+            }
+        }
     }
-    if let Some(error) = failure {
-        return Err(error);
+
+    /// Waits for a tick, the station's status or events, a key or line, or a signal; an
+    /// error when the station stops.
+    async fn wait(&mut self, turn: &mut Turn) -> anyhow::Result<()> {
+        tokio::select! {
+            _ = self.wakeups.tick.tick() => {}
+            Ok(()) = self.station.status_rx.changed() => self.status_changed(),
+            Some(input) = self.operator.input_rx.recv() => self.input(input, &mut turn.actions),
+            Some(event) = self.station.events_rx.recv() => {
+                self.station_event(event, &mut turn.effects);
+            }
+            result = &mut self.station.task => return Err(station_stopped(result)),
+            _ = self.wakeups.interrupt.recv() => turn.actions.push(Action::Interrupt),
+            _ = self.wakeups.terminate.recv() => turn.actions.push(Action::Interrupt),
+        }
+        Ok(())
     }
-    Ok(if interrupted {
-        ExitCode::from(EXIT_INTERRUPTED)
-    } else {
-        ExitCode::SUCCESS
-    })
+
+    fn status_changed(&mut self) {
+        if let Some(status) = self.station.status_rx.borrow_and_update().as_ref() {
+            self.session.health = Health::from_status(status, self.clock.now_ns());
+        }
+    }
+
+    /// A key or a line: an action, or a key typed into the prompt.
+    fn input(&mut self, input: Input, actions: &mut Vec<Action>) {
+        let flow = &mut self.session.flow;
+        match input {
+            Input::CtrlC => actions.push(Action::Interrupt),
+            Input::Line(line) if !line.trim().is_empty() => match parse_action(&line) {
+                Ok(action) => actions.push(action),
+                Err(e) => flow.say(e),
+            },
+            Input::Line(_) => {}
+            Input::Closed => {
+                flow.say("stdin closed: quitting (a running trial is set aside)");
+                actions.push(Action::Interrupt);
+            }
+            key => {
+                if let Some(action) = typed(&mut self.operator.prompt, key) {
+                    actions.push(action);
+                }
+            }
+        }
+    }
+
+    /// A trial log started, finished or failed, or a message from the station.
+    fn station_event(&mut self, event: StationEvent, effects: &mut Vec<Effect>) {
+        let flow = &mut self.session.flow;
+        let inputs = &self.session.inputs;
+        match event {
+            StationEvent::TrialStarted(path) => flow.say(format!("recording {}", path.display())),
+            StationEvent::TrialStartFailed { path, error } => {
+                effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
+            }
+            StationEvent::TrialFinished(path) => {
+                effects.extend(flow.trial_logged(inputs.score_file(&path)));
+            }
+            StationEvent::TrialFinishFailed { path, error } => {
+                effects.extend(flow.trial_logged(Err(format!(
+                    "the log {} could not be finished: {error} (its .part is kept for pomdar recover)",
+                    path.display()
+                ))));
+            }
+            StationEvent::Message(text) => flow.say(text),
+        }
+    }
+
+    /// The rest of a turn: the script's and the operator's actions and the clock go to the
+    /// session, its effects are carried out, the report written when the plan is complete,
+    /// the console shown.
+    fn finish_turn(&mut self, mut turn: Turn) -> anyhow::Result<Next> {
+        let now = self.clock.now_ns();
+        self.play_script(&mut turn.actions);
+        self.act(turn.actions, &mut turn.effects, now);
+        let session = &mut self.session;
+        turn.effects.extend(session.flow.tick(&session.health, now));
+        let mut next = self.carry_out(turn.effects);
+        self.session.write_report_once_complete();
+        if self.done_unattended() {
+            next = Next::Quit;
+        }
+        self.operator.show(&self.session, now)?;
+        Ok(next)
+    }
+
+    /// The script's due action in the current screen; a script that failed interrupts.
+    fn play_script(&mut self, actions: &mut Vec<Action>) {
+        let screen_now = Screen::of(&self.session.flow, &self.session.health);
+        if let Some(p) = self.operator.player.as_mut() {
+            match p.next(screen_now, Instant::now()) {
+                Ok(Some(action)) => actions.push(action),
+                Ok(None) => {}
+                Err(e) => {
+                    self.session.flow.say(e.clone());
+                    self.end.failure = Some(anyhow::anyhow!(e));
+                    actions.push(Action::Interrupt);
+                }
+            }
+        }
+    }
+
+    /// The actions: prompts open, the rest go to the session.
+    fn act(&mut self, actions: Vec<Action>, effects: &mut Vec<Effect>, now: i64) {
+        let session = &mut self.session;
+        for action in actions {
+            if action == Action::Interrupt {
+                self.end.interrupted = true;
+            }
+            match action {
+                Action::PromptProgress => {
+                    self.operator.prompt = Some((Prompt::Progress, String::new()));
+                }
+                Action::PromptNote => self.operator.prompt = Some((Prompt::Note, String::new())),
+                other => effects.extend(session.flow.act(other, &session.health, now)),
+            }
+        }
+    }
+
+    /// Carries out the session's effects: commands to the station, the manifest, trials set
+    /// aside, quitting.
+    fn carry_out(&mut self, effects: Vec<Effect>) -> Next {
+        let operator_tx = &self.station.operator_tx;
+        let mut next = Next::Continue;
+        for effect in effects {
+            match effect {
+                Effect::Engage => send(operator_tx, OperatorCommand::Engage),
+                Effect::Disengage => send(operator_tx, OperatorCommand::Disengage),
+                Effect::TrialEvent(event) => send(operator_tx, OperatorCommand::TrialEvent(event)),
+                Effect::StopTrial => send(operator_tx, OperatorCommand::StopTrial),
+                Effect::StartTrial { file, slot } => {
+                    let metadata = self.session.trial_metadata(&slot);
+                    let dir = &self.session.dir;
+                    send(
+                        operator_tx,
+                        OperatorCommand::StartTrial(RecordingOptions {
+                            path: dir.join(&file),
+                            metadata,
+                        }),
+                    );
+                }
+                Effect::SaveManifest => self.session.save_manifest(),
+                Effect::SetAside { from, to } => self.session.set_aside(&from, &to),
+                Effect::Quit => next = Next::Quit,
+            }
+        }
+        next
+    }
+
+    /// Without a keyboard to say q, a finished plan (and script) ends the console.
+    fn done_unattended(&self) -> bool {
+        let operator = &self.operator;
+        *self.session.flow.phase() == Phase::Complete
+            && !operator.full_screen
+            && (!operator.scripted || operator.player.as_ref().is_some_and(ScriptPlayer::finished))
+    }
+
+    /// The console has quit: the station disengages and stops, the console is left, the
+    /// session's state printed; the exit status says whether it was interrupted.
+    async fn finish(self) -> anyhow::Result<ExitCode> {
+        let TrialConsole {
+            operator,
+            session,
+            station,
+            end,
+            ..
+        } = self;
+        let StationHandles {
+            task: station,
+            operator_tx,
+            shutdown_tx,
+            simulated,
+            ..
+        } = station;
+        // The station stops commanding: the robot holds its last target.
+        send(&operator_tx, OperatorCommand::Disengage);
+        shutdown_tx.send(true).ok();
+        let summary = station.await.context("station task")??;
+        for task in simulated {
+            task.await.ok();
+        }
+        drop(operator.display);
+        session.print_summary();
+        if summary.counters.frames_new == 0 {
+            eprintln!("note: the station received no glove frames");
+        }
+        if let Some(error) = end.failure {
+            return Err(error);
+        }
+        Ok(if end.interrupted {
+            ExitCode::from(EXIT_INTERRUPTED)
+        } else {
+            ExitCode::SUCCESS
+        })
+    }
+}
+
+/// Why the station's task ended while the console ran.
+fn station_stopped(
+    result: Result<anyhow::Result<StationSummary>, tokio::task::JoinError>,
+) -> anyhow::Error {
+    match result {
+        Ok(Ok(_)) => anyhow::anyhow!("the station stopped unexpectedly"),
+        Ok(Err(e)) => e.context("the station stopped"),
+        Err(e) => anyhow::anyhow!("the station task failed: {e}"),
+    }
 }
 
 fn send(tx: &mpsc::UnboundedSender<OperatorCommand>, command: OperatorCommand) {
@@ -584,7 +894,7 @@ fn spawn_simulation(
     model: &HandModel,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<Vec<tokio::task::JoinHandle<anyhow::Result<()>>>> {
+) -> anyhow::Result<Vec<JoinHandle<anyhow::Result<()>>>> {
     let robot = spawn_mock_robot(config, model, clock, shutdown)?;
     let glove_config = SimGloveConfig {
         keypoints_topic: config.input.keypoints_topic.clone(),

@@ -5,7 +5,7 @@
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
 
 use super::health::{Health, StartLimits};
-use super::manifest::ManifestTrial;
+use super::manifest::{Manifest, ManifestTrial};
 use super::trial_flow::{Phase, Slot, TrialFlow};
 
 /// The console's main states.
@@ -198,109 +198,136 @@ impl ConsoleView {
         now_ns: i64,
     ) -> ConsoleView {
         let screen = Screen::of(flow, health);
-        let manifest = &flow.manifest;
-        let title = format!(
-            "{} {} · {} · {}",
-            info.task.id,
-            info.task.name,
-            info.task.correctness.describe(),
-            manifest.embodiment
-        );
-        let mut detail = Vec::new();
-        let banner = match flow.phase() {
-            Phase::Countdown { slot, ends_ns } => {
-                detail.push(format!(
-                    "{} starts in a moment: a aborts the countdown",
-                    slot.label(manifest)
-                ));
-                format!(
-                    "{}  {:.0}",
-                    screen.banner(),
-                    ((ends_ns - now_ns) as f64 * 1e-9).max(0.0).ceil()
-                )
-            }
-            Phase::Running {
-                slot,
-                started_ns,
-                file,
-            } => {
-                let (progress, drops) = flow.marks();
-                detail.push(format!("{} → {file}", slot.label(manifest)));
-                detail.push(format!(
-                    "marked: {progress} {} · drops {drops}",
-                    flow.kind().progress_unit()
-                ));
-                detail.push(if health.engaged() {
-                    "space stops · a aborts · r aborts and redoes".to_string()
-                } else {
-                    format!(
-                        "WARNING: the station is {}: the robot holds (the timer runs; a aborts, r redoes)",
-                        health.state
-                    )
-                });
-                format!(
-                    "{}  {}",
-                    screen.banner(),
-                    clock((now_ns - started_ns) as f64 * 1e-9)
-                )
-            }
-            Phase::Finishing { slot, time_s, .. } => {
-                detail.push(format!(
-                    "{} stopped at {}: finishing and scoring its log",
-                    slot.label(manifest),
-                    clock(*time_s)
-                ));
-                screen.banner().to_string()
-            }
-            _ => screen.banner().to_string(),
-        };
-        match (flow.phase(), manifest.next_slot()) {
-            (Phase::Idle, Some((practice, index))) => {
-                let slot = Slot { practice, index };
-                let next = format!("next: {}", slot.label(manifest));
-                detail.push(if health.engaged() {
-                    format!("{next} · space starts it (countdown)")
-                } else {
-                    format!("{next} · press e to engage")
-                });
-            }
-            (Phase::Complete, _) => detail.push(format!(
-                "all {} practice and {} recorded trials done · q quits",
-                manifest.practice_planned, manifest.trials_planned
-            )),
-            _ => {}
-        }
-        let mut results = Vec::new();
-        if let Some(last) = flow.last_trial() {
-            results.push(format!("last {}", trial_result_line(last, info.baseline_s)));
-        }
-        let series = manifest.series();
-        let what = if info.baseline_s.is_some() {
-            "score"
-        } else {
-            "correctness"
-        };
-        results.push(match MeanStd::of(&series) {
-            Some(m) => format!(
-                "recorded trials: {}/{} done · {what} {}",
-                series.len(),
-                manifest.trials_planned,
-                m.format(3)
-            ),
-            None => format!("recorded trials: 0/{} done", manifest.trials_planned),
-        });
+        let (banner, mut detail) = phase_banner(flow, health, screen, now_ns);
+        detail.extend(next_step(flow, health));
         ConsoleView {
             screen,
-            title,
+            title: title(info, &flow.manifest),
             instruction: instruction(&info.task),
             setup: info.setup.clone(),
             health: health_lines(health, &info.limits, now_ns),
             banner,
             detail,
-            results,
+            results: result_lines(flow, info),
             messages: flow.messages().map(str::to_string).collect(),
         }
     }
+}
+
+/// The task line: `V1 name · correctness · embodiment`.
+fn title(info: &SessionInfo, manifest: &Manifest) -> String {
+    format!(
+        "{} {} · {} · {}",
+        info.task.id,
+        info.task.name,
+        info.task.correctness.describe(),
+        manifest.embodiment
+    )
+}
+
+/// The banner with its clock, and the lines under it about the trial in progress.
+fn phase_banner(
+    flow: &TrialFlow,
+    health: &Health,
+    screen: Screen,
+    now_ns: i64,
+) -> (String, Vec<String>) {
+    let manifest = &flow.manifest;
+    let mut detail = Vec::new();
+    let banner = match flow.phase() {
+        Phase::Countdown { slot, ends_ns } => {
+            detail.push(format!(
+                "{} starts in a moment: a aborts the countdown",
+                slot.label(manifest)
+            ));
+            format!(
+                "{}  {:.0}",
+                screen.banner(),
+                ((ends_ns - now_ns) as f64 * 1e-9).max(0.0).ceil()
+            )
+        }
+        Phase::Running {
+            slot,
+            started_ns,
+            file,
+        } => {
+            let (progress, drops) = flow.marks();
+            detail.push(format!("{} → {file}", slot.label(manifest)));
+            detail.push(format!(
+                "marked: {progress} {} · drops {drops}",
+                flow.kind().progress_unit()
+            ));
+            detail.push(if health.engaged() {
+                "space stops · a aborts · r aborts and redoes".to_string()
+            } else {
+                format!(
+                    "WARNING: the station is {}: the robot holds (the timer runs; a aborts, r redoes)",
+                    health.state
+                )
+            });
+            format!(
+                "{}  {}",
+                screen.banner(),
+                clock((now_ns - started_ns) as f64 * 1e-9)
+            )
+        }
+        Phase::Finishing { slot, time_s, .. } => {
+            detail.push(format!(
+                "{} stopped at {}: finishing and scoring its log",
+                slot.label(manifest),
+                clock(*time_s)
+            ));
+            screen.banner().to_string()
+        }
+        _ => screen.banner().to_string(),
+    };
+    (banner, detail)
+}
+
+/// What the operator does next between trials, or that the plan is done.
+fn next_step(flow: &TrialFlow, health: &Health) -> Option<String> {
+    let manifest = &flow.manifest;
+    match (flow.phase(), manifest.next_slot()) {
+        (Phase::Idle, Some((practice, index))) => {
+            let slot = Slot { practice, index };
+            let next = format!("next: {}", slot.label(manifest));
+            Some(if health.engaged() {
+                format!("{next} · space starts it (countdown)")
+            } else {
+                format!("{next} · press e to engage")
+            })
+        }
+        (Phase::Complete, _) => Some(format!(
+            "all {} practice and {} recorded trials done · q quits",
+            manifest.practice_planned, manifest.trials_planned
+        )),
+        _ => None,
+    }
+}
+
+/// The last trial and the series so far.
+fn result_lines(flow: &TrialFlow, info: &SessionInfo) -> Vec<String> {
+    let manifest = &flow.manifest;
+    let mut results = Vec::new();
+    if let Some(last) = flow.last_trial() {
+        results.push(format!("last {}", trial_result_line(last, info.baseline_s)));
+    }
+    let series = manifest.series();
+    let what = if info.baseline_s.is_some() {
+        "score"
+    } else {
+        "correctness"
+    };
+    results.push(match MeanStd::of(&series) {
+        Some(m) => format!(
+            "recorded trials: {}/{} done · {what} {}",
+            series.len(),
+            manifest.trials_planned,
+            m.format(3)
+        ),
+        None => format!("recorded trials: 0/{} done", manifest.trials_planned),
+    });
+    results
 }
 
 fn health_lines(
