@@ -113,7 +113,9 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (_operator_tx, operator_rx) = mpsc::unbounded_channel();
 
-    let robot = spawn_mock_robot(&station, &model, clock, &shutdown_rx)?;
+    // The robot stops after the station, so it hears every command the station sent.
+    let (robot_stop_tx, robot_stop_rx) = watch::channel(false);
+    let robot = spawn_mock_robot(&station, &model, clock, &robot_stop_rx)?;
     let recording = match &options.out {
         Some(dir) => {
             std::fs::create_dir_all(dir)
@@ -177,6 +179,8 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     tokio::time::sleep(Duration::from_millis(200)).await;
     shutdown_tx.send(true).ok();
     let station_summary = station_task.await.context("station task")??;
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    robot_stop_tx.send(true).ok();
     let summary = &station_summary;
     robot.hand.await.context("mock hand task")??;
     robot.arm.await.context("mock arm task")??;
