@@ -65,6 +65,7 @@ fn eval_reports_the_reference_recording() {
         .sum::<f64>()
         / 5.0;
     assert!((per_digit_mean - mean).abs() < 1e-9);
+    check_live_path(&json);
 
     let table = pomdar(&["eval", input.to_str().unwrap()]);
     assert!(table.status.success());
@@ -157,4 +158,28 @@ fn robot_keypoints_give_no_tip_error() {
         "tip error {mean} mm on the robot's own keypoints"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The live path (the station re-simulated, the command in force at each distinct frame) is
+/// what the retargeter alone gives, within issue 19's bounds: jerk within 10 %, fingertip error
+/// within 0.5 mm, every distinct frame scored.
+fn check_live_path(json: &Value) {
+    let live = &json["live_path"];
+    let (jerk, live_jerk) = (number(json, "jerk_rad"), number(live, "jerk_rad"));
+    let (tip, live_tip) = (
+        number(json, "tip_error_mean_mm"),
+        number(live, "tip_error_mean_mm"),
+    );
+    println!(
+        "live path: jerk {live_jerk:.4} rad vs {jerk:.4} alone, tip {live_tip:.2} mm vs {tip:.2} mm"
+    );
+    assert!(
+        (live_jerk / jerk - 1.0).abs() <= 0.10,
+        "live-path jerk {live_jerk} rad vs {jerk} rad"
+    );
+    assert!(
+        (live_tip - tip).abs() <= 0.5,
+        "live-path tip error {live_tip} mm vs {tip} mm"
+    );
+    assert_eq!(number(live, "frames"), number(json, "frames"));
 }
