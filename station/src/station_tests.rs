@@ -134,7 +134,7 @@ fn stale_input_holds_the_last_command_then_disengages() {
     let held = s.step(tick(), 200 * MS);
     assert_eq!(s.state(), DriveState::Held);
     assert_eq!(q_of(&held), q_of(&first));
-    assert_eq!(s.step(tick(), 1100 * MS).hand.is_some(), true);
+    assert!(s.step(tick(), 1100 * MS).hand.is_some());
     assert_eq!(s.state(), DriveState::Disengaged);
     // Fresh input alone does not resume.
     assert!(s.step(frame(0.5, 1200), 1200 * MS).hand.is_none());
