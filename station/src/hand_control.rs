@@ -157,19 +157,9 @@ impl HandControl {
         self.last_command.as_ref()
     }
 
-    /// Whether a taken frame waits to be retargeted.
-    pub fn has_pending(&self) -> bool {
-        self.pending.is_some()
-    }
-
     /// Source stamp of the last retargeted frame.
     pub fn last_solved_source_ns(&self) -> Option<i64> {
         self.last_solved.map(|(source, _)| source)
-    }
-
-    /// Source stamp of the pending frame.
-    pub fn pending_source_ns(&self) -> Option<i64> {
-        self.pending.as_ref().map(|p| p.frame.source_ns)
     }
 
     /// A keypoint frame arrived at `received_ns`. A frame stamped before the newest accepted

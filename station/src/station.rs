@@ -241,7 +241,10 @@ impl Station {
                 if self.auto_engage_pending && self.hand.engage(now_ns) {
                     self.auto_engage_pending = false;
                 }
-                if self.control.mode == ControlMode::OnArrival && self.under_ceiling(source_ns) {
+                if self.control.mode == ControlMode::OnArrival
+                    && self.under_ceiling(source_ns)
+                    && self.hand.update(now_ns) == DriveState::Engaged
+                {
                     self.command_fresh(now_ns, &mut outputs);
                 }
             }
@@ -298,11 +301,9 @@ impl Station {
         self.step_arm(state, now_ns, outputs);
     }
 
-    /// Retarget the pending frame (when engaged) and send the command; whether one was sent.
+    /// Retarget the pending frame, if any, and send the command; whether one was sent. The
+    /// caller has advanced the watchdog and found the station engaged.
     fn command_fresh(&mut self, now_ns: i64, outputs: &mut StationOutputs) -> bool {
-        if !self.hand.has_pending() || self.hand.update(now_ns) != DriveState::Engaged {
-            return false;
-        }
         let Some(command) = self.hand.command_pending() else {
             return false;
         };

@@ -1,6 +1,6 @@
 //! What the station is driven by, and what one step gives back.
 
-use msgs::{Float32MultiArray, Pose, PoseStamped};
+use msgs::{Pose, PoseStamped};
 use serde::{Deserialize, Serialize};
 
 use crate::arm::ArmError;
@@ -77,11 +77,4 @@ pub struct StationOutputs {
     pub verdict: Option<Verdict>,
     /// Messages for the operator.
     pub notices: Vec<Notice>,
-}
-
-impl StationOutputs {
-    /// The policy output message, if the hand command carries one.
-    pub fn policy(&self) -> Option<&Float32MultiArray> {
-        self.hand.as_ref().and_then(|h| h.policy.as_ref())
-    }
 }

@@ -63,8 +63,12 @@ enum Command {
     ///
     /// The station's processing is fed from the log with the log's clock, in process; the
     /// outputs (joint targets, policy output, arm targets) are written to a new MCAP. Use it to
-    /// re-retarget recorded glove data with a new configuration. Accepts the lab's 22- and
-    /// 21-point layouts. Same log + same config = byte-identical output.
+    /// re-retarget recorded glove data with a new configuration. A log the station recorded
+    /// carries its timer ticks and the operator's engage/disengage (/pomdar/station_control):
+    /// with the run's configuration it reproduces the run's commands byte for byte. A plain
+    /// glove recording gets ticks on the log's clock and engages on its first fresh frame.
+    /// Accepts the lab's 22- and 21-point layouts. Same log + same config = byte-identical
+    /// output.
     ///
     /// Example:
     ///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
@@ -75,8 +79,10 @@ enum Command {
     /// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
     /// through the station's retargeter, configured by --config and calibrated by --profile,
     /// with the recording's time between frames as the time step (the station's input gate
-    /// and 25 Hz rate control are left out: every glove frame is scored). Prints, overall and
-    /// per finger: fingertip error after one global scale s* of the human hand (mean, p95;
+    /// and control loop are left out: every glove frame is scored, comparable with other
+    /// retargeters). Then the live path: the recording re-simulated through the station as
+    /// `pomdar resim` runs it, and the command in force at each distinct frame scored the same
+    /// way, with its difference from the retargeter alone. Prints, overall and per finger: fingertip error after one global scale s* of the human hand (mean, p95;
     /// fingertip-to-palm-centre vectors in each hand's palm frame), pinches (human thumb tip
     /// within 2 cm of a fingertip) and the share the robot closes under 15 mm, jerk (mean
     /// absolute third difference per joint and frame), the largest per-frame joint step,

@@ -14,6 +14,7 @@
 //! clock. docs/FAULTS.md lists what the station does on each input fault.
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use futures::{StreamExt, stream::BoxStream};
@@ -114,7 +115,7 @@ pub async fn run_station_observed(
     let mut streams = endpoints.streams(&config);
     let mut node = StationNode {
         station,
-        config,
+        config: Arc::new(config),
         clock,
         recorder,
         hooks,
@@ -266,7 +267,8 @@ fn source_or(info: &MessageInfo, received_ns: i64) -> i64 {
 /// The node's state: the station, and what only the node knows.
 struct StationNode {
     station: Station,
-    config: StationConfig,
+    /// Shared, so a step can borrow topic names while it records and counts.
+    config: Arc<StationConfig>,
     clock: StationClock,
     recorder: Option<StationRecorder>,
     hooks: StationHooks,
@@ -302,14 +304,15 @@ impl StationNode {
 
     async fn on_keypoints(&mut self, item: Received<KeypointMessage>, endpoints: &Endpoints) {
         let now = self.clock.now_ns();
-        let topic = self.config.input.keypoints_topic.clone();
+        let config = Arc::clone(&self.config);
+        let topic = &config.input.keypoints_topic;
         let Ok((message, info)) = item else {
-            NodeFaults::count(&mut self.faults.input_errors, &topic);
+            NodeFaults::count(&mut self.faults.input_errors, topic);
             return;
         };
         let source_ns = source_or(&info, now);
         if let Some(r) = self.recorder.as_mut() {
-            r.keypoints(&topic, now, Some(source_ns), &message);
+            r.keypoints(topic, now, Some(source_ns), &message);
         }
         let frame = KeypointFrame {
             points: message.points(),
@@ -320,15 +323,15 @@ impl StationNode {
     }
 
     fn on_wrist(&mut self, item: Received<PoseStamped>) {
-        let topic = self.config.input.wrist_topic.clone();
-        if let Some((pose, now)) = self.record_pose(&topic, item) {
+        let config = Arc::clone(&self.config);
+        if let Some((pose, now)) = self.record_pose(&config.input.wrist_topic, item) {
             self.station.step(StationInput::Wrist(pose), now);
         }
     }
 
     fn on_feedback(&mut self, item: Received<PoseStamped>) {
-        let topic = self.config.input.arm_feedback_topic.clone();
-        if let Some((pose, now)) = self.record_pose(&topic, item) {
+        let config = Arc::clone(&self.config);
+        if let Some((pose, now)) = self.record_pose(&config.input.arm_feedback_topic, item) {
             self.station.step(StationInput::ArmFeedback(pose), now);
         }
     }
@@ -376,7 +379,8 @@ impl StationNode {
         for notice in &outputs.notices {
             self.hooks.send(StationEvent::Message(notice.to_string()));
         }
-        let output = self.config.output.clone();
+        let config = Arc::clone(&self.config);
+        let output = &config.output;
         if let Some(hand) = outputs.hand {
             let sent = self
                 .publish(
@@ -390,8 +394,8 @@ impl StationNode {
                 self.last_latency_ms = Some((self.clock.now_ns() - received) as f64 * 1e-6);
             }
             if let (Some(message), Some(publisher)) = (hand.policy, &endpoints.policy) {
-                let topic = self.config.policy_output.topic.clone();
-                self.publish(publisher, &topic, now, message).await;
+                self.publish(publisher, &config.policy_output.topic, now, message)
+                    .await;
             }
         }
         if let (Some(message), Some(publisher)) = (outputs.arm, &endpoints.arm) {
@@ -441,8 +445,8 @@ impl StationNode {
             }
         }
         if endpoints.status.async_publish(message).await.is_err() {
-            let topic = self.config.output.status_topic.clone();
-            NodeFaults::count(&mut self.faults.publish_failed, &topic);
+            let config = Arc::clone(&self.config);
+            NodeFaults::count(&mut self.faults.publish_failed, &config.output.status_topic);
         }
     }
 
