@@ -426,6 +426,9 @@ pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
         std::fs::write(path, &json).with_context(|| format!("cannot write {}", path.display()))?;
     }
     let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
+    if let Some(profile) = &stats.profile {
+        eprintln!("{profile}");
+    }
     eprintln!(
         "re-simulated {}: {} frames ({} new, {} repeated, rejected {:?}), {} joint targets, layout {}, control step p50 {} ms, p99 {} ms → {}",
         args.input.display(),

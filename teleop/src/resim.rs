@@ -46,6 +46,8 @@ pub struct ResimStats {
     pub arm_targets: u64,
     /// The keypoint layout used.
     pub layout: String,
+    /// The calibration profile applied (who, when, the transform), if any.
+    pub profile: Option<String>,
     /// Where the control inputs came from: "recorded" (the station's own ticks and operator
     /// commands in the log) or "log clock" (ticks every `1 / rate_hz` on the log's clock, engaged
     /// on the first fresh frame).
@@ -209,9 +211,10 @@ pub fn resim(
     writer: &mut TrialWriter,
 ) -> anyhow::Result<ResimStats> {
     let log = log_inputs(reader, config)?;
-    let (mut station, _) = build_station(&log.config, model)?;
+    let (mut station, profile) = build_station(&log.config, model)?;
     let mut stats = ResimStats {
         layout: log.config.retarget.layout.name().to_string(),
+        profile,
         ticks: match log.origin {
             InputOrigin::Recorded => "recorded".into(),
             InputOrigin::LogClock => "log clock".into(),
