@@ -23,6 +23,7 @@ mod palette;
 mod png_backend;
 mod primitives;
 mod radar;
+mod radar_chart;
 mod radar_layout;
 mod scale;
 mod stroke_font;
@@ -32,7 +33,8 @@ pub use dof_chart::{DofChart, DofPoint, dof_scatter};
 pub use error::{PlotError, ValueProblem};
 pub use palette::SERIES_COLORS;
 pub use primitives::Rgba;
-pub use radar::{RadarChart, RadarSeries, radar};
+pub use radar::radar;
+pub use radar_chart::{RadarChart, RadarSeries};
 pub use scale::MAX_SCORE;
 
 /// A rendered figure.

@@ -4,7 +4,7 @@
 use super::legend::{self, LegendEntry};
 use super::palette::series_color;
 use super::primitives::{Anchor, Drawing, Point, Rgba, Style, Text};
-use super::radar::{RadarChart, RadarGeometry, RadarSeries};
+use super::radar_chart::{RadarChart, RadarGeometry, RadarSeries};
 use super::scale::score_axis;
 use super::stroke_font::{FONT_SLACK, cap_height, text_width, wrap};
 
@@ -206,9 +206,14 @@ mod tests {
     use std::f64::consts::TAU;
 
     use crate::plot::primitives::Primitive;
-    use crate::plot::radar::radar_drawing;
+    use crate::plot::radar_chart::tests::chart;
+    use crate::plot::radar_chart::validate;
 
-    use crate::plot::radar::tests::chart;
+    /// `chart` checked and laid out.
+    fn laid_out(chart: &RadarChart) -> (Drawing, RadarGeometry) {
+        let max = validate(chart).unwrap();
+        draw(chart, max)
+    }
 
     fn circles(d: &Drawing, class: &str) -> Vec<(Point, f64)> {
         (d.items.iter())
@@ -243,7 +248,7 @@ mod tests {
 
     #[test]
     fn a_score_of_one_on_the_top_axis_lands_on_the_top_of_the_outer_ring() {
-        let (d, g) = radar_drawing(&chart(&[&[Some(1.0), Some(0.5), Some(0.5)]])).unwrap();
+        let (d, g) = laid_out(&chart(&[&[Some(1.0), Some(0.5), Some(0.5)]]));
         let rings = circles(&d, "ring");
         assert_eq!(rings.len(), 5, "rings at 0.2 .. 1.0");
         let (center, outer) = rings[4];
@@ -269,7 +274,7 @@ mod tests {
 
     #[test]
     fn superhuman_scores_add_rings_and_stay_inside_the_outer_one() {
-        let (d, g) = radar_drawing(&chart(&[&[Some(1.13), Some(0.5), Some(1.0)]])).unwrap();
+        let (d, g) = laid_out(&chart(&[&[Some(1.13), Some(0.5), Some(1.0)]]));
         let rings = circles(&d, "ring");
         assert_eq!(rings.len(), 6, "rings at 0.2 .. 1.2");
         assert!((g.scale.top() - 1.2).abs() < 1e-12);
@@ -284,7 +289,7 @@ mod tests {
 
     #[test]
     fn not_attempted_values_sit_at_the_centre_with_hollow_markers_and_a_note() {
-        let (d, g) = radar_drawing(&chart(&[&[Some(0.8), None, Some(0.4)]])).unwrap();
+        let (d, g) = laid_out(&chart(&[&[Some(0.8), None, Some(0.4)]]));
         assert!(close(series_polygons(&d)[0][1], g.center));
         assert_eq!(circles(&d, "not-attempted").len(), 1);
         assert_eq!(circles(&d, "marker").len(), 2);
@@ -300,7 +305,7 @@ mod tests {
     #[test]
     fn everything_stays_on_the_canvas() {
         let long = chart(&[&[Some(0.9); 12], &[None; 12]]);
-        let (d, _) = radar_drawing(&long).unwrap();
+        let (d, _) = laid_out(&long);
         let (w, h) = (f64::from(d.width_px), f64::from(d.height_px));
         for item in &d.items {
             if let Primitive::Text(t) = item {
