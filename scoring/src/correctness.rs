@@ -40,109 +40,132 @@ pub fn correctness(
     marks: &[(i64, Mark)],
     cutoff_ns: Option<i64>,
 ) -> Result<Correctness, String> {
-    let mut notes = Vec::new();
     let counted = |t: i64| cutoff_ns.is_none_or(|c| t <= c);
+    let mut notes = Vec::new();
     let late = marks.iter().filter(|(t, _)| !counted(*t)).count();
     if late > 0 {
         notes.push(format!(
             "{late} progress/drop event(s) after the time limit not counted"
         ));
     }
-    let drops = marks.iter().filter(|(_, m)| *m == Mark::Drop).count();
-    match *kind {
+    let unit = kind.progress_unit();
+    let by_kind = match *kind {
         CorrectnessKind::Notches { count } | CorrectnessKind::Curves { count } => {
-            let unit = kind.progress_unit();
-            let mut total = 0.0_f64;
-            for (i, (t, mark)) in marks.iter().enumerate() {
-                let Mark::Progress(v) = *mark else { continue };
-                if v.fract() != 0.0 {
-                    return Err(format!(
-                        "progress value {v} is not a whole number of {unit} (mark {})",
-                        i + 1
-                    ));
-                }
-                if !counted(*t) {
-                    continue;
-                }
-                total += v;
-                if total < 0.0 {
-                    return Err(format!(
-                        "progress total goes below 0 {unit} at mark {} (value {v})",
-                        i + 1
-                    ));
-                }
-            }
-            let full = f64::from(count);
-            if total > full {
-                notes.push(format!(
-                    "progress total {total} {unit} exceeds the task's {count}: counted as {count}"
-                ));
-            }
-            if drops > 0 {
-                notes.push(format!("{drops} drop(s)"));
-            }
-            Ok(Correctness {
-                value: total.min(full) / full,
-                progress: total,
-                notes,
-            })
+            whole_count_correctness(count, unit, marks, counted)?
         }
         CorrectnessKind::Rotation { full_deg: full }
         | CorrectnessKind::Distance { full_mm: full } => {
-            let unit = kind.progress_unit();
-            let total: f64 = marks
-                .iter()
-                .filter(|(t, _)| counted(*t))
-                .filter_map(|(_, m)| match m {
-                    Mark::Progress(v) => Some(*v),
-                    Mark::Drop => None,
-                })
-                .sum();
-            if total > full {
-                notes.push(format!(
-                    "progress total {total} {unit} exceeds the full {full} {unit}: correctness capped at 1"
-                ));
-            } else if total < 0.0 {
-                notes.push(format!(
-                    "net progress {total} {unit} is negative: correctness 0"
-                ));
-            }
-            if drops > 0 {
-                notes.push(format!("{drops} drop(s)"));
-            }
-            Ok(Correctness {
-                value: (total / full).clamp(0.0, 1.0),
-                progress: total,
-                notes,
-            })
+            continuous_correctness(full, unit, marks, counted)
         }
-        CorrectnessKind::Grasp {} => {
-            let mut level = 0.0;
-            for (i, (t, mark)) in marks.iter().enumerate() {
-                let next = match *mark {
-                    Mark::Progress(v) if GRASP_LEVELS.contains(&v) => v,
-                    Mark::Progress(v) => {
-                        return Err(format!(
-                            "grasp level {v} (mark {}) is not one of 0, 0.5, 1",
-                            i + 1
-                        ));
-                    }
-                    Mark::Drop => 0.5,
-                };
-                if counted(*t) {
-                    level = next;
-                }
-            }
-            if drops > 0 {
-                notes.push(format!("{drops} drop(s)"));
-            }
-            Ok(Correctness {
-                value: level,
-                progress: level,
-                notes,
-            })
+        CorrectnessKind::Grasp {} => grasp_correctness(marks, counted)?,
+    };
+    notes.extend(by_kind.notes);
+    let drops = marks.iter().filter(|(_, m)| *m == Mark::Drop).count();
+    if drops > 0 {
+        notes.push(format!("{drops} drop(s)"));
+    }
+    Ok(Correctness { notes, ..by_kind })
+}
+
+/// Notches or curves: whole numbers of `unit` summed (never below 0), capped at `count`.
+fn whole_count_correctness(
+    count: u32,
+    unit: &str,
+    marks: &[(i64, Mark)],
+    counted: impl Fn(i64) -> bool,
+) -> Result<Correctness, String> {
+    let mut total = 0.0_f64;
+    for (i, (t, mark)) in marks.iter().enumerate() {
+        let Mark::Progress(v) = *mark else { continue };
+        if v.fract() != 0.0 {
+            return Err(format!(
+                "progress value {v} is not a whole number of {unit} (mark {})",
+                i + 1
+            ));
+        }
+        if !counted(*t) {
+            continue;
+        }
+        total += v;
+        if total < 0.0 {
+            return Err(format!(
+                "progress total goes below 0 {unit} at mark {} (value {v})",
+                i + 1
+            ));
         }
     }
+    let full = f64::from(count);
+    let mut notes = Vec::new();
+    if total > full {
+        notes.push(format!(
+            "progress total {total} {unit} exceeds the task's {count}: counted as {count}"
+        ));
+    }
+    Ok(Correctness {
+        value: total.min(full) / full,
+        progress: total,
+        notes,
+    })
+}
+
+/// Rotation or distance: the net progress in `unit` over `full`, clamped to [0, 1].
+fn continuous_correctness(
+    full: f64,
+    unit: &str,
+    marks: &[(i64, Mark)],
+    counted: impl Fn(i64) -> bool,
+) -> Correctness {
+    let total: f64 = marks
+        .iter()
+        .filter(|(t, _)| counted(*t))
+        .filter_map(|(_, m)| match m {
+            Mark::Progress(v) => Some(*v),
+            Mark::Drop => None,
+        })
+        .sum();
+    let mut notes = Vec::new();
+    if total > full {
+        notes.push(format!(
+            "progress total {total} {unit} exceeds the full {full} {unit}: correctness capped at 1"
+        ));
+    } else if total < 0.0 {
+        notes.push(format!(
+            "net progress {total} {unit} is negative: correctness 0"
+        ));
+    }
+    Correctness {
+        value: (total / full).clamp(0.0, 1.0),
+        progress: total,
+        notes,
+    }
+}
+
+/// Grasp: the last counted level, a drop meaning 0.5; every level is checked.
+fn grasp_correctness(
+    marks: &[(i64, Mark)],
+    counted: impl Fn(i64) -> bool,
+) -> Result<Correctness, String> {
+    let mut level = 0.0;
+    for (i, (t, mark)) in marks.iter().enumerate() {
+        let next = match *mark {
+            Mark::Progress(v) if GRASP_LEVELS.contains(&v) => v,
+            Mark::Progress(v) => {
+                return Err(format!(
+                    "grasp level {v} (mark {}) is not one of 0, 0.5, 1",
+                    i + 1
+                ));
+            }
+            Mark::Drop => 0.5,
+        };
+        if counted(*t) {
+            level = next;
+        }
+    }
+    Ok(Correctness {
+        value: level,
+        progress: level,
+        notes: Vec::new(),
+    })
 }
 
 #[cfg(test)]

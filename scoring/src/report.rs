@@ -122,100 +122,16 @@ impl ScoreReport {
             rejected,
             skipped,
         } = inputs;
-        let Aggregate { tasks, embodiments } = aggregate(&scores, catalog, dof);
-        let mut warnings = Vec::new();
-        let mut notes = Vec::new();
-        match baseline {
-            None => warnings.push(
-                "NO BASELINE: no baseline table was given, so there are no scores: every task \
-                 shows correctness only (record human trials, compute a table with `pomdar \
-                 baseline`, pass it with --baseline)."
-                    .to_string(),
-            ),
-            Some(b) if b.header.example => warnings.push(format!(
-                "EXAMPLE BASELINE: {} says example = true: its times are illustrative, not \
-                 measured human data, so these scores are not real POMDAR scores.",
-                b.origin
-            )),
-            Some(_) => {}
-        }
-        if let Some(b) = baseline {
-            let mut missing: Vec<&str> = Vec::new();
-            for spec in &catalog.tasks {
-                let attempted = tasks.iter().any(|t| t.task == spec.id);
-                if attempted && b.get(&spec.id).is_none() {
-                    missing.push(&spec.id);
-                }
-            }
-            if !missing.is_empty() {
-                let affected: Vec<&str> = embodiments
-                    .iter()
-                    .filter(|e| !e.tasks_without_baseline.is_empty())
-                    .map(|e| e.embodiment.as_str())
-                    .collect();
-                warnings.push(format!(
-                    "NO BASELINE for {} in {}: these tasks show correctness only (marked *), \
-                     and the overall score of {} is not computed.",
-                    missing.join(", "),
-                    b.origin,
-                    affected.join(", ")
-                ));
-            }
-        }
-        if !rejected.is_empty() {
-            warnings.push(format!(
-                "{} file(s) could not be scored (listed with the reason under \"Rejected files\").",
-                rejected.len()
-            ));
-        }
-        if !rules.has_paper_weights() {
-            warnings.push(format!(
-                "Weights differ from the paper's (0.8 / 0.2): {} / {}.",
-                rules.correctness_weight, rules.speed_weight
-            ));
-        }
-        let practice = scores.iter().filter(|s| s.practice).count();
-        if practice > 0 {
-            notes.push(format!(
-                "{practice} practice trial(s) scored but left out of every mean."
-            ));
-        }
-        let excluded = scores.iter().filter(|s| !s.practice && !s.counted).count();
-        if excluded > 0 {
-            notes.push(format!(
-                "{excluded} aborted or timed-out trial(s) left out of the means (rule: exclude)."
-            ));
-        }
-        for e in &embodiments {
-            if e.dof.is_none() {
-                notes.push(format!(
-                    "embodiment {}: DoF unknown (not in the embodiment catalog), so not in the \
-                     overall-vs-DoF figure.",
-                    e.embodiment
-                ));
-            }
-        }
-        if !skipped.is_empty() {
-            notes.push(format!(
-                "{} file(s) skipped (listed under \"Skipped files\").",
-                skipped.len()
-            ));
-        }
+        let aggregated = aggregate(&scores, catalog, dof);
+        let mut warnings = baseline_warnings(baseline, catalog, &aggregated);
+        warnings.extend(input_warnings(rules, &rejected));
+        let notes = notes(&scores, &aggregated.embodiments, &skipped);
+        let Aggregate { tasks, embodiments } = aggregated;
         ScoreReport {
             warnings,
             notes,
             catalog: format!("{}; {}", catalog.header.name, catalog.origin),
-            catalog_tasks: catalog
-                .tasks
-                .iter()
-                .map(|t| TaskInfo {
-                    id: t.id.clone(),
-                    name: t.name.clone(),
-                    correctness: t.correctness.describe(),
-                    grasp: t.configuration.is_grasp(),
-                    baseline_s: baseline.and_then(|b| b.get(&t.id)).map(|b| b.mean_s),
-                })
-                .collect(),
+            catalog_tasks: task_infos(catalog, baseline),
             rules: RulesInfo {
                 origin: rules_origin.to_string(),
                 description: rules.describe(),
@@ -265,4 +181,122 @@ impl ScoreReport {
 /// `0.72` or `–`.
 pub(crate) fn opt(value: Option<f64>, decimals: usize) -> String {
     value.map_or("–".to_string(), |v| format!("{v:.decimals$}"))
+}
+
+/// Warnings about the baseline: none given, an example one, or tasks attempted that it lacks.
+fn baseline_warnings(
+    baseline: Option<&BaselineTable>,
+    catalog: &TaskCatalog,
+    aggregated: &Aggregate,
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    match baseline {
+        None => warnings.push(
+            "NO BASELINE: no baseline table was given, so there are no scores: every task \
+             shows correctness only (record human trials, compute a table with `pomdar \
+             baseline`, pass it with --baseline)."
+                .to_string(),
+        ),
+        Some(b) if b.header.example => warnings.push(format!(
+            "EXAMPLE BASELINE: {} says example = true: its times are illustrative, not \
+             measured human data, so these scores are not real POMDAR scores.",
+            b.origin
+        )),
+        Some(_) => {}
+    }
+    if let Some(b) = baseline {
+        let mut missing: Vec<&str> = Vec::new();
+        for spec in &catalog.tasks {
+            let attempted = aggregated.tasks.iter().any(|t| t.task == spec.id);
+            if attempted && b.get(&spec.id).is_none() {
+                missing.push(&spec.id);
+            }
+        }
+        if !missing.is_empty() {
+            let affected: Vec<&str> = aggregated
+                .embodiments
+                .iter()
+                .filter(|e| !e.tasks_without_baseline.is_empty())
+                .map(|e| e.embodiment.as_str())
+                .collect();
+            warnings.push(format!(
+                "NO BASELINE for {} in {}: these tasks show correctness only (marked *), \
+                 and the overall score of {} is not computed.",
+                missing.join(", "),
+                b.origin,
+                affected.join(", ")
+            ));
+        }
+    }
+    warnings
+}
+
+/// Warnings about the inputs: files rejected, weights other than the paper's.
+fn input_warnings(rules: &ScoringRules, rejected: &[FileProblem]) -> Vec<String> {
+    let mut warnings = Vec::new();
+    if !rejected.is_empty() {
+        warnings.push(format!(
+            "{} file(s) could not be scored (listed with the reason under \"Rejected files\").",
+            rejected.len()
+        ));
+    }
+    if !rules.has_paper_weights() {
+        warnings.push(format!(
+            "Weights differ from the paper's (0.8 / 0.2): {} / {}.",
+            rules.correctness_weight, rules.speed_weight
+        ));
+    }
+    warnings
+}
+
+/// Informational notes: practice and excluded trials, unknown DoF, skipped files.
+fn notes(
+    scores: &[TrialScore],
+    embodiments: &[EmbodimentResult],
+    skipped: &[FileProblem],
+) -> Vec<String> {
+    let mut notes = Vec::new();
+    let practice = scores.iter().filter(|s| s.practice).count();
+    if practice > 0 {
+        notes.push(format!(
+            "{practice} practice trial(s) scored but left out of every mean."
+        ));
+    }
+    let excluded = scores.iter().filter(|s| !s.practice && !s.counted).count();
+    if excluded > 0 {
+        notes.push(format!(
+            "{excluded} aborted or timed-out trial(s) left out of the means (rule: exclude)."
+        ));
+    }
+    for e in embodiments {
+        if e.dof.is_none() {
+            notes.push(format!(
+                "embodiment {}: DoF unknown (not in the embodiment catalog), so not in the \
+                 overall-vs-DoF figure.",
+                e.embodiment
+            ));
+        }
+    }
+    if !skipped.is_empty() {
+        notes.push(format!(
+            "{} file(s) skipped (listed under \"Skipped files\").",
+            skipped.len()
+        ));
+    }
+    notes
+}
+
+/// The catalog's tasks with their baseline times.
+fn task_infos(catalog: &TaskCatalog, baseline: Option<&BaselineTable>) -> Vec<TaskInfo> {
+    catalog
+        .tasks
+        .iter()
+        .map(|t| TaskInfo {
+            id: t.id.clone(),
+            name: t.name.clone(),
+            correctness: t.correctness.describe(),
+            grasp: t.configuration.is_grasp(),
+            baseline_s: baseline.and_then(|b| b.get(&t.id)).map(|b| b.mean_s),
+        })
+        .collect()
 }

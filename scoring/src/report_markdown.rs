@@ -14,7 +14,17 @@ fn md(text: &str) -> String {
 /// relative to the report.
 pub fn render_markdown(report: &ScoreReport) -> String {
     let mut out = String::new();
-    let total = report.catalog_tasks.len();
+    write_summary(&mut out, report);
+    write_overall(&mut out, report);
+    write_per_task(&mut out, report);
+    write_figures(&mut out, report);
+    write_unscored_files(&mut out, report);
+    write_trials(&mut out, report);
+    out
+}
+
+/// The title, the warnings, the inputs table and the notes.
+fn write_summary(out: &mut String, report: &ScoreReport) {
     let practice = report.trials.iter().filter(|t| t.practice).count();
     let _ = writeln!(out, "# POMDAR scores\n");
     for warning in &report.warnings {
@@ -50,7 +60,11 @@ pub fn render_markdown(report: &ScoreReport) -> String {
     for note in &report.notes {
         let _ = writeln!(out, "\n- {}", md(note));
     }
+}
 
+/// The overall scores per embodiment.
+fn write_overall(out: &mut String, report: &ScoreReport) {
+    let total = report.catalog_tasks.len();
     let _ = writeln!(out, "\n## Overall per embodiment\n");
     let _ = writeln!(
         out,
@@ -84,7 +98,10 @@ pub fn render_markdown(report: &ScoreReport) -> String {
             opt(e.correctness_all, 3)
         );
     }
+}
 
+/// The task × embodiment table.
+fn write_per_task(out: &mut String, report: &ScoreReport) {
     let _ = writeln!(out, "\n## Per task\n");
     let _ = writeln!(
         out,
@@ -113,14 +130,20 @@ pub fn render_markdown(report: &ScoreReport) -> String {
         }
         let _ = writeln!(out, "{line}");
     }
+}
 
+/// Links to the SVG figures, if any.
+fn write_figures(out: &mut String, report: &ScoreReport) {
     if !report.figures.is_empty() {
         let _ = writeln!(out, "\n## Figures\n");
         for f in report.figures.iter().filter(|f| f.ends_with(".svg")) {
             let _ = writeln!(out, "![{f}]({f})\n");
         }
     }
+}
 
+/// The rejected and the skipped files, with the reasons.
+fn write_unscored_files(out: &mut String, report: &ScoreReport) {
     if !report.rejected.is_empty() {
         let _ = writeln!(out, "\n## Rejected files\n");
         for r in &report.rejected {
@@ -133,7 +156,10 @@ pub fn render_markdown(report: &ScoreReport) -> String {
             let _ = writeln!(out, "- `{}`: {}", r.file, md(&r.reason));
         }
     }
+}
 
+/// One row per trial.
+fn write_trials(out: &mut String, report: &ScoreReport) {
     if !report.trials.is_empty() {
         let _ = writeln!(out, "\n## Trials\n");
         let _ = writeln!(
@@ -163,5 +189,4 @@ pub fn render_markdown(report: &ScoreReport) -> String {
             );
         }
     }
-    out
 }

@@ -80,6 +80,18 @@ fn pad_left(text: &str, width: usize) -> String {
 /// Renders `report` for a terminal.
 pub fn render_terminal(report: &ScoreReport) -> String {
     let mut out = String::new();
+    write_summary(&mut out, report);
+    if !report.embodiments.is_empty() {
+        write_overall(&mut out, report);
+        write_per_task(&mut out, report);
+    }
+    write_trials(&mut out, report);
+    write_unscored_files(&mut out, report);
+    out
+}
+
+/// The title, the inputs, the warnings and the notes.
+fn write_summary(out: &mut String, report: &ScoreReport) {
     let w = TERMINAL_WIDTH;
     let practice = report.trials.iter().filter(|t| t.practice).count();
     let _ = writeln!(out, "POMDAR scores");
@@ -134,74 +146,82 @@ pub fn render_terminal(report: &ScoreReport) -> String {
     for note in &report.notes {
         let _ = writeln!(out, "{}", wrap(&format!("note: {note}"), w, "      "));
     }
+}
 
-    if !report.embodiments.is_empty() {
-        let total = report.catalog_tasks.len();
-        let _ = writeln!(
-            out,
-            "\nOverall per embodiment (mean of the task means; ± spread across tasks)"
-        );
-        let all = format!("overall (all {total})");
+/// The overall scores per embodiment.
+fn write_overall(out: &mut String, report: &ScoreReport) {
+    let total = report.catalog_tasks.len();
+    let _ = writeln!(
+        out,
+        "\nOverall per embodiment (mean of the task means; ± spread across tasks)"
+    );
+    let all = format!("overall (all {total})");
+    let _ = writeln!(
+        out,
+        "{} {} {} {}  {} {}  {}",
+        pad("embodiment", 15),
+        pad_left("DoF", 4),
+        pad_left("tasks", 6),
+        pad_left("trials", 7),
+        pad("overall (attempted)", 19),
+        pad_left(&all, 17),
+        pad_left("correctness att./all", 20)
+    );
+    for e in &report.embodiments {
+        let attempted = match (e.overall_attempted, e.overall_spread) {
+            (Some(m), Some(s)) => format!("{m:.2} ± {s:.2}"),
+            (Some(m), None) => format!("{m:.2}"),
+            (None, _) => "– (no baseline)".to_string(),
+        };
         let _ = writeln!(
             out,
             "{} {} {} {}  {} {}  {}",
-            pad("embodiment", 15),
-            pad_left("DoF", 4),
-            pad_left("tasks", 6),
-            pad_left("trials", 7),
-            pad("overall (attempted)", 19),
-            pad_left(&all, 17),
-            pad_left("correctness att./all", 20)
+            pad(&e.embodiment, 15),
+            pad_left(&e.dof.map_or("?".to_string(), |d| d.to_string()), 4),
+            pad_left(&format!("{}/{}", e.tasks_attempted, e.tasks_total), 6),
+            pad_left(&e.trials.to_string(), 7),
+            pad(&attempted, 19),
+            pad_left(&opt(e.overall_all, 2), 17),
+            pad_left(
+                &format!(
+                    "{} / {}",
+                    opt(e.correctness_attempted, 2),
+                    opt(e.correctness_all, 2)
+                ),
+                20
+            )
         );
-        for e in &report.embodiments {
-            let attempted = match (e.overall_attempted, e.overall_spread) {
-                (Some(m), Some(s)) => format!("{m:.2} ± {s:.2}"),
-                (Some(m), None) => format!("{m:.2}"),
-                (None, _) => "– (no baseline)".to_string(),
-            };
-            let _ = writeln!(
-                out,
-                "{} {} {} {}  {} {}  {}",
-                pad(&e.embodiment, 15),
-                pad_left(&e.dof.map_or("?".to_string(), |d| d.to_string()), 4),
-                pad_left(&format!("{}/{}", e.tasks_attempted, e.tasks_total), 6),
-                pad_left(&e.trials.to_string(), 7),
-                pad(&attempted, 19),
-                pad_left(&opt(e.overall_all, 2), 17),
-                pad_left(
-                    &format!(
-                        "{} / {}",
-                        opt(e.correctness_attempted, 2),
-                        opt(e.correctness_all, 2)
-                    ),
-                    20
-                )
-            );
-        }
+    }
+}
 
-        let per_block = ((w - TASK_COLUMNS) / (CELL + 1)).max(1);
-        for block in report.embodiments.chunks(per_block) {
-            let _ = writeln!(
-                out,
-                "\nPer task: mean score ± std (trials); * = correctness only (no baseline)"
-            );
-            let mut header = format!("{} {}", pad("task", 4), pad("name", 16));
+/// The task × embodiment tables, as many embodiments per block as fit the width.
+fn write_per_task(out: &mut String, report: &ScoreReport) {
+    let w = TERMINAL_WIDTH;
+    let per_block = ((w - TASK_COLUMNS) / (CELL + 1)).max(1);
+    for block in report.embodiments.chunks(per_block) {
+        let _ = writeln!(
+            out,
+            "\nPer task: mean score ± std (trials); * = correctness only (no baseline)"
+        );
+        let mut header = format!("{} {}", pad("task", 4), pad("name", 16));
+        for e in block {
+            header.push(' ');
+            header.push_str(&pad(&e.embodiment, CELL));
+        }
+        let _ = writeln!(out, "{}", header.trim_end());
+        for t in &report.catalog_tasks {
+            let mut line = format!("{} {}", pad(&t.id, 4), pad(&t.name, 16));
             for e in block {
-                header.push(' ');
-                header.push_str(&pad(&e.embodiment, CELL));
+                line.push(' ');
+                line.push_str(&pad(&cell(report.task_result(&t.id, &e.embodiment)), CELL));
             }
-            let _ = writeln!(out, "{}", header.trim_end());
-            for t in &report.catalog_tasks {
-                let mut line = format!("{} {}", pad(&t.id, 4), pad(&t.name, 16));
-                for e in block {
-                    line.push(' ');
-                    line.push_str(&pad(&cell(report.task_result(&t.id, &e.embodiment)), CELL));
-                }
-                let _ = writeln!(out, "{}", line.trim_end());
-            }
+            let _ = writeln!(out, "{}", line.trim_end());
         }
     }
+}
 
+/// One line per trial when there are few, else where to find them.
+fn write_trials(out: &mut String, report: &ScoreReport) {
     if !report.trials.is_empty() && report.trials.len() <= TRIAL_LINES_MAX {
         let _ = writeln!(out, "\nTrials");
         let _ = writeln!(
@@ -236,7 +256,11 @@ pub fn render_terminal(report: &ScoreReport) -> String {
             "\nPer-trial scores: trials.csv and scores.json (written with --out), or --json."
         );
     }
+}
 
+/// The rejected and the skipped files, with the reasons.
+fn write_unscored_files(out: &mut String, report: &ScoreReport) {
+    let w = TERMINAL_WIDTH;
     if !report.rejected.is_empty() {
         let _ = writeln!(out, "\nRejected files ({})", report.rejected.len());
         for r in &report.rejected {
@@ -257,7 +281,6 @@ pub fn render_terminal(report: &ScoreReport) -> String {
             );
         }
     }
-    out
 }
 
 #[cfg(test)]

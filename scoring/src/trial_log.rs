@@ -109,131 +109,16 @@ impl TrialRecord {
     /// Checks `log` (see the module docs) against `catalog`.
     pub fn from_log(log: &TrialLog, catalog: &TaskCatalog) -> Result<TrialRecord, ScoringError> {
         let fail = |reason: String| ScoringError::trial(&log.source, reason);
-        let required = |key: &str| {
-            log.metadata
-                .get(key)
-                .filter(|v| !v.trim().is_empty())
-                .cloned()
-                .ok_or_else(|| {
-                    fail(format!(
-                        "the {TRIAL_METADATA_NAME} metadata record has no '{key}' (required: task, embodiment, practice)"
-                    ))
-                })
-        };
-        let task = required("task")?;
-        if catalog.get(&task).is_none() {
-            return Err(fail(format!(
-                "unknown task {task:?}: not in the {} ({})",
-                catalog.origin,
-                catalog.ids()
-            )));
-        }
-        let embodiment = required("embodiment")?;
-        let practice = match required("practice")?.as_str() {
-            "true" => true,
-            "false" => false,
-            other => {
-                return Err(fail(format!(
-                    "metadata practice = {other:?}: expected \"true\" or \"false\""
-                )));
-            }
-        };
-        let optional = |key: &str| log.metadata.get(key).cloned();
-
+        let Metadata {
+            task,
+            embodiment,
+            practice,
+        } = Metadata::read(log, catalog).map_err(fail)?;
         let events = parse_events(log)?;
-        let base_ns = events.first().map_or(0, |(t, _)| *t);
-        let at = |i: usize| {
-            let (t, e) = &events[i];
-            format!(
-                "event {} ({}, +{:.3} s)",
-                i + 1,
-                e.name(),
-                (t - base_ns) as f64 * 1e-9
-            )
-        };
-        for i in 1..events.len() {
-            if events[i].0 < events[i - 1].0 {
-                return Err(fail(format!(
-                    "events out of order: {} is earlier than {}",
-                    at(i),
-                    at(i - 1)
-                )));
-            }
-        }
-
-        if !events.iter().any(|(_, e)| *e == Event::Start) {
-            let first = events
-                .iter()
-                .position(|(_, e)| !matches!(e, Event::Note(_)))
-                .map_or(String::new(), |i| {
-                    format!(" (the first event is {})", at(i))
-                });
-            return Err(fail(format!("missing start event{first}")));
-        }
-        let mut start = None;
-        let mut abort = None;
-        let mut stop = None;
-        let mut marks = Vec::new();
-        let mut notes = Vec::new();
-        for (i, (t, event)) in events.iter().enumerate() {
-            if let Event::Note(text) = event {
-                notes.push(text.clone());
-                continue;
-            }
-            if let Event::Start = event {
-                if start.is_some() {
-                    return Err(fail(format!("duplicate start event: {}", at(i))));
-                }
-                start = Some(*t);
-                continue;
-            }
-            if start.is_none() {
-                return Err(fail(format!("{} comes before the start event", at(i))));
-            }
-            if stop.is_some() {
-                return Err(fail(format!("{} comes after the stop event", at(i))));
-            }
-            match event {
-                Event::Stop => stop = Some(*t),
-                Event::Abort(reason) => {
-                    if abort.is_some() {
-                        return Err(fail(format!("duplicate abort event: {}", at(i))));
-                    }
-                    abort = Some(*t);
-                    notes.push(match reason {
-                        Some(r) => format!("aborted: {r}"),
-                        None => "aborted".to_string(),
-                    });
-                }
-                Event::Progress(_) | Event::Drop if abort.is_some() => {
-                    return Err(fail(format!("{} comes after the abort event", at(i))));
-                }
-                Event::Progress(v) => marks.push((*t, Mark::Progress(*v))),
-                Event::Drop => marks.push((*t, Mark::Drop)),
-                Event::Start | Event::Note(_) => {}
-            }
-        }
-        let Some(start_ns) = start else {
-            return Err(fail("missing start event".to_string()));
-        };
-        let (end_ns, ending) = match (abort, stop) {
-            (Some(t), _) => (t, Ending::Aborted),
-            (None, Some(t)) => (t, Ending::Stopped),
-            (None, None) => {
-                return Err(fail(
-                    "missing stop event (the trial was neither stopped nor aborted)".to_string(),
-                ));
-            }
-        };
-        if end_ns <= start_ns {
-            return Err(fail(format!(
-                "trial time is zero: the {} event has the start event's log time",
-                match ending {
-                    Ending::Stopped => "stop",
-                    Ending::Aborted => "abort",
-                }
-            )));
-        }
+        check_order_and_start(&events).map_err(fail)?;
+        let walked = walk_events(&events).map_err(fail)?;
+        let (start_ns, end_ns, ending) = walked.span().map_err(fail)?;
+        let optional = |key: &str| log.metadata.get(key).cloned();
         Ok(TrialRecord {
             source: log.source.clone(),
             task,
@@ -245,10 +130,178 @@ impl TrialRecord {
             start_ns,
             end_ns,
             ending,
-            marks,
-            notes,
+            marks: walked.marks,
+            notes: walked.notes,
         })
     }
+}
+
+/// The required metadata entries, checked.
+struct Metadata {
+    task: String,
+    embodiment: String,
+    practice: bool,
+}
+
+impl Metadata {
+    /// The required entries of `log`'s metadata; the task must be in `catalog`.
+    fn read(log: &TrialLog, catalog: &TaskCatalog) -> Result<Metadata, String> {
+        let required = |key: &str| {
+            log.metadata
+                .get(key)
+                .filter(|v| !v.trim().is_empty())
+                .cloned()
+                .ok_or_else(|| {
+                    format!(
+                        "the {TRIAL_METADATA_NAME} metadata record has no '{key}' (required: task, embodiment, practice)"
+                    )
+                })
+        };
+        let task = required("task")?;
+        if catalog.get(&task).is_none() {
+            return Err(format!(
+                "unknown task {task:?}: not in the {} ({})",
+                catalog.origin,
+                catalog.ids()
+            ));
+        }
+        let embodiment = required("embodiment")?;
+        let practice = match required("practice")?.as_str() {
+            "true" => true,
+            "false" => false,
+            other => {
+                return Err(format!(
+                    "metadata practice = {other:?}: expected \"true\" or \"false\""
+                ));
+            }
+        };
+        Ok(Metadata {
+            task,
+            embodiment,
+            practice,
+        })
+    }
+}
+
+/// Event `i` of `events` for a message: `event 3 (progress, +1.500 s)`, the time counted
+/// from the first event.
+fn describe_event(events: &[(i64, Event)], i: usize) -> String {
+    let base_ns = events.first().map_or(0, |(t, _)| *t);
+    let (t, e) = &events[i];
+    format!(
+        "event {} ({}, +{:.3} s)",
+        i + 1,
+        e.name(),
+        (t - base_ns) as f64 * 1e-9
+    )
+}
+
+/// Log times never decrease, and there is a start event.
+fn check_order_and_start(events: &[(i64, Event)]) -> Result<(), String> {
+    let at = |i: usize| describe_event(events, i);
+    for i in 1..events.len() {
+        if events[i].0 < events[i - 1].0 {
+            return Err(format!(
+                "events out of order: {} is earlier than {}",
+                at(i),
+                at(i - 1)
+            ));
+        }
+    }
+    if !events.iter().any(|(_, e)| *e == Event::Start) {
+        let first = events
+            .iter()
+            .position(|(_, e)| !matches!(e, Event::Note(_)))
+            .map_or(String::new(), |i| {
+                format!(" (the first event is {})", at(i))
+            });
+        return Err(format!("missing start event{first}"));
+    }
+    Ok(())
+}
+
+/// What the events say, once their sequence has been checked.
+#[derive(Default)]
+struct WalkedEvents {
+    start: Option<i64>,
+    abort: Option<i64>,
+    stop: Option<i64>,
+    marks: Vec<(i64, Mark)>,
+    notes: Vec<String>,
+}
+
+impl WalkedEvents {
+    /// Start and end log times (ns) and how the trial ended; the trial time must be > 0.
+    fn span(&self) -> Result<(i64, i64, Ending), String> {
+        let Some(start_ns) = self.start else {
+            return Err("missing start event".to_string());
+        };
+        let (end_ns, ending) = match (self.abort, self.stop) {
+            (Some(t), _) => (t, Ending::Aborted),
+            (None, Some(t)) => (t, Ending::Stopped),
+            (None, None) => {
+                return Err(
+                    "missing stop event (the trial was neither stopped nor aborted)".to_string(),
+                );
+            }
+        };
+        if end_ns <= start_ns {
+            return Err(format!(
+                "trial time is zero: the {} event has the start event's log time",
+                match ending {
+                    Ending::Stopped => "stop",
+                    Ending::Aborted => "abort",
+                }
+            ));
+        }
+        Ok((start_ns, end_ns, ending))
+    }
+}
+
+/// Walks the events in order, checking their sequence (see the module docs) and collecting
+/// the start, abort and stop times, the marks and the notes.
+fn walk_events(events: &[(i64, Event)]) -> Result<WalkedEvents, String> {
+    let at = |i: usize| describe_event(events, i);
+    let mut walked = WalkedEvents::default();
+    for (i, (t, event)) in events.iter().enumerate() {
+        if let Event::Note(text) = event {
+            walked.notes.push(text.clone());
+            continue;
+        }
+        if let Event::Start = event {
+            if walked.start.is_some() {
+                return Err(format!("duplicate start event: {}", at(i)));
+            }
+            walked.start = Some(*t);
+            continue;
+        }
+        if walked.start.is_none() {
+            return Err(format!("{} comes before the start event", at(i)));
+        }
+        if walked.stop.is_some() {
+            return Err(format!("{} comes after the stop event", at(i)));
+        }
+        match event {
+            Event::Stop => walked.stop = Some(*t),
+            Event::Abort(reason) => {
+                if walked.abort.is_some() {
+                    return Err(format!("duplicate abort event: {}", at(i)));
+                }
+                walked.abort = Some(*t);
+                walked.notes.push(match reason {
+                    Some(r) => format!("aborted: {r}"),
+                    None => "aborted".to_string(),
+                });
+            }
+            Event::Progress(_) | Event::Drop if walked.abort.is_some() => {
+                return Err(format!("{} comes after the abort event", at(i)));
+            }
+            Event::Progress(v) => walked.marks.push((*t, Mark::Progress(*v))),
+            Event::Drop => walked.marks.push((*t, Mark::Drop)),
+            Event::Start | Event::Note(_) => {}
+        }
+    }
+    Ok(walked)
 }
 
 #[derive(Debug, Clone, PartialEq)]

@@ -299,55 +299,50 @@ fn refusal(log: &TrialLog) -> String {
     err.to_string()
 }
 
+/// A V1 trial of `orca_full`, not practice, with `events`.
+fn v1_trial(file: &str, events: &[(f64, serde_json::Value)]) -> TrialLog {
+    trial(file, "V1", "orca_full", false, events)
+}
+
+/// Each log is refused with a message starting with its expected text.
+fn assert_refused(cases: Vec<(TrialLog, &str)>) {
+    for (log, expected) in cases {
+        let message = refusal(&log);
+        assert!(
+            message.starts_with(expected),
+            "got {message:?}, expected {expected:?}"
+        );
+    }
+}
+
 #[test]
-fn malformed_logs_are_refused_with_the_file_and_the_reason() {
-    let cases: Vec<(TrialLog, &str)> = vec![
+fn logs_with_events_out_of_sequence_are_refused_with_the_file_and_the_reason() {
+    assert_refused(vec![
         (
-            trial(
-                "no_start.mcap",
-                "V1",
-                "orca_full",
-                false,
-                &[(1.0, progress(1.0)), (5.0, stop())],
-            ),
+            v1_trial("no_start.mcap", &[(1.0, progress(1.0)), (5.0, stop())]),
             "no_start.mcap: missing start event (the first event is event 1 (progress, +0.000 s))",
         ),
         (
-            trial(
+            v1_trial(
                 "late_start.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[(1.0, progress(1.0)), (2.0, start()), (5.0, stop())],
             ),
             "late_start.mcap: event 1 (progress, +0.000 s) comes before the start event",
         ),
         (
-            trial(
+            v1_trial(
                 "only_notes.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[(1.0, json!({"event": "note", "text": "x"}))],
             ),
             "only_notes.mcap: missing start event",
         ),
         (
-            trial(
-                "no_stop.mcap",
-                "V1",
-                "orca_full",
-                false,
-                &[(0.0, start()), (1.0, progress(1.0))],
-            ),
+            v1_trial("no_stop.mcap", &[(0.0, start()), (1.0, progress(1.0))]),
             "no_stop.mcap: missing stop event (the trial was neither stopped nor aborted)",
         ),
         (
-            trial(
+            v1_trial(
                 "order.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[
                     (0.0, start()),
                     (5.0, progress(1.0)),
@@ -358,31 +353,22 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
             "order.mcap: events out of order: event 3 (progress, +3.000 s) is earlier than event 2 (progress, +5.000 s)",
         ),
         (
-            trial(
+            v1_trial(
                 "twice.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[(0.0, start()), (1.0, start()), (9.0, stop())],
             ),
             "twice.mcap: duplicate start event: event 2 (start, +1.000 s)",
         ),
         (
-            trial(
+            v1_trial(
                 "after.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[(0.0, start()), (9.0, stop()), (10.0, progress(1.0))],
             ),
             "after.mcap: event 3 (progress, +10.000 s) comes after the stop event",
         ),
         (
-            trial(
+            v1_trial(
                 "after_abort.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[
                     (0.0, start()),
                     (4.0, json!({"event": "abort"})),
@@ -392,15 +378,15 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
             "after_abort.mcap: event 3 (progress, +5.000 s) comes after the abort event",
         ),
         (
-            trial(
-                "zero.mcap",
-                "V1",
-                "orca_full",
-                false,
-                &[(0.0, start()), (0.0, stop())],
-            ),
+            v1_trial("zero.mcap", &[(0.0, start()), (0.0, stop())]),
             "zero.mcap: trial time is zero",
         ),
+    ]);
+}
+
+#[test]
+fn logs_with_an_unknown_task_or_malformed_events_are_refused_with_the_file_and_the_reason() {
+    assert_refused(vec![
         (
             trial(
                 "task.mcap",
@@ -412,11 +398,8 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
             "task.mcap: unknown task \"X9\"",
         ),
         (
-            trial(
+            v1_trial(
                 "event.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[
                     (0.0, start()),
                     (1.0, json!({"event": "progres", "value": 1})),
@@ -426,11 +409,8 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
             "event.mcap: trial event 2: unknown event \"progres\"",
         ),
         (
-            trial(
+            v1_trial(
                 "value.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[
                     (0.0, start()),
                     (1.0, json!({"event": "progress"})),
@@ -440,23 +420,13 @@ fn malformed_logs_are_refused_with_the_file_and_the_reason() {
             "value.mcap: trial event 2: progress {\"event\":\"progress\"} has no finite number \"value\"",
         ),
         (
-            trial(
+            v1_trial(
                 "shape.mcap",
-                "V1",
-                "orca_full",
-                false,
                 &[(0.0, start()), (1.0, json!(["start"])), (3.0, stop())],
             ),
             "shape.mcap: trial event 2: [\"start\"] has no string \"event\"",
         ),
-    ];
-    for (log, expected) in cases {
-        let message = refusal(&log);
-        assert!(
-            message.starts_with(expected),
-            "got {message:?}, expected {expected:?}"
-        );
-    }
+    ]);
 }
 
 #[test]

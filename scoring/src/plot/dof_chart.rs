@@ -103,30 +103,48 @@ pub fn dof_scatter(chart: &DofChart) -> Result<Figure, PlotError> {
 /// The DoF chart's drawing and the geometry its points were placed with.
 pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError> {
     let max = validate(chart)?;
-    let scale = score_axis(max);
+    let geometry = layout(chart, score_axis(max));
+    let mut d = Drawing::new(WIDTH_PX as u32, HEIGHT_PX as u32, chart.title.clone());
+    draw_grid_and_axes(&mut d, &geometry);
+    draw_titles(&mut d, &geometry, chart);
+    draw_points(&mut d, &geometry, chart);
+    Ok((d, geometry))
+}
+
+/// Baseline x of the rotated y axis title.
+fn y_title_x() -> f64 {
+    MARGIN_PX + cap_height(AXIS_TITLE_PX)
+}
+
+/// Baseline y of the x axis tick labels.
+fn x_tick_label_y(area: Rect) -> f64 {
+    area.bottom + TICK_LEN_PX + 4.0 + cap_height(TICK_PX)
+}
+
+/// The plot area (leaving room for the widest score tick label) and the axes' ranges.
+fn layout(chart: &DofChart, scale: ScoreAxis) -> DofGeometry {
     let tick_w = scale
         .ticks()
         .map(|t| text_width(&scale.label(t), TICK_PX))
         .fold(text_width("0.0", TICK_PX), f64::max);
-    let y_title_x = MARGIN_PX + cap_height(AXIS_TITLE_PX);
-    let has_std = chart.points.iter().any(|p| p.std.is_some());
     let dofs = chart.points.iter().map(|p| p.dof);
     let (min_dof, max_dof) = (dofs.clone().min().unwrap_or(0), dofs.max().unwrap_or(0));
-    let geometry = DofGeometry {
+    DofGeometry {
         area: Rect {
-            left: y_title_x + 14.0 + FONT_SLACK * tick_w + 8.0 + TICK_LEN_PX,
+            left: y_title_x() + 14.0 + FONT_SLACK * tick_w + 8.0 + TICK_LEN_PX,
             right: WIDTH_PX - 30.0,
             top: 84.0,
             bottom: HEIGHT_PX - 82.0,
         },
         dof_range: integer_axis(min_dof, max_dof),
         scale,
-    };
-    let area = geometry.area;
-    let mut d = Drawing::new(WIDTH_PX as u32, HEIGHT_PX as u32, chart.title.clone());
+    }
+}
 
-    // Grid and ticks.
-    let tick_y = area.bottom + TICK_LEN_PX + 4.0 + cap_height(TICK_PX);
+/// Grid lines, ticks and tick labels on both axes, then the axis lines.
+fn draw_grid_and_axes(d: &mut Drawing, geometry: &DofGeometry) {
+    let area = geometry.area;
+    let tick_y = x_tick_label_y(area);
     let (lo, hi, step) = geometry.dof_range;
     for dof in (lo..=hi).step_by(step.max(1) as usize) {
         let x = geometry.x(dof as f64);
@@ -149,6 +167,7 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
             TICK_PX,
         ));
     }
+    let scale = geometry.scale;
     for tick in std::iter::once(0.0).chain(scale.ticks()) {
         let y = geometry.y(tick);
         d.line(
@@ -172,8 +191,11 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
         Point::new(area.right, area.bottom),
     ];
     d.path(axes, false, Style::line(Rgba::INK, 1.2), Some("axes"));
+}
 
-    // Titles.
+/// The chart title, the error bar note (when any point has a std) and the axis titles.
+fn draw_titles(d: &mut Drawing, geometry: &DofGeometry, chart: &DofChart) {
+    let area = geometry.area;
     let mut title = Text::new(
         chart.title.clone(),
         Point::new(WIDTH_PX / 2.0, MARGIN_PX + cap_height(TITLE_PX)),
@@ -182,7 +204,7 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
     );
     title.bold = true;
     d.text(title);
-    if has_std {
+    if chart.points.iter().any(|p| p.std.is_some()) {
         let mut note = Text::new(
             "Error bars: \u{b1}1 standard deviation",
             Point::new(WIDTH_PX / 2.0, 64.0),
@@ -194,7 +216,7 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
     }
     let x_title_at = Point::new(
         (area.left + area.right) / 2.0,
-        tick_y + 14.0 + cap_height(AXIS_TITLE_PX),
+        x_tick_label_y(area) + 14.0 + cap_height(AXIS_TITLE_PX),
     );
     d.text(Text::new(
         "Degrees of freedom (DoF)",
@@ -204,15 +226,12 @@ pub fn dof_drawing(chart: &DofChart) -> Result<(Drawing, DofGeometry), PlotError
     ));
     let mut y_title = Text::new(
         chart.y_label.clone(),
-        Point::new(y_title_x, (area.top + area.bottom) / 2.0),
+        Point::new(y_title_x(), (area.top + area.bottom) / 2.0),
         Anchor::Middle,
         AXIS_TITLE_PX,
     );
     y_title.rotate_deg = -90.0;
     d.text(y_title);
-
-    draw_points(&mut d, &geometry, chart);
-    Ok((d, geometry))
 }
 
 fn draw_points(d: &mut Drawing, geometry: &DofGeometry, chart: &DofChart) {

@@ -39,11 +39,19 @@ const P_BOWL: &[(i8, i8)] = &[(0, 0), (0, 12), (6, 12), (8, 10), (8, 8), (6, 6),
 pub const MISSING: Glyph = g(7, &[&[(0, 0), (0, 12), (7, 12), (7, 0), (0, 0)], &[(0, 0), (7, 12)]]);
 
 /// The glyph for `c`, or `None` when the font lacks it.
-#[rustfmt::skip]
 pub fn glyph(c: char) -> Option<Glyph> {
+    match c {
+        '0'..='9' => digit(c),
+        'A'..='Z' => capital(c),
+        'a'..='z' => lowercase(c),
+        _ => sign(c),
+    }
+}
+
+/// Digits: all 7 wide so columns of numbers line up.
+#[rustfmt::skip]
+fn digit(c: char) -> Option<Glyph> {
     Some(match c {
-        ' ' => g(3, &[]),
-        // Digits: all 7 wide so columns of numbers line up.
         '0' => g(7, &[&[(2, 0), (0, 2), (0, 10), (2, 12), (5, 12), (7, 10), (7, 2), (5, 0), (2, 0)]]),
         '1' => g(7, &[&[(1, 9), (4, 12), (4, 0)], &[(1, 0), (7, 0)]]),
         '2' => g(7, &[&[(0, 10), (2, 12), (5, 12), (7, 10), (7, 8), (0, 1), (0, 0), (7, 0)]]),
@@ -64,7 +72,14 @@ pub fn glyph(c: char) -> Option<Glyph> {
         '9' => g(7, &[&[
             (7, 7), (5, 5), (2, 5), (0, 7), (0, 10), (2, 12), (5, 12), (7, 10), (7, 3), (4, 0), (1, 0),
         ]]),
-        // Capitals.
+        _ => return None,
+    })
+}
+
+/// Capital letters A to Z.
+#[rustfmt::skip]
+fn capital(c: char) -> Option<Glyph> {
+    Some(match c {
         'A' => g(8, &[&[(0, 0), (4, 12), (8, 0)], &[(1, 4), (7, 4)]]),
         'B' => g(8, &[
             &[(0, 6), (5, 6), (7, 8), (7, 10), (5, 12), (0, 12), (0, 0), (6, 0), (8, 2), (8, 4), (6, 6)],
@@ -96,7 +111,14 @@ pub fn glyph(c: char) -> Option<Glyph> {
         'X' => g(8, &[&[(0, 0), (8, 12)], &[(0, 12), (8, 0)]]),
         'Y' => g(8, &[&[(0, 12), (4, 6), (8, 12)], &[(4, 6), (4, 0)]]),
         'Z' => g(8, &[&[(0, 12), (8, 12), (0, 0), (8, 0)]]),
-        // Lowercase.
+        _ => return None,
+    })
+}
+
+/// Lowercase letters a to z.
+#[rustfmt::skip]
+fn lowercase(c: char) -> Option<Glyph> {
+    Some(match c {
         'a' => g(7, &[&[(1, 8), (5, 8), (7, 6), (7, 0)], &[(7, 4), (2, 4), (0, 3), (0, 1), (1, 0), (5, 0), (7, 2)]]),
         'b' => g(7, &[&[(0, 12), (0, 0)], BOWL_RIGHT]),
         'c' => g(7, &[BOWL_LEFT]),
@@ -129,7 +151,15 @@ pub fn glyph(c: char) -> Option<Glyph> {
         'x' => g(7, &[&[(0, 8), (7, 0)], &[(0, 0), (7, 8)]]),
         'y' => g(8, &[&[(0, 8), (4, 0)], &[(8, 8), (3, -3), (2, -4), (0, -4)]]),
         'z' => g(7, &[&[(0, 8), (7, 8), (0, 0), (7, 0)]]),
-        // Punctuation and signs.
+        _ => return None,
+    })
+}
+
+/// The space, punctuation and signs.
+#[rustfmt::skip]
+fn sign(c: char) -> Option<Glyph> {
+    Some(match c {
+        ' ' => g(3, &[]),
         '.' => g(2, &[&[(1, 0), (1, 1)]]),
         ',' => g(2, &[&[(1, 1), (1, 0), (0, -2)]]),
         ':' => g(2, &[&[(1, 0), (1, 1)], &[(1, 7), (1, 8)]]),
