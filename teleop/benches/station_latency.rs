@@ -12,7 +12,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
 use station::{ControlMode, StationConfig};
-use teleop::demo::{DemoOptions, default_domain_id, run_demo};
+use teleop::demo::{DemoOptions, run_demo};
+use teleop::ros::default_domain_id;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
 /// User + system CPU seconds of this process so far (Linux `/proc/self/stat`).

@@ -86,11 +86,6 @@ pub struct DemoOutcome {
     pub recorded: Option<std::path::PathBuf>,
 }
 
-/// The demo's default domain id: away from 0 (the lab's usual), different per process.
-pub fn default_domain_id() -> u16 {
-    150 + (std::process::id() % 80) as u16
-}
-
 /// Run the demo.
 pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let clock = StationClock::new();
@@ -108,7 +103,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let model = HandModel::orca_v1_right();
     // A bad calibration profile stops the demo before any node starts.
     if let Some(path) = &station.calibration_profile {
-        crate::calibrate::profile_file::load_profile(path, &model, station.retarget.layout)?;
+        crate::station_setup::load_profile(path, &model, station.retarget.layout)?;
     }
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (_operator_tx, operator_rx) = mpsc::unbounded_channel();

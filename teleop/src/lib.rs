@@ -7,12 +7,11 @@
 
 pub mod atomic_file;
 pub mod calibrate;
-pub mod cli;
 pub mod clock;
+pub mod command;
 pub mod console;
 pub mod demo;
-pub mod eval_command;
-pub mod eval_live_path;
+pub mod eval;
 pub mod hand_source;
 pub mod ingress;
 pub mod launch_config;
@@ -27,4 +26,5 @@ pub mod score;
 pub mod sim;
 pub mod station_node;
 pub mod station_setup;
+pub mod tui;
 pub mod utc_date;

@@ -1,12 +1,9 @@
 //! `pomdar`: the POMDAR teleoperation and scoring station.
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use teleop::cli;
-use teleop::hand_source::HandSource;
-use teleop::model_report;
+use teleop::command;
 
 /// The POMDAR station: teleoperate a robot hand through the POMDAR dexterity benchmark and
 /// score the trials.
@@ -39,7 +36,7 @@ enum Command {
     ///   pomdar demo --duration 5 --json
     ///   pomdar demo --out logs/        # also record the run to logs/demo-<time>.mcap
     #[command(verbatim_doc_comment)]
-    Demo(cli::DemoArgs),
+    Demo(command::demo::DemoArgs),
     /// Run the station node (no simulated parts) until Ctrl-C.
     ///
     /// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
@@ -52,13 +49,13 @@ enum Command {
     /// Example:
     ///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap --profile profiles/alice.toml
     #[command(verbatim_doc_comment)]
-    Station(cli::StationArgs),
+    Station(command::station::StationArgs),
     /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
-    SimGlove(cli::SimGloveArgs),
+    SimGlove(command::sim_glove::SimGloveArgs),
     /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state.
-    MockHand(cli::MockHandArgs),
+    MockHand(command::mock_hand::MockHandArgs),
     /// A mock Franka: follows pose commands at limited speed, publishes its pose.
-    MockFranka(cli::MockFrankaArgs),
+    MockFranka(command::mock_franka::MockFrankaArgs),
     /// Re-simulate a recorded log's glove input through the station, deterministically.
     ///
     /// The station's processing is fed from the log with the log's clock, in process; the
@@ -73,7 +70,7 @@ enum Command {
     /// Example:
     ///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
     #[command(verbatim_doc_comment)]
-    Resim(cli::ResimArgs),
+    Resim(command::resim::ResimArgs),
     /// Retargeting quality on a recording's glove keypoints: how closely the hand follows.
     ///
     /// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
@@ -93,17 +90,17 @@ enum Command {
     ///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
     ///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
     #[command(verbatim_doc_comment)]
-    Eval(teleop::eval_command::EvalArgs),
+    Eval(command::eval::EvalArgs),
     /// Repair an interrupted log (NAME.mcap.part) up to its last flushed chunk.
     ///
     /// Prints what was recovered and what was lost; never modifies the input.
-    Recover(cli::RecoverArgs),
+    Recover(command::recover::RecoverArgs),
     /// Republish a log's recorded topics over ROS 2 with their original timing.
     ///
     /// Example:
     ///   pomdar replay rokoko_orca_2024-11-20.mcap --topics /ingress/mano,/ingress/wrist --rate 1
     #[command(verbatim_doc_comment)]
-    Replay(cli::ReplayArgs),
+    Replay(command::replay::ReplayArgs),
     /// Check DDS discovery from this host: which publishers it sees, and at what rate.
     ///
     /// Joins the domain on the given interfaces, waits for a publisher of each topic, counts
@@ -115,7 +112,7 @@ enum Command {
     /// Example:
     ///   pomdar probe --topics /pomdar/hand/joint_targets,/franka/end_effector_pose_cmd --interface 10.251.0.3
     #[command(verbatim_doc_comment)]
-    Probe(teleop::ros::probe_command::ProbeArgs),
+    Probe(command::probe::ProbeArgs),
     /// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
     ///
     /// Three ways to run it:
@@ -167,7 +164,7 @@ enum Command {
     ///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
     ///   pomdar calibrate --simulate --simulate-bad-pose pinch_ring --user sim --out /tmp/sim.toml
     #[command(verbatim_doc_comment)]
-    Calibrate(teleop::calibrate::calibrate_command::CalibrateArgs),
+    Calibrate(command::calibrate::CalibrateArgs),
     /// The operator console for timed trials: practice, then a recorded series, per task.
     ///
     /// Runs the station in this process and shows, full-screen: the task and what to mark,
@@ -205,7 +202,7 @@ enum Command {
     ///   pomdar trial --task V1 --embodiment orca_full --user alice --operator bob --profile profiles/alice.toml --baseline baselines/eth_2026.toml
     ///   pomdar trial --task G2 --user sim --operator me --simulate --practice 1 --trials 3
     #[command(verbatim_doc_comment)]
-    Trial(teleop::console::trial_command::TrialArgs),
+    Trial(command::trial::TrialArgs),
     /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
     /// embodiment.
     ///
@@ -237,7 +234,7 @@ enum Command {
     ///   pomdar score trials/orca_full trials/orca_5 --baseline baselines/eth_2026.toml --out report/
     ///   pomdar score trials/ --rules launch_configs/scoring/default_rules.toml --json > scores.json
     #[command(verbatim_doc_comment)]
-    Score(teleop::score::score_command::ScoreArgs),
+    Score(command::score::ScoreArgs),
     /// Compute the human baseline table from recorded human trials (embodiment "human").
     ///
     /// Per task: the mean and sample standard deviation of the trial time (start → stop) over
@@ -252,10 +249,10 @@ enum Command {
     /// Example:
     ///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
     #[command(verbatim_doc_comment)]
-    Baseline(teleop::score::baseline_command::BaselineArgs),
+    Baseline(command::baseline::BaselineArgs),
     /// Glove ingress: a motion-capture stream in, the lab's ROS 2 keypoint topics out.
     #[command(subcommand)]
-    Ingress(teleop::ingress::ingress_command::IngressCommand),
+    Ingress(command::ingress::IngressCommand),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
     ///
     /// Without options it shows the built-in ORCA v1 right hand. Use it to check a new hand's
@@ -266,64 +263,36 @@ enum Command {
     ///   pomdar model --urdf orcahand_v1_right.urdf --import launch_configs/hands/orca_v1_right_urdf.toml
     ///   pomdar model --pose index_mcp=0.8,thumb_mcp=0.3 --json
     #[command(verbatim_doc_comment)]
-    Model {
-        /// A model file in the project's TOML format (see `retarget::model_spec`).
-        #[arg(long, value_name = "FILE", conflicts_with_all = ["urdf", "import"])]
-        model: Option<PathBuf>,
-        /// A URDF to load instead of the built-in hand (needs --import).
-        #[arg(long, value_name = "FILE", requires = "import")]
-        urdf: Option<PathBuf>,
-        /// The import file naming the URDF's frames (launch_configs/hands/*.toml).
-        #[arg(long, value_name = "FILE", requires = "urdf")]
-        import: Option<PathBuf>,
-        /// Joint values (radians) for the frame positions, as NAME=VALUE[,NAME=VALUE...];
-        /// unnamed joints stay at zero.
-        #[arg(long, value_name = "JOINTS", value_delimiter = ',')]
-        pose: Vec<String>,
-        /// Print JSON instead of tables.
-        #[arg(long)]
-        json: bool,
-    },
+    Model(command::model::ModelArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Model {
-            model,
-            urdf,
-            import,
-            pose,
-            json,
-        } => {
-            let source = match (model, urdf, import) {
-                (Some(path), _, _) => HandSource::ModelFile(path),
-                (None, Some(urdf), Some(import)) => HandSource::Urdf { urdf, import },
-                _ => HandSource::BuiltinOrcaV1Right,
-            };
-            model_report::run(&source, &pose, json)
-        }
-        Command::Score(args) => return exit_code(teleop::score::score_command::score(args)),
+        Command::Model(args) => command::model::model(args),
+        Command::Score(args) => return exit_code(command::score::score(args)),
         Command::Baseline(args) => {
-            return exit_code(teleop::score::baseline_command::baseline(args));
+            return exit_code(command::baseline::baseline(args));
         }
         Command::Trial(args) => {
-            return exit_code(cli::run_async(teleop::console::trial_command::trial(args)));
+            return exit_code(command::common::run_async(command::trial::trial(args)));
         }
-        Command::Demo(args) => cli::run_async(cli::demo(args)),
-        Command::Calibrate(args) => teleop::calibrate::calibrate_command::calibrate(args),
-        Command::Resim(args) => cli::resim(args),
-        Command::Eval(args) => teleop::eval_command::eval(args),
-        Command::Recover(args) => cli::recover(args),
-        Command::Replay(args) => cli::run_async(cli::replay(args)),
+        Command::Demo(args) => command::common::run_async(command::demo::demo(args)),
+        Command::Calibrate(args) => command::calibrate::calibrate(args),
+        Command::Resim(args) => command::resim::resim(args),
+        Command::Eval(args) => command::eval::eval(args),
+        Command::Recover(args) => command::recover::recover(args),
+        Command::Replay(args) => command::common::run_async(command::replay::replay(args)),
         Command::Probe(args) => {
-            return exit_code(cli::run_async(teleop::ros::probe_command::run(args)));
+            return exit_code(command::common::run_async(command::probe::run(args)));
         }
-        Command::Ingress(command) => cli::run_async(teleop::ingress::ingress_command::run(command)),
-        Command::Station(args) => cli::run_async(cli::station(args)),
-        Command::SimGlove(args) => cli::run_async(cli::sim_glove(args)),
-        Command::MockHand(args) => cli::run_async(cli::mock_hand(args)),
-        Command::MockFranka(args) => cli::run_async(cli::mock_franka(args)),
+        Command::Ingress(command) => command::common::run_async(command::ingress::run(command)),
+        Command::Station(args) => command::common::run_async(command::station::station(args)),
+        Command::SimGlove(args) => command::common::run_async(command::sim_glove::sim_glove(args)),
+        Command::MockHand(args) => command::common::run_async(command::mock_hand::mock_hand(args)),
+        Command::MockFranka(args) => {
+            command::common::run_async(command::mock_franka::mock_franka(args))
+        }
     };
     exit_code(result.map(|()| ExitCode::SUCCESS))
 }

@@ -55,3 +55,37 @@ fn core_crate_sources_do_no_io_and_read_no_clock() {
         report.join("\n")
     );
 }
+
+#[test]
+fn no_crate_has_a_module_cycle() {
+    let mut report = Vec::new();
+    let mut crates = 0;
+    for member in [
+        "msgs",
+        "retarget",
+        "calibration",
+        "scoring",
+        "station",
+        "teleop",
+        "tests",
+    ] {
+        let root = workspace_root().join(member).join("src").join("lib.rs");
+        let modules = pomdar_tests::module_graph::module_files(&root).unwrap();
+        assert!(
+            modules.len() > 1,
+            "{member}: found no modules below {}",
+            root.display()
+        );
+        crates += 1;
+        for cycle in pomdar_tests::module_graph::crate_module_cycles(&root).unwrap() {
+            report.push(format!(
+                "{member}: {} ↔ among {}:\n  {}",
+                cycle.members.join(" ↔ "),
+                cycle.parent,
+                cycle.evidence.join("\n  ")
+            ));
+        }
+    }
+    assert_eq!(crates, 7);
+    assert!(report.is_empty(), "module cycles:\n{}", report.join("\n"));
+}

@@ -19,7 +19,7 @@ use crate::calibrate::pose_session::{
     AUTOMATIC_MAX_ATTEMPTS, CalibrationAction, Policy, PoseSession,
 };
 use crate::calibrate::progress_bar::ProgressBar;
-use crate::console::terminal::{FullScreen, Input, full_screen_wanted};
+use crate::tui::terminal::{FullScreen, Input, full_screen_wanted};
 
 /// What the operator's side asks of the session.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -10,7 +10,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Gauge, Paragraph};
 
 use crate::calibrate::calibration_view::{CalState, CalibrationView};
-use crate::console::panels::{draw_heading, draw_messages, draw_rows, level_style};
+use crate::tui::panels::{draw_heading, draw_messages, draw_rows, level_style};
 
 /// The keys, as the key bar shows them.
 pub const CALIBRATION_KEY_HELP: &str =
@@ -124,7 +124,7 @@ pub fn draw_calibration(frame: &mut Frame<'_>, view: &CalibrationView) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::console::view::Level;
+    use crate::tui::panels::Level;
     use ratatui::Terminal;
     use ratatui::backend::TestBackend;
 

@@ -1,6 +1,6 @@
 //! `pomdar calibrate --script FILE`: timed operator actions for the calibration console, for
-//! tests and demos. The trial console's script grammar and player ([`crate::console::script`],
-//! [`crate::console::script_player`]) with the calibration's words and states:
+//! tests and demos. The consoles' script grammar and player ([`crate::tui::script`],
+//! [`crate::tui::script_player`]) with the calibration's words and states:
 //!
 //! ```text
 //! # seconds since the console started, or "+S" after the previous line
@@ -22,8 +22,8 @@ use std::path::Path;
 
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::pose_session::CalibrationAction;
-use crate::console::script::{ScriptLine, ScriptState, load_script_with, parse_script_with};
-use crate::console::script_player::ScriptPlayer;
+use crate::tui::script::{ScriptLine, ScriptState, load_script_with, parse_script_with};
+use crate::tui::script_player::ScriptPlayer;
 
 /// One line of a calibration script.
 pub type CalScriptLine = ScriptLine<CalibrationAction, CalState>;
@@ -95,7 +95,7 @@ mod tests {
     use std::time::{Duration, Instant};
 
     use super::*;
-    use crate::console::script::{At, Step};
+    use crate::tui::script::{At, Step};
 
     #[test]
     fn a_script_parses_and_errors_name_the_line() {

@@ -4,7 +4,7 @@
 
 use crate::calibrate::capture_quality::QualityLevel;
 use crate::calibrate::pose_session::{Phase, Policy, PoseSession};
-use crate::console::view::Level;
+use crate::tui::panels::Level;
 
 /// The console's states (the names `--script` waits on).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -15,11 +15,9 @@
 //! | `calibration_screen.rs` | drawing the view full-screen (ratatui) |
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
-//! | `calibrate_command.rs` | the `pomdar calibrate` flags and modes |
 //! | `profile_file.rs` | loading a profile for the station, its one-line description, atomic writes |
 //! | `progress_bar.rs` | the fit's progress on stderr |
 
-pub mod calibrate_command;
 pub mod calibration_console;
 pub mod calibration_screen;
 pub mod calibration_script;

@@ -32,10 +32,10 @@ use crate::calibrate::pose_session::{
 };
 use crate::calibrate::session_events::SESSION_METADATA;
 use crate::clock::StationClock;
-use crate::console::terminal::Input;
 use crate::mcap_log::{OfferedQos, TrialWriter, TrialWriterOptions};
 use crate::ros::NetworkContext as _;
 use crate::ros::RosNode;
+use crate::tui::terminal::Input;
 use station::convert::{KeypointMessage, header};
 use station::{KeypointFormat, StationConfig};
 

@@ -5,13 +5,9 @@
 pub mod health;
 pub mod keys;
 pub mod manifest;
-pub mod panels;
 pub mod plain_output;
 pub mod screen;
-pub mod script;
-pub mod script_player;
 pub mod session_dir;
-pub mod terminal;
-pub mod trial_command;
 pub mod trial_flow;
+pub mod trial_script;
 pub mod view;

@@ -7,8 +7,8 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use super::keys::KEY_HELP;
-use super::panels::{draw_heading, draw_messages, draw_rows};
 use super::view::{ConsoleView, Screen};
+use crate::tui::panels::{draw_heading, draw_messages, draw_rows};
 
 fn banner_style(screen: Screen) -> Style {
     let color = match screen {

@@ -84,16 +84,7 @@ impl Screen {
     }
 }
 
-/// How a health value reads.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Level {
-    /// Fine.
-    Ok,
-    /// Look at it.
-    Warn,
-    /// A trial may not start.
-    Bad,
-}
+pub use crate::tui::panels::Level;
 
 /// The setting that does not change during a session.
 #[derive(Debug, Clone)]

@@ -9,9 +9,7 @@
 //! | `ingress_counters.rs` | ordering by studio timestamp, drop counts, the status report |
 //! | `ingress_config.rs` | the settings (`launch_configs/ingress/rokoko.toml`) |
 //! | `rokoko_node.rs` | the UDP socket and the ROS publishers |
-//! | `ingress_command.rs` | `pomdar ingress rokoko` |
 
-pub mod ingress_command;
 pub mod ingress_config;
 pub mod ingress_counters;
 pub mod rokoko_frame;

@@ -4,11 +4,10 @@
 pub mod discovery_probe;
 mod endpoint;
 mod participant;
-pub mod probe_command;
 mod qos;
 
 pub use endpoint::{RosNode, Stamped};
-pub use participant::{NetworkContext, domain_id};
+pub use participant::{NetworkContext, default_domain_id, domain_id};
 pub use qos::QosProfileOf;
 pub use station::convert;
 pub use station::{NetworkConfig, QosConfig, Reliability};

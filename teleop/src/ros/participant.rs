@@ -76,6 +76,12 @@ impl NetworkContext for NetworkConfig {
     }
 }
 
+/// The default domain id of an all-in-one run (the demo, a simulated trial or calibration):
+/// away from 0 (the lab's usual), different per process.
+pub fn default_domain_id() -> u16 {
+    150 + (std::process::id() % 80) as u16
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

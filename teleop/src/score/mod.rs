@@ -11,15 +11,11 @@
 //! | `score_inputs.rs` | catalog, rules, baseline files and the embodiments' DoF |
 //! | `parallel_files.rs` | files on every core, in input order, with progress |
 //! | `report_files.rs` | `--out DIR`: reports and figures, atomic writes |
-//! | `score_command.rs` | `pomdar score` |
-//! | `baseline_command.rs` | `pomdar baseline` |
 //! | `synthetic_trial.rs` | trial logs written as the station writes them, for the benchmark and tests |
 
-pub mod baseline_command;
 pub mod load_trial;
 pub mod parallel_files;
 pub mod report_files;
-pub mod score_command;
 pub mod score_inputs;
 pub mod synthetic_trial;
 pub mod trial_files;

@@ -1,4 +1,4 @@
-//! `pomdar eval`: retargeting quality on a recording's glove frames.
+//! Retargeting quality on a recording's glove frames (`pomdar eval`).
 //!
 //! Every distinct keypoint frame of the log (a frame equal to the one before it is a repeat
 //! of the ingress's re-publishing, not a new frame) goes through the station's
@@ -8,41 +8,21 @@
 //! rate control are left out on purpose: every glove frame is scored, and the figures compare
 //! with other retargeters fed the same frames. Only the wall time per frame is measured here.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context as _;
-use clap::Args;
 use nalgebra::Point3;
 use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter};
 use serde::Serialize;
 
-use crate::calibrate::profile_file::{describe, load_profile};
-use crate::eval_live_path::{LivePathReport, live_path};
+use crate::station_setup::{describe, load_profile};
+use live_path::{LivePathReport, live_path};
+pub mod live_path;
+
 use crate::mcap_log::{LoggedMessage, TrialReader};
 use crate::resim::{keypoints, layout_for};
 use crate::samples::Samples;
-use crate::station_setup::load_station_config;
 use station::StationConfig;
-
-/// `pomdar eval` options.
-#[derive(Debug, Args)]
-pub struct EvalArgs {
-    /// The recording (MCAP) whose glove keypoints are retargeted.
-    pub input: PathBuf,
-    /// Station configuration: keypoint topic and format, retargeting settings (default: the
-    /// built-in ETH lab preset, whose retargeting is the shipped default).
-    #[arg(long, value_name = "FILE")]
-    pub config: Option<PathBuf>,
-    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
-    /// configuration's `calibration_profile`. Default: the configuration's, else none
-    /// (identity: scale 1, no rotation).
-    #[arg(long, value_name = "FILE")]
-    pub profile: Option<PathBuf>,
-    /// Print the report as JSON on stdout instead of the table.
-    #[arg(long)]
-    pub json: bool,
-}
 
 /// What `pomdar eval --json` prints.
 #[derive(Debug, Clone, Serialize)]
@@ -70,19 +50,6 @@ pub struct EvalOutput {
     pub time_per_frame_us_p99: Option<f64>,
     /// The live path: the station's command in force at each distinct frame.
     pub live_path: LivePathReport,
-}
-
-/// `pomdar eval`.
-pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
-    let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
-    let reader = TrialReader::open(&args.input)?;
-    let output = evaluate(&reader, &config, HandModel::orca_v1_right())?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&output)?);
-    } else {
-        print!("{}", table(&output));
-    }
-    Ok(())
 }
 
 /// The quality of the station's retargeting configured by `config` on `reader`'s keypoints.

@@ -1,7 +1,7 @@
 //! `pomdar calibrate`: its flags and the three ways it runs — a live session with the glove
 //! and the hand, a recorded session (`--from`), or a simulated user on loopback
 //! (`--simulate`). Live and simulated sessions run in the calibration console
-//! ([`super::calibration_console`]).
+//! ([`crate::calibrate::calibration_console`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -157,9 +157,7 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
     if let Some(user) = &user {
         fit.source = Some(simulated_source(&args, user, &session_out));
     }
-    let domain = args
-        .domain_id
-        .unwrap_or_else(crate::demo::default_domain_id);
+    let domain = args.domain_id.unwrap_or_else(crate::ros::default_domain_id);
     let setup = console_setup(&args, &fit, user.as_ref(), domain, &session_out);
     let mut front = ConsoleFront::open(args.plain, script, setup)?;
     let fit_in_console = FitOptions {
@@ -353,7 +351,7 @@ fn run_in_console(
         domain,
         fit_in_console,
     } = run;
-    crate::cli::run_async(async {
+    crate::command::common::run_async(async {
         let shutdown = ctrl_c_shutdown();
         let clock = StationClock::new();
         let model = HandModel::orca_v1_right();

@@ -1,4 +1,6 @@
-//! `--script FILE`: timed operator actions, for tests and demos.
+//! `--script FILE`: timed operator actions, for tests and demos; the grammar both consoles
+//! share (each brings its own actions and states: [`crate::console::trial_script`],
+//! [`crate::calibrate::calibration_script`]).
 //!
 //! One action per line, after the time it happens at:
 //!
@@ -20,9 +22,6 @@
 
 use std::path::Path;
 
-use super::keys::{Action, parse_action};
-use super::view::Screen;
-
 /// A state of a console that a script can wait for.
 pub trait ScriptState: Copy + PartialEq + std::fmt::Debug {
     /// The state of a name (`running`).
@@ -31,20 +30,6 @@ pub trait ScriptState: Copy + PartialEq + std::fmt::Debug {
     fn name(self) -> &'static str;
     /// Every name, for errors.
     fn names() -> String;
-}
-
-impl ScriptState for Screen {
-    fn from_name(name: &str) -> Option<Screen> {
-        Screen::from_name(name)
-    }
-
-    fn name(self) -> &'static str {
-        Screen::name(self)
-    }
-
-    fn names() -> String {
-        Screen::ALL.map(Screen::name).join(", ")
-    }
 }
 
 /// When a line happens.
@@ -81,21 +66,8 @@ pub struct ScriptLine<A, S> {
     pub step: Step<A, S>,
 }
 
-/// A line of the trial console's scripts.
-pub type TrialScriptLine = ScriptLine<Action, Screen>;
-
 /// Default `wait` timeout, seconds.
 pub const DEFAULT_WAIT_S: f64 = 30.0;
-
-/// Reads and parses a trial console script; errors name the file and the line.
-pub fn load_script(path: &Path) -> anyhow::Result<Vec<TrialScriptLine>> {
-    load_script_with(path, parse_action)
-}
-
-/// Parses a trial console script's text; an error is `LINE: reason`.
-pub fn parse_script(text: &str) -> Result<Vec<TrialScriptLine>, String> {
-    parse_script_with(text, parse_action)
-}
 
 /// Reads and parses a script whose actions `parse_action` reads; errors name the file and the
 /// line.
@@ -188,6 +160,9 @@ fn parse_time(word: &str) -> Result<At, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::console::keys::Action;
+    use crate::console::trial_script::parse_script;
+    use crate::console::view::Screen;
 
     #[test]
     fn a_script_parses_times_actions_and_waits() {

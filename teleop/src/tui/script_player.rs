@@ -81,7 +81,7 @@ impl<A: Clone, S: ScriptState> ScriptPlayer<A, S> {
 mod tests {
     use super::*;
     use crate::console::keys::Action;
-    use crate::console::script::parse_script;
+    use crate::console::trial_script::parse_script;
     use crate::console::view::Screen;
 
     #[test]

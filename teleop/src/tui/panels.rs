@@ -1,4 +1,4 @@
-//! The pieces both consoles draw the same way (the trial console's [`super::screen`] and the
+//! The pieces both consoles draw the same way (the trial console's [`crate::console::screen`] and the
 //! calibration console's): the heading with the instruction, labelled rows, the message log,
 //! the colours of a level.
 
@@ -8,7 +8,16 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use super::view::Level;
+/// How a value on a console reads (a health value, a capture's quality).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Level {
+    /// Fine.
+    Ok,
+    /// Look at it.
+    Warn,
+    /// A trial may not start.
+    Bad,
+}
 
 /// The colour of a level: green, yellow, bold red.
 pub fn level_style(level: Level) -> Style {

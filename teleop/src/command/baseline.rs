@@ -10,13 +10,13 @@ use scoring::{
     BaselineTable, FileProblem, HUMAN_EMBODIMENT, TaskCatalog, TrialRecord, compute_baseline,
 };
 
-use super::load_trial::load_trial_log;
-use super::parallel_files::{process_files, progress_style};
-use super::score_command::EXIT_SOME_REJECTED;
-use super::score_inputs::ScoringInputs;
-use super::score_inputs::reason;
-use super::trial_files::collect_trial_files;
+use super::score::EXIT_SOME_REJECTED;
 use crate::atomic_file::write_atomically;
+use crate::score::load_trial::load_trial_log;
+use crate::score::parallel_files::{process_files, progress_style};
+use crate::score::score_inputs::ScoringInputs;
+use crate::score::score_inputs::reason;
+use crate::score::trial_files::collect_trial_files;
 
 /// `pomdar baseline` options.
 #[derive(Debug, Args)]

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 
-use crate::cli::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
+use crate::command::common::{NodeArgs, ctrl_c_shutdown};
 use crate::ingress::ingress_config::{Hand, IngressConfig};
 use crate::ingress::rokoko_node::{run_rokoko_ingress, status_line};
 

@@ -17,10 +17,10 @@ use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
-use crate::cli::NodeArgs;
 use crate::clock::StationClock;
-use crate::demo::default_domain_id;
+use crate::command::common::NodeArgs;
 use crate::ros::NetworkConfig;
+use crate::ros::default_domain_id;
 use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
 use crate::sim::mock_robot::spawn_mock_robot;
@@ -33,17 +33,17 @@ use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
 use station::arm::Constraint;
 
-use super::health::{Health, StartLimits};
-use super::keys::{Action, key_action, parse_action};
-use super::manifest::{MANIFEST_FILE, TrialStatus};
-use super::plain_output::PlainOutput;
-use super::screen::draw;
-use super::script::{TrialScriptLine, load_script};
-use super::script_player::ScriptPlayer;
-use super::session_dir::{SessionPlan, check_name, open_session, session_dir};
-use super::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
-use super::trial_flow::{Effect, Phase, Slot, TrialFlow};
-use super::view::{ConsoleView, Screen, SessionInfo};
+use crate::console::health::{Health, StartLimits};
+use crate::console::keys::{Action, key_action, parse_action};
+use crate::console::manifest::{MANIFEST_FILE, TrialStatus};
+use crate::console::plain_output::PlainOutput;
+use crate::console::screen::draw;
+use crate::console::session_dir::{SessionPlan, check_name, open_session, session_dir};
+use crate::console::trial_flow::{Effect, Phase, Slot, TrialFlow};
+use crate::console::trial_script::{TrialScriptLine, load_script};
+use crate::console::view::{ConsoleView, Screen, SessionInfo};
+use crate::tui::script_player::ScriptPlayer;
+use crate::tui::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
 
 /// Exit status after Ctrl-C (or SIGTERM).
 pub const EXIT_INTERRUPTED: u8 = 130;
@@ -399,7 +399,7 @@ impl OperatorSide {
                 read_stdin_lines(input_tx.clone())?;
                 eprintln!(
                     "pomdar trial: line console; type commands, one per line: {}",
-                    super::keys::ACTION_WORDS
+                    crate::console::keys::ACTION_WORDS
                         .iter()
                         .map(|(w, _)| *w)
                         .collect::<Vec<_>>()

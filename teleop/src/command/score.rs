@@ -7,10 +7,10 @@ use std::time::Instant;
 use clap::Args;
 use scoring::{FileProblem, TrialScore};
 
-use super::parallel_files::{process_files, progress_style};
-use super::report_files::write_report_files;
-use super::score_inputs::ScoringFileArgs;
-use super::trial_files::collect_trial_files;
+use crate::score::parallel_files::{process_files, progress_style};
+use crate::score::report_files::write_report_files;
+use crate::score::score_inputs::ScoringFileArgs;
+use crate::score::trial_files::collect_trial_files;
 
 /// Exit status when the run finished but some trial files were rejected.
 pub const EXIT_SOME_REJECTED: u8 = 3;

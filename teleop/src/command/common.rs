@@ -1,0 +1,80 @@
+//! What the node commands share: DDS settings, the glove's motions, the async runtime and
+//! Ctrl-C.
+
+use anyhow::Context as _;
+use clap::Args;
+use retarget::human_hand::MotionKind;
+use tokio::sync::watch;
+
+use crate::ros::NetworkConfig;
+
+/// The glove's scripted motions.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum MotionArg {
+    /// Open hand to fist and back.
+    OpenClose,
+    /// The four thumb–finger pinches in turn.
+    Pinches,
+    /// Fingers spread and closed.
+    Abduction,
+    /// Grasp, release, pinches.
+    TaskLike,
+}
+
+impl From<MotionArg> for MotionKind {
+    fn from(m: MotionArg) -> MotionKind {
+        match m {
+            MotionArg::OpenClose => MotionKind::OpenClose,
+            MotionArg::Pinches => MotionKind::Pinches,
+            MotionArg::Abduction => MotionKind::Abduction,
+            MotionArg::TaskLike => MotionKind::TaskLike,
+        }
+    }
+}
+
+/// Options shared by the node commands.
+#[derive(Debug, Args)]
+pub struct NodeArgs {
+    /// ROS domain id, 0–232 (default: the config's, else ROS_DOMAIN_ID, else 0).
+    #[arg(long)]
+    pub domain_id: Option<u16>,
+    /// Use this address of this host for DDS (repeatable): discovery multicast is joined and
+    /// sent on its interface and only it is announced to other hosts, e.g. 127.0.0.1 or the
+    /// lab-network address (docs/DEPLOYMENT.md). An address this host lacks is refused.
+    #[arg(long = "interface", value_name = "ADDRESS")]
+    pub interfaces: Vec<std::net::IpAddr>,
+}
+
+impl NodeArgs {
+    pub(crate) fn network(&self, base: &NetworkConfig) -> NetworkConfig {
+        NetworkConfig {
+            domain_id: self.domain_id.or(base.domain_id),
+            interfaces: if self.interfaces.is_empty() {
+                base.interfaces.clone()
+            } else {
+                self.interfaces.clone()
+            },
+        }
+    }
+}
+
+/// Run an async command on a two-worker runtime.
+pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::Result<T> {
+    tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")?
+        .block_on(future)
+}
+
+/// A shutdown signal that turns true on Ctrl-C.
+pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
+    let (tx, rx) = watch::channel(false);
+    tokio::spawn(async move {
+        if tokio::signal::ctrl_c().await.is_ok() {
+            tx.send(true).ok();
+        }
+    });
+    rx
+}

@@ -1,0 +1,22 @@
+//! The `pomdar` commands: one file a command, each with its own clap `Args` and the function
+//! that runs it. This is the binary's wiring: it reads the arguments, loads the files, starts
+//! the nodes and prints; the work is in the modules below it. Nothing else in the crate imports
+//! from here.
+
+pub mod baseline;
+pub mod calibrate;
+pub mod common;
+pub mod demo;
+pub mod eval;
+pub mod ingress;
+pub mod mock_franka;
+pub mod mock_hand;
+pub mod model;
+pub mod probe;
+pub mod recover;
+pub mod replay;
+pub mod resim;
+pub mod score;
+pub mod sim_glove;
+pub mod station;
+pub mod trial;

@@ -1,0 +1,82 @@
+//! `pomdar station`: the station node.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use retarget::HandModel;
+use tokio::sync::mpsc;
+
+use super::common::{NodeArgs, ctrl_c_shutdown};
+use crate::clock::StationClock;
+use crate::station_node::ros_node::{OperatorCommand, run_station};
+use crate::station_setup::load_station_config;
+
+/// `pomdar station` options.
+#[derive(Debug, Args)]
+pub struct StationArgs {
+    /// Station configuration file (launch_configs/station/*.toml).
+    #[arg(long, value_name = "FILE")]
+    pub config: PathBuf,
+    /// Engage as soon as glove input is fresh.
+    #[arg(long)]
+    pub engage: bool,
+    /// Record the run (inputs, outputs, status, events) to this MCAP file.
+    #[arg(long, value_name = "FILE.mcap")]
+    pub record: Option<PathBuf>,
+    /// The user's calibration profile (TOML written by `pomdar calibrate`); overrides the
+    /// configuration's `calibration_profile`. Default: the configuration's, else none
+    /// (identity: scale 1, no rotation).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar station`.
+pub async fn station(args: StationArgs) -> anyhow::Result<()> {
+    let mut config = load_station_config(Some(&args.config), args.profile.as_deref())?;
+    config.network = args.node.network(&config.network);
+    config.control.auto_engage |= args.engage;
+    let shutdown = ctrl_c_shutdown();
+    let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
+    eprintln!(
+        "pomdar station: domain {}, keypoints {}, joint targets {}, arm {}; Ctrl-C stops",
+        crate::ros::domain_id(config.network.domain_id)?,
+        config.input.keypoints_topic,
+        config.output.joint_targets_topic,
+        config.output.arm_target_topic
+    );
+    let recording = args
+        .record
+        .map(|path| crate::station_node::recorder::RecordingOptions {
+            path,
+            metadata: std::collections::BTreeMap::from([
+                ("source".to_string(), "pomdar station".to_string()),
+                (
+                    "calibration_profile".to_string(),
+                    config
+                        .calibration_profile
+                        .as_ref()
+                        .map_or("none".to_string(), |p| p.display().to_string()),
+                ),
+            ]),
+        });
+    let summary = run_station(
+        config,
+        HandModel::orca_v1_right(),
+        StationClock::new(),
+        shutdown,
+        rx,
+        recording,
+    )
+    .await?;
+    eprintln!(
+        "stopped: {} new frames, {} hand commands, {} arm targets, rejected {:?}",
+        summary.counters.frames_new,
+        summary.totals.hand_commands,
+        summary.totals.arm_targets,
+        summary.counters.rejected
+    );
+    Ok(())
+}
