@@ -49,6 +49,47 @@ pub struct Health {
     pub hand_listeners: Option<u64>,
     /// Subscribers matched to the arm targets, besides the station's own monitor.
     pub arm_listeners: Option<u64>,
+    /// What went wrong without stopping the station, counted since it started.
+    pub faults: Faults,
+}
+
+/// The station's fault counts (its status's `node` and `totals`), since it started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Faults {
+    /// Messages the node could not publish (all topics).
+    pub publish_failed: u64,
+    /// Samples a subscription could not deliver: undecodable or lost in DDS (all topics).
+    pub samples_lost: u64,
+    /// Arm targets the station refused to send (all reasons).
+    pub arm_refused: u64,
+    /// Engage requests the arm refused (e.g. no valid wrist pose).
+    pub arm_engage_failed: u64,
+}
+
+impl Faults {
+    /// Reads the counts from the station's status; missing fields count 0.
+    pub fn from_status(status: &Value) -> Faults {
+        let total = |pointer: &str| {
+            status
+                .pointer(pointer)
+                .and_then(Value::as_object)
+                .map_or(0, |m| m.values().filter_map(Value::as_u64).sum())
+        };
+        Faults {
+            publish_failed: total("/node/publish_failed"),
+            samples_lost: total("/node/input_errors"),
+            arm_refused: total("/totals/arm_refused"),
+            arm_engage_failed: status
+                .pointer("/totals/arm_engage_failed")
+                .and_then(Value::as_u64)
+                .unwrap_or(0),
+        }
+    }
+
+    /// Whether anything was counted.
+    pub fn any(&self) -> bool {
+        *self != Faults::default()
+    }
 }
 
 impl Health {
@@ -81,6 +122,7 @@ impl Health {
                 .unwrap_or(false),
             hand_listeners: status.pointer("/listeners/hand").and_then(Value::as_u64),
             arm_listeners: status.pointer("/listeners/arm").and_then(Value::as_u64),
+            faults: Faults::from_status(status),
         }
     }
 
@@ -145,6 +187,8 @@ mod tests {
             "counters": {"rejected": {"jump": 2, "non_finite": 1}},
             "arm": {"engaged": true, "second_publisher": false},
             "listeners": {"hand": 1, "arm": 0},
+            "totals": {"arm_refused": {"outside_workspace": 4}, "arm_engage_failed": 1},
+            "node": {"publish_failed": {"/a": 2, "/b": 1}, "input_errors": {"/ingress/mano": 5}},
         })
     }
 
@@ -156,6 +200,16 @@ mod tests {
         assert_eq!(h.latency_ms, Some(0.4));
         assert!(h.arm_engaged);
         assert_eq!((h.hand_listeners, h.arm_listeners), (Some(1), Some(0)));
+        assert_eq!(
+            h.faults,
+            Faults {
+                publish_failed: 3,
+                samples_lost: 5,
+                arm_refused: 4,
+                arm_engage_failed: 1
+            }
+        );
+        assert!(!Faults::from_status(&json!({})).any());
     }
 
     #[test]

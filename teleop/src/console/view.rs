@@ -4,7 +4,7 @@
 
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
 
-use super::health::{Health, StartLimits};
+use super::health::{Faults, Health, StartLimits};
 use super::manifest::{Manifest, ManifestTrial};
 use super::trial_flow::{Phase, Slot, TrialFlow};
 
@@ -418,7 +418,36 @@ fn health_lines(
                 Level::Ok
             },
         ),
+        (
+            "faults".into(),
+            faults_text(&health.faults),
+            faults_level(&health.faults),
+        ),
     ]
+}
+
+/// The fault counts as the console shows them: `none`, or each non-zero count.
+fn faults_text(faults: &Faults) -> String {
+    let counts = [
+        (faults.publish_failed, "not published"),
+        (faults.samples_lost, "samples lost"),
+        (faults.arm_refused, "arm targets refused"),
+        (faults.arm_engage_failed, "arm engages refused"),
+    ];
+    let shown: Vec<String> = counts
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    if shown.is_empty() {
+        "none".to_string()
+    } else {
+        shown.join(" · ")
+    }
+}
+
+fn faults_level(faults: &Faults) -> Level {
+    if faults.any() { Level::Warn } else { Level::Ok }
 }
 
 #[cfg(test)]
@@ -500,5 +529,24 @@ mod tests {
             "{}",
             text("C1")
         );
+    }
+
+    #[test]
+    fn fault_counts_show_only_what_happened_and_warn() {
+        let none = Faults::default();
+        assert_eq!(
+            (faults_text(&none), faults_level(&none)),
+            ("none".into(), Level::Ok)
+        );
+        let some = Faults {
+            publish_failed: 2,
+            arm_refused: 1,
+            ..Faults::default()
+        };
+        assert_eq!(
+            faults_text(&some),
+            "2 not published · 1 arm targets refused"
+        );
+        assert_eq!(faults_level(&some), Level::Warn);
     }
 }
