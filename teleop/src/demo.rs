@@ -3,21 +3,23 @@
 //! own domain id, with a live status line and a summary.
 
 use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use anyhow::Context as _;
 use retarget::HandModel;
 use serde::Serialize;
 use tokio::sync::{mpsc, watch};
+use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
-use crate::sim::mock_robot::spawn_mock_robot;
+use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station_node::recorder::RecordingOptions;
-use crate::station_node::ros_node::run_station;
+use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station};
 use station::StationConfig;
 use station::arm::Constraint;
 
@@ -89,130 +91,244 @@ pub struct DemoOutcome {
 /// Run the demo.
 pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let clock = StationClock::new();
-    let network = NetworkConfig {
-        domain_id: Some(options.domain_id),
+    let network = loopback_network(options.domain_id);
+    let station = demo_station_config(&options.station, &network)?;
+    let model = HandModel::orca_v1_right();
+    // A bad calibration profile stops the demo before any node starts.
+    if let Some(path) = &station.calibration_profile {
+        crate::station_setup::load_profile(path, &model, station.retarget.layout)?;
+    }
+    let nodes = DemoNodes::start(&options, &station, model, network, clock)?;
+
+    let start_ns = clock.now_ns();
+    nodes
+        .play_glove(options.duration_s, options.live, clock, start_ns)
+        .await;
+    let stopped = nodes.stop().await?;
+    let elapsed = seconds_since(clock, start_ns);
+    let hand_report = stopped
+        .hand_report
+        .lock()
+        .map(|r| r.clone())
+        .unwrap_or_default();
+    let arm_report = stopped
+        .arm_report
+        .lock()
+        .map(|r| r.clone())
+        .unwrap_or_default();
+    let summary = demo_summary(
+        &options,
+        elapsed,
+        stopped.frames_published,
+        &stopped.station,
+        &hand_report,
+        &arm_report,
+    );
+    Ok(DemoOutcome {
+        recorded: stopped.station.recorded.first().cloned(),
+        summary,
+        hand: hand_report,
+        arm: arm_report,
+    })
+}
+
+/// The demo's network: its own domain id, loopback only.
+fn loopback_network(domain_id: u16) -> NetworkConfig {
+    NetworkConfig {
+        domain_id: Some(domain_id),
         interfaces: vec![std::net::IpAddr::from([127, 0, 0, 1])],
-    };
-    let mut station = options.station.clone();
+    }
+}
+
+/// The given station configuration on the demo's `network`, engaging by itself, a `Fixed` arm
+/// constraint made `Free`; validated.
+fn demo_station_config(
+    configured: &StationConfig,
+    network: &NetworkConfig,
+) -> anyhow::Result<StationConfig> {
+    let mut station = configured.clone();
     station.network = network.clone();
     station.control.auto_engage = true;
     if station.arm.constraint == Constraint::Fixed {
         station.arm.constraint = Constraint::Free;
     }
     station.validate()?;
-    let model = HandModel::orca_v1_right();
-    // A bad calibration profile stops the demo before any node starts.
-    if let Some(path) = &station.calibration_profile {
-        crate::station_setup::load_profile(path, &model, station.retarget.layout)?;
-    }
-    let (shutdown_tx, shutdown_rx) = watch::channel(false);
-    let (_operator_tx, operator_rx) = mpsc::unbounded_channel();
+    Ok(station)
+}
 
-    // The robot stops after the station, so it hears every command the station sent.
-    let (robot_stop_tx, robot_stop_rx) = watch::channel(false);
-    let robot = spawn_mock_robot(&station, &model, clock, &robot_stop_rx)?;
-    let recording = match &options.out {
-        Some(dir) => {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("cannot create {}", dir.display()))?;
-            Some(RecordingOptions {
-                path: dir.join(format!("demo-{}.mcap", clock.now_ns() / 1_000_000_000)),
-                metadata: BTreeMap::from([
-                    ("source".to_string(), "pomdar demo".to_string()),
-                    ("task".to_string(), "demo".to_string()),
-                    ("user".to_string(), "simulated glove".to_string()),
-                    ("operator".to_string(), "pomdar demo".to_string()),
-                    ("calibration_profile".to_string(), "none".to_string()),
-                    ("trial_index".to_string(), "0".to_string()),
-                    ("practice".to_string(), "false".to_string()),
-                ]),
-            })
-        }
-        None => None,
+/// With `out`, where and with which metadata the station records the run: `out` is created
+/// and the log named after the current second.
+fn demo_recording(
+    out: Option<&std::path::Path>,
+    clock: StationClock,
+) -> anyhow::Result<Option<RecordingOptions>> {
+    let Some(dir) = out else {
+        return Ok(None);
     };
-    let station_task = tokio::spawn(run_station(
-        station.clone(),
-        model,
-        clock,
-        shutdown_rx.clone(),
-        operator_rx,
-        recording,
-    ));
-    let (glove_stop_tx, glove_stop_rx) = watch::channel(false);
-    let glove = tokio::spawn(run_sim_glove(
-        options.glove.clone(),
-        network.clone(),
-        clock,
-        glove_stop_rx,
-    ));
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    Ok(Some(RecordingOptions {
+        path: dir.join(format!("demo-{}.mcap", clock.now_ns() / 1_000_000_000)),
+        metadata: BTreeMap::from([
+            ("source".to_string(), "pomdar demo".to_string()),
+            ("task".to_string(), "demo".to_string()),
+            ("user".to_string(), "simulated glove".to_string()),
+            ("operator".to_string(), "pomdar demo".to_string()),
+            ("calibration_profile".to_string(), "none".to_string()),
+            ("trial_index".to_string(), "0".to_string()),
+            ("practice".to_string(), "false".to_string()),
+        ]),
+    }))
+}
 
-    let start_ns = clock.now_ns();
-    let mut seconds = 0u64;
-    while (clock.now_ns() - start_ns) as f64 * 1e-9 < options.duration_s {
-        tokio::time::sleep(Duration::from_millis(200)).await;
-        let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
-        if options.live && elapsed as u64 > seconds {
-            seconds = elapsed as u64;
-            if let Ok(report) = robot.hand_report.lock() {
-                let recent = report
-                    .receive_times_ns
-                    .iter()
-                    .filter(|&&t| clock.now_ns() - t < 1_000_000_000)
-                    .count();
-                eprintln!(
-                    "[{seconds:>3} s] joint targets {recent:>4}/s  latency p50 {:>6} ms  p99 {:>6} ms  total {}",
-                    fmt_ms(report.latency.percentile(0.5)),
-                    fmt_ms(report.latency.percentile(0.99)),
-                    report.targets
-                );
+/// The demo's running nodes, each with the switch that stops it.
+struct DemoNodes {
+    robot: MockRobot,
+    robot_stop: watch::Sender<bool>,
+    station: JoinHandle<anyhow::Result<StationSummary>>,
+    station_shutdown: watch::Sender<bool>,
+    /// Held for the whole run, so that the station's operator channel stays open.
+    _operator: mpsc::UnboundedSender<OperatorCommand>,
+    glove: JoinHandle<anyhow::Result<u64>>,
+    glove_stop: watch::Sender<bool>,
+}
+
+/// What the stopped nodes left.
+struct StoppedNodes {
+    /// Glove frames published.
+    frames_published: u64,
+    /// The station's run.
+    station: StationSummary,
+    /// What the mock hand saw.
+    hand_report: Arc<Mutex<MockHandReport>>,
+    /// What the mock Franka saw.
+    arm_report: Arc<Mutex<MockFrankaReport>>,
+}
+
+impl DemoNodes {
+    /// Starts the mock robot, then the station (recording with `options.out`), then the glove.
+    fn start(
+        options: &DemoOptions,
+        station: &StationConfig,
+        model: HandModel,
+        network: NetworkConfig,
+        clock: StationClock,
+    ) -> anyhow::Result<DemoNodes> {
+        let (station_shutdown, shutdown_rx) = watch::channel(false);
+        let (operator, operator_rx) = mpsc::unbounded_channel();
+
+        // The robot stops after the station, so it hears every command the station sent.
+        let (robot_stop, robot_stop_rx) = watch::channel(false);
+        let robot = spawn_mock_robot(station, &model, clock, &robot_stop_rx)?;
+        let recording = demo_recording(options.out.as_deref(), clock)?;
+        let station = tokio::spawn(run_station(
+            station.clone(),
+            model,
+            clock,
+            shutdown_rx,
+            operator_rx,
+            recording,
+        ));
+        let (glove_stop, glove_stop_rx) = watch::channel(false);
+        let glove = tokio::spawn(run_sim_glove(
+            options.glove.clone(),
+            network,
+            clock,
+            glove_stop_rx,
+        ));
+        Ok(DemoNodes {
+            robot,
+            robot_stop,
+            station,
+            station_shutdown,
+            _operator: operator,
+            glove,
+            glove_stop,
+        })
+    }
+
+    /// Waits until the glove has played `duration_s` from `start_ns`; with `live`, prints a
+    /// status line every second.
+    async fn play_glove(&self, duration_s: f64, live: bool, clock: StationClock, start_ns: i64) {
+        let mut seconds = 0u64;
+        while seconds_since(clock, start_ns) < duration_s {
+            tokio::time::sleep(Duration::from_millis(200)).await;
+            let elapsed = seconds_since(clock, start_ns);
+            if live && elapsed as u64 > seconds {
+                seconds = elapsed as u64;
+                self.print_status_line(seconds, clock);
             }
         }
     }
-    // Stop the glove first and let its last frames arrive before the rest stops.
-    glove_stop_tx.send(true).ok();
-    let frames = glove.await.context("glove task")??;
-    tokio::time::sleep(Duration::from_millis(200)).await;
-    shutdown_tx.send(true).ok();
-    let station_summary = station_task.await.context("station task")??;
-    tokio::time::sleep(Duration::from_millis(100)).await;
-    robot_stop_tx.send(true).ok();
-    let summary = &station_summary;
-    robot.hand.await.context("mock hand task")??;
-    robot.arm.await.context("mock arm task")??;
-    let elapsed = (clock.now_ns() - start_ns) as f64 * 1e-9;
-    let hand_report = robot
-        .hand_report
-        .lock()
-        .map(|r| r.clone())
-        .unwrap_or_default();
-    let arm_report = robot
-        .arm_report
-        .lock()
-        .map(|r| r.clone())
-        .unwrap_or_default();
-    let summary = DemoSummary {
+
+    /// The live status line: the mock hand's joint targets in the last second and latency.
+    fn print_status_line(&self, seconds: u64, clock: StationClock) {
+        if let Ok(report) = self.robot.hand_report.lock() {
+            let recent = report
+                .receive_times_ns
+                .iter()
+                .filter(|&&t| clock.now_ns() - t < 1_000_000_000)
+                .count();
+            eprintln!(
+                "[{seconds:>3} s] joint targets {recent:>4}/s  latency p50 {:>6} ms  p99 {:>6} ms  total {}",
+                fmt_ms(report.latency.percentile(0.5)),
+                fmt_ms(report.latency.percentile(0.99)),
+                report.targets
+            );
+        }
+    }
+
+    /// Stops the glove first and lets its last frames arrive, then the station, then the
+    /// robot, so that each hears everything the one before it sent.
+    async fn stop(self) -> anyhow::Result<StoppedNodes> {
+        self.glove_stop.send(true).ok();
+        let frames_published = self.glove.await.context("glove task")??;
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        self.station_shutdown.send(true).ok();
+        let station = self.station.await.context("station task")??;
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        self.robot_stop.send(true).ok();
+        self.robot.hand.await.context("mock hand task")??;
+        self.robot.arm.await.context("mock arm task")??;
+        Ok(StoppedNodes {
+            frames_published,
+            station,
+            hand_report: self.robot.hand_report,
+            arm_report: self.robot.arm_report,
+        })
+    }
+}
+
+/// Seconds on `clock` since `start_ns`.
+fn seconds_since(clock: StationClock, start_ns: i64) -> f64 {
+    (clock.now_ns() - start_ns) as f64 * 1e-9
+}
+
+/// The summary of a run that lasted `elapsed` seconds.
+fn demo_summary(
+    options: &DemoOptions,
+    elapsed: f64,
+    frames: u64,
+    station: &StationSummary,
+    hand_report: &MockHandReport,
+    arm_report: &MockFrankaReport,
+) -> DemoSummary {
+    DemoSummary {
         duration_s: elapsed,
         domain_id: options.domain_id,
         input_rate_hz: frames as f64 / elapsed,
         output_rate_hz: hand_report.targets as f64 / elapsed,
         latency_ms_p50: hand_report.latency.percentile(0.5),
         latency_ms_p99: hand_report.latency.percentile(0.99),
-        solver_ms_p50: summary.step_time.percentile(0.5),
-        solver_ms_p99: summary.step_time.percentile(0.99),
-        rejected_frames: summary.counters.rejected.values().sum(),
-        fingertip_error_mm: summary.tip_error_mm.mean(),
+        solver_ms_p50: station.step_time.percentile(0.5),
+        solver_ms_p99: station.step_time.percentile(0.99),
+        rejected_frames: station.counters.rejected.values().sum(),
+        fingertip_error_mm: station.tip_error_mm.mean(),
         arm_targets: arm_report.commands,
         hand_targets: hand_report.targets,
         frames_published: frames,
-        frames_new: summary.counters.frames_new,
-        frames_repeated: summary.counters.frames_repeated,
-    };
-    Ok(DemoOutcome {
-        recorded: station_summary.recorded.first().cloned(),
-        summary,
-        hand: hand_report,
-        arm: arm_report,
-    })
+        frames_new: station.counters.frames_new,
+        frames_repeated: station.counters.frames_repeated,
+    }
 }
 
 fn fmt_ms(value: Option<f64>) -> String {

@@ -24,7 +24,7 @@ use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
 use mcap::McapError;
-use mcap::records::{Record, op};
+use mcap::records::{ChunkIndex, MessageHeader, Record, op};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use msgs::StringMsg;
 
@@ -58,6 +58,34 @@ impl TrialEvents {
 
 /// Reads the metadata and trial events of the log at `path` (see the module docs).
 pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
+    let (mut file, size) = open_after_magic(path)?;
+    check_summary_on_disk(&mut file, size, path)?;
+    let Some(summary) = read_summary(&mut file, size, path)? else {
+        return read_whole(path);
+    };
+    if !indexes_cover_everything(&summary) {
+        return read_whole(path);
+    }
+
+    let mut out = TrialEvents {
+        chunks_total: summary.chunk_indexes.len(),
+        ..TrialEvents::default()
+    };
+    out.metadata = read_indexed_metadata(&mut file, size, path, &summary)?;
+    let event_channels = trial_event_channels(&summary);
+    if event_channels.is_empty() {
+        return Ok(out);
+    }
+    for index in chunks_holding_events(&summary, &event_channels) {
+        let events = read_events_in_chunk(&mut file, size, path, index, &event_channels)?;
+        out.chunks_read += 1;
+        out.events.extend(events);
+    }
+    Ok(out)
+}
+
+/// Opens the file, reads its size and checks the start magic; the reader is left just past it.
+fn open_after_magic(path: &Path) -> Result<(BufReader<File>, u64), LogError> {
     let file = File::open(path).map_err(|e| LogError::io(path, "open", e))?;
     let size = file
         .metadata()
@@ -79,28 +107,35 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
             reason: "the file does not start with the MCAP magic".to_string(),
         });
     }
+    Ok((file, size))
+}
 
-    check_summary_on_disk(&mut file, size, path)?;
-    let Some(summary) = read_summary(&mut file, size, path)? else {
-        return read_whole(path);
-    };
+/// Whether the summary indexes every chunk holding messages and every metadata record;
+/// otherwise the file is read whole.
+fn indexes_cover_everything(summary: &mcap::Summary) -> bool {
     let has_messages = summary.stats.as_ref().is_none_or(|s| s.message_count > 0);
     let metadata_unindexed = summary
         .stats
         .as_ref()
         .is_none_or(|s| s.metadata_count as usize != summary.metadata_indexes.len());
-    if (has_messages && summary.chunk_indexes.is_empty()) || metadata_unindexed {
-        return read_whole(path);
-    }
+    !((has_messages && summary.chunk_indexes.is_empty()) || metadata_unindexed)
+}
 
-    let mut out = TrialEvents {
-        chunks_total: summary.chunk_indexes.len(),
-        ..TrialEvents::default()
-    };
+/// A metadata record `(name, entries)`.
+type MetadataRecord = (String, BTreeMap<String, String>);
+
+/// The metadata records at the summary's metadata indexes, in index order.
+fn read_indexed_metadata(
+    file: &mut BufReader<File>,
+    size: u64,
+    path: &Path,
+    summary: &mcap::Summary,
+) -> Result<Vec<MetadataRecord>, LogError> {
+    let mut metadata = Vec::with_capacity(summary.metadata_indexes.len());
     for index in &summary.metadata_indexes {
-        let bytes = read_range(&mut file, path, size, index.offset, index.length)?;
+        let bytes = read_range(file, path, size, index.offset, index.length)?;
         match parse_at(&bytes, index.offset, path)? {
-            Record::Metadata(m) => out.metadata.push((m.name, m.metadata)),
+            Record::Metadata(m) => metadata.push((m.name, m.metadata)),
             _ => {
                 return Err(damaged(
                     path,
@@ -110,16 +145,25 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
             }
         }
     }
+    Ok(metadata)
+}
 
-    let event_channels: Vec<u16> = summary
+/// The ids of the channels on the trial-events topic.
+fn trial_event_channels(summary: &mcap::Summary) -> Vec<u16> {
+    summary
         .channels
         .values()
         .filter(|c| c.topic == TRIAL_EVENTS_TOPIC)
         .map(|c| c.id)
-        .collect();
-    if event_channels.is_empty() {
-        return Ok(out);
-    }
+        .collect()
+}
+
+/// The chunks that may hold trial events (those whose index lists an event channel, or
+/// lists no channel at all), in file order.
+fn chunks_holding_events<'s>(
+    summary: &'s mcap::Summary,
+    event_channels: &[u16],
+) -> Vec<&'s ChunkIndex> {
     let mut chunks: Vec<_> = summary
         .chunk_indexes
         .iter()
@@ -131,45 +175,65 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
         })
         .collect();
     chunks.sort_by_key(|c| c.chunk_start_offset);
-    for index in chunks {
-        let offset = index.chunk_start_offset;
-        let bytes = read_range(&mut file, path, size, offset, index.chunk_length)?;
-        let Record::Chunk { .. } = parse_at(&bytes, offset, path)? else {
-            return Err(damaged(
-                path,
-                offset,
-                "the chunk index does not point at a chunk",
-            ));
+    chunks
+}
+
+/// Reads and decompresses the chunk at `index` and decodes its messages on `event_channels`,
+/// in chunk order.
+fn read_events_in_chunk(
+    file: &mut BufReader<File>,
+    size: u64,
+    path: &Path,
+    index: &ChunkIndex,
+    event_channels: &[u16],
+) -> Result<Vec<(i64, String)>, LogError> {
+    let offset = index.chunk_start_offset;
+    let bytes = read_range(file, path, size, offset, index.chunk_length)?;
+    let Record::Chunk { .. } = parse_at(&bytes, offset, path)? else {
+        return Err(damaged(
+            path,
+            offset,
+            "the chunk index does not point at a chunk",
+        ));
+    };
+    // Bounded decompression (record lengths limited by the chunk's size): a damaged
+    // chunk is an error, never a huge allocation.
+    let records = chunk_records(&bytes).map_err(|reason| damaged(path, offset, &reason))?;
+    let mut events = Vec::new();
+    for record in records {
+        let Record::Message { header, data } = record else {
+            continue;
         };
-        out.chunks_read += 1;
-        // Bounded decompression (record lengths limited by the chunk's size): a damaged
-        // chunk is an error, never a huge allocation.
-        let records = chunk_records(&bytes).map_err(|reason| damaged(path, offset, &reason))?;
-        for record in records {
-            let Record::Message { header, data } = record else {
-                continue;
-            };
-            if !event_channels.contains(&header.channel_id) {
-                continue;
-            }
-            let log_time_ns = i64::try_from(header.log_time).map_err(|_| {
-                damaged(
-                    path,
-                    offset,
-                    &format!("trial event log time {} ns is beyond i64", header.log_time),
-                )
-            })?;
-            let text: StringMsg = msgs::from_cdr(&data).map_err(|e| {
-                damaged(
-                    path,
-                    offset,
-                    &format!("trial event at {log_time_ns} ns is not a std_msgs/String: {e}"),
-                )
-            })?;
-            out.events.push((log_time_ns, text.data));
+        if !event_channels.contains(&header.channel_id) {
+            continue;
         }
+        events.push(decode_trial_event(path, offset, &header, &data)?);
     }
-    Ok(out)
+    Ok(events)
+}
+
+/// One trial event `(log time ns, text)` from the chunk at `offset`.
+fn decode_trial_event(
+    path: &Path,
+    offset: u64,
+    header: &MessageHeader,
+    data: &[u8],
+) -> Result<(i64, String), LogError> {
+    let log_time_ns = i64::try_from(header.log_time).map_err(|_| {
+        damaged(
+            path,
+            offset,
+            &format!("trial event log time {} ns is beyond i64", header.log_time),
+        )
+    })?;
+    let text: StringMsg = msgs::from_cdr(data).map_err(|e| {
+        damaged(
+            path,
+            offset,
+            &format!("trial event at {log_time_ns} ns is not a std_msgs/String: {e}"),
+        )
+    })?;
+    Ok((log_time_ns, text.data))
 }
 
 fn damaged(path: &Path, offset: u64, reason: &str) -> LogError {

@@ -17,6 +17,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
+use mcap::records::{Channel, MessageHeader};
 use msgs::RosMessage;
 
 use super::record_scan::{DataRecord, ScanEnd, check_summary_fields, scan};
@@ -101,121 +102,22 @@ impl TrialReader {
             path: path.to_path_buf(),
             reason,
         })?;
-        match scanned.end {
-            ScanEnd::DataEnd => {}
-            ScanEnd::EndOfFile => {
-                return Err(LogError::Incomplete {
-                    path: path.to_path_buf(),
-                    reason: "no data end record, summary or footer".to_string(),
-                });
-            }
-            ScanEnd::Damaged { offset, reason } => {
-                return Err(LogError::Damaged {
-                    path: path.to_path_buf(),
-                    offset,
-                    reason,
-                });
-            }
-        }
+        check_finished(scanned.end, path)?;
         let damaged = |reason: String| LogError::Damaged {
             path: path.to_path_buf(),
             offset: scanned.intact_end,
             reason,
         };
-        let footer = mcap::read::footer(bytes).map_err(|e| LogError::Incomplete {
-            path: path.to_path_buf(),
-            reason: format!("after the data end record: {e}"),
-        })?;
-        check_summary_fields(bytes, footer.summary_start).map_err(damaged)?;
-        let summary = mcap::Summary::read(bytes).map_err(|e| damaged(format!("summary: {e}")))?;
-
-        let mut schemas: HashMap<u16, (String, String, String)> = HashMap::new();
-        let mut channel_index: HashMap<u16, usize> = HashMap::new();
-        let mut topics: Vec<TopicInfo> = Vec::new();
-        let mut messages = Vec::new();
-        let mut metadata = Vec::new();
-        for record in scanned.records {
-            match record {
-                DataRecord::Schema {
-                    id,
-                    name,
-                    encoding,
-                    data,
-                } => {
-                    let text = String::from_utf8_lossy(&data).into_owned();
-                    schemas.insert(id, (name, encoding, text));
-                }
-                DataRecord::Channel(c) => {
-                    let (type_name, schema_encoding, schema_text) =
-                        schemas.get(&c.schema_id).cloned().unwrap_or_default();
-                    channel_index.insert(c.id, topics.len());
-                    topics.push(TopicInfo {
-                        channel_id: c.id,
-                        topic: c.topic,
-                        type_name,
-                        schema_encoding,
-                        schema_text,
-                        message_encoding: c.message_encoding,
-                        message_count: 0,
-                        metadata: c.metadata,
-                    });
-                }
-                DataRecord::Message { header, data } => {
-                    // The scan checked that the channel exists.
-                    let Some(info) = channel_index
-                        .get(&header.channel_id)
-                        .and_then(|&i| topics.get_mut(i))
-                    else {
-                        continue;
-                    };
-                    let time = |t: u64, what: &str| {
-                        i64::try_from(t).map_err(|_| {
-                            damaged(format!("{what} {t} ns on {} is beyond i64", info.topic))
-                        })
-                    };
-                    messages.push(LoggedMessage {
-                        topic: info.topic.clone(),
-                        type_name: info.type_name.clone(),
-                        message_encoding: info.message_encoding.clone(),
-                        sequence: header.sequence,
-                        log_time_ns: time(header.log_time, "log time")?,
-                        publish_time_ns: time(header.publish_time, "publish time")?,
-                        data,
-                    });
-                    info.message_count += 1;
-                }
-                DataRecord::Metadata(m) => metadata.push((m.name, m.metadata)),
-                DataRecord::Attachment { .. } => {}
-            }
-        }
-
-        let statistics = summary.and_then(|s| s.stats).map(|s| LogStatistics {
-            message_count: s.message_count,
-            message_start_time_ns: s.message_start_time,
-            message_end_time_ns: s.message_end_time,
-            schema_count: s.schema_count,
-            channel_count: s.channel_count,
-            chunk_count: s.chunk_count,
-            metadata_count: s.metadata_count,
-            attachment_count: s.attachment_count,
-            channel_message_counts: s.channel_message_counts,
-        });
-        if let Some(stats) = &statistics
-            && stats.message_count != messages.len() as u64
-        {
-            return Err(damaged(format!(
-                "the summary counts {} messages, the data section holds {}",
-                stats.message_count,
-                messages.len()
-            )));
-        }
-
-        let was_in_log_time_order = messages
-            .windows(2)
-            .all(|w| w[0].log_time_ns <= w[1].log_time_ns);
-        if !was_in_log_time_order {
-            messages.sort_by_key(|m| m.log_time_ns);
-        }
+        let summary = read_checked_summary(bytes, path, damaged)?;
+        let DataSection {
+            topics,
+            mut messages,
+            metadata,
+            ..
+        } = DataSection::gather(scanned.records, damaged)?;
+        let statistics = summary.and_then(|s| s.stats).map(LogStatistics::from);
+        check_message_count(statistics.as_ref(), messages.len(), damaged)?;
+        let was_in_log_time_order = sort_by_log_time(&mut messages);
         Ok(TrialReader {
             path: path.to_path_buf(),
             profile: scanned.profile,
@@ -298,4 +200,170 @@ impl TrialReader {
     pub fn statistics(&self) -> Option<&LogStatistics> {
         self.statistics.as_ref()
     }
+}
+
+/// Whether the scan reached the data end record: a file that stops before it was cut short or
+/// is damaged.
+fn check_finished(end: ScanEnd, path: &Path) -> Result<(), LogError> {
+    match end {
+        ScanEnd::DataEnd => Ok(()),
+        ScanEnd::EndOfFile => Err(LogError::Incomplete {
+            path: path.to_path_buf(),
+            reason: "no data end record, summary or footer".to_string(),
+        }),
+        ScanEnd::Damaged { offset, reason } => Err(LogError::Damaged {
+            path: path.to_path_buf(),
+            offset,
+            reason,
+        }),
+    }
+}
+
+/// The summary section after the data end record (`None` if the file has none), its field
+/// lengths checked before the mcap crate parses it.
+fn read_checked_summary(
+    bytes: &[u8],
+    path: &Path,
+    damaged: impl Fn(String) -> LogError,
+) -> Result<Option<mcap::Summary>, LogError> {
+    let footer = mcap::read::footer(bytes).map_err(|e| LogError::Incomplete {
+        path: path.to_path_buf(),
+        reason: format!("after the data end record: {e}"),
+    })?;
+    check_summary_fields(bytes, footer.summary_start).map_err(&damaged)?;
+    mcap::Summary::read(bytes).map_err(|e| damaged(format!("summary: {e}")))
+}
+
+/// The data section's records sorted into channels (with their schemas), messages in file
+/// order and metadata records.
+#[derive(Default)]
+struct DataSection {
+    /// `(name, encoding, text)` per schema id.
+    schemas: HashMap<u16, (String, String, String)>,
+    /// Index into `topics` per channel id.
+    channel_index: HashMap<u16, usize>,
+    topics: Vec<TopicInfo>,
+    messages: Vec<LoggedMessage>,
+    metadata: Vec<(String, BTreeMap<String, String>)>,
+}
+
+impl DataSection {
+    /// Takes the scanned records in file order; a message time beyond `i64` is `damaged`.
+    fn gather(
+        records: Vec<DataRecord>,
+        damaged: impl Fn(String) -> LogError,
+    ) -> Result<DataSection, LogError> {
+        let mut section = DataSection::default();
+        for record in records {
+            match record {
+                DataRecord::Schema {
+                    id,
+                    name,
+                    encoding,
+                    data,
+                } => {
+                    let text = String::from_utf8_lossy(&data).into_owned();
+                    section.schemas.insert(id, (name, encoding, text));
+                }
+                DataRecord::Channel(c) => section.add_channel(c),
+                DataRecord::Message { header, data } => {
+                    section.add_message(&header, data, &damaged)?;
+                }
+                DataRecord::Metadata(m) => section.metadata.push((m.name, m.metadata)),
+                DataRecord::Attachment { .. } => {}
+            }
+        }
+        Ok(section)
+    }
+
+    /// A new topic, with its schema if that was defined before it.
+    fn add_channel(&mut self, c: Channel) {
+        let (type_name, schema_encoding, schema_text) =
+            self.schemas.get(&c.schema_id).cloned().unwrap_or_default();
+        self.channel_index.insert(c.id, self.topics.len());
+        self.topics.push(TopicInfo {
+            channel_id: c.id,
+            topic: c.topic,
+            type_name,
+            schema_encoding,
+            schema_text,
+            message_encoding: c.message_encoding,
+            message_count: 0,
+            metadata: c.metadata,
+        });
+    }
+
+    /// A message on a known channel, counted on its topic.
+    fn add_message(
+        &mut self,
+        header: &MessageHeader,
+        data: Vec<u8>,
+        damaged: impl Fn(String) -> LogError,
+    ) -> Result<(), LogError> {
+        // The scan checked that the channel exists.
+        let Some(info) = self
+            .channel_index
+            .get(&header.channel_id)
+            .and_then(|&i| self.topics.get_mut(i))
+        else {
+            return Ok(());
+        };
+        let time = |t: u64, what: &str| {
+            i64::try_from(t)
+                .map_err(|_| damaged(format!("{what} {t} ns on {} is beyond i64", info.topic)))
+        };
+        self.messages.push(LoggedMessage {
+            topic: info.topic.clone(),
+            type_name: info.type_name.clone(),
+            message_encoding: info.message_encoding.clone(),
+            sequence: header.sequence,
+            log_time_ns: time(header.log_time, "log time")?,
+            publish_time_ns: time(header.publish_time, "publish time")?,
+            data,
+        });
+        info.message_count += 1;
+        Ok(())
+    }
+}
+
+impl From<mcap::records::Statistics> for LogStatistics {
+    fn from(s: mcap::records::Statistics) -> LogStatistics {
+        LogStatistics {
+            message_count: s.message_count,
+            message_start_time_ns: s.message_start_time,
+            message_end_time_ns: s.message_end_time,
+            schema_count: s.schema_count,
+            channel_count: s.channel_count,
+            chunk_count: s.chunk_count,
+            metadata_count: s.metadata_count,
+            attachment_count: s.attachment_count,
+            channel_message_counts: s.channel_message_counts,
+        }
+    }
+}
+
+/// The summary's message count, if it has one, must match the messages read.
+fn check_message_count(
+    statistics: Option<&LogStatistics>,
+    messages_read: usize,
+    damaged: impl Fn(String) -> LogError,
+) -> Result<(), LogError> {
+    match statistics {
+        Some(stats) if stats.message_count != messages_read as u64 => Err(damaged(format!(
+            "the summary counts {} messages, the data section holds {}",
+            stats.message_count, messages_read
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Sorts `messages` by log time, equal times in file order; returns whether they already were.
+fn sort_by_log_time(messages: &mut [LoggedMessage]) -> bool {
+    let was_in_log_time_order = messages
+        .windows(2)
+        .all(|w| w[0].log_time_ns <= w[1].log_time_ns);
+    if !was_in_log_time_order {
+        messages.sort_by_key(|m| m.log_time_ns);
+    }
+    was_in_log_time_order
 }
