@@ -3,7 +3,19 @@
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
+/// Writing a file atomically failed: creating its directory, or writing, syncing or renaming
+/// its `.part` (then removed).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot {action} {path}: {source}")]
+pub struct AtomicWriteError {
+    /// The directory (`create`) or the file (`write`).
+    pub path: PathBuf,
+    /// What was being done: `create` (the directory) or `write` (the file).
+    pub action: &'static str,
+    /// The OS error.
+    #[source]
+    pub source: std::io::Error,
+}
 
 /// `path` with `.part` appended.
 fn part_path(path: &Path) -> PathBuf {
@@ -15,12 +27,18 @@ fn part_path(path: &Path) -> PathBuf {
 /// Write `bytes` to `path` atomically: `path.part`, fsync, rename over `path`, fsync of the
 /// directory. Creates the directory if needed. On failure the `.part` is removed and `path`
 /// is untouched.
-pub fn write_atomically(path: &Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
+pub fn write_atomically(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), AtomicWriteError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    if let Err(source) = std::fs::create_dir_all(&dir) {
+        return Err(AtomicWriteError {
+            path: dir,
+            action: "create",
+            source,
+        });
+    }
     let part = part_path(path);
     let written = (|| -> std::io::Result<()> {
         let mut file = std::fs::File::create(&part)?;
@@ -34,9 +52,13 @@ pub fn write_atomically(path: &Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<
         }
         Ok(())
     })();
-    if let Err(e) = written {
+    if let Err(source) = written {
         std::fs::remove_file(&part).ok();
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+        return Err(AtomicWriteError {
+            path: path.to_path_buf(),
+            action: "write",
+            source,
+        });
     }
     Ok(())
 }
@@ -56,6 +78,29 @@ mod tests {
         write_atomically(&path, b"a = 2\n").unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "a = 2\n");
         assert!(!part_path(&path).exists());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn errors_name_the_directory_or_the_file() {
+        let dir = std::env::temp_dir().join(format!("pomdar-atomic-err-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("plain");
+        std::fs::write(&file, "x").unwrap();
+        let err = write_atomically(&file.join("sub/alice.toml"), "a = 1\n").unwrap_err();
+        assert_eq!(err.action, "create");
+        let text = err.to_string();
+        assert!(
+            text.starts_with(&format!("cannot create {}: ", file.join("sub").display())),
+            "{text}"
+        );
+        let err = write_atomically(&dir, "a = 1\n").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with(&format!("cannot write {}: ", dir.display())),
+            "{err}"
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -5,9 +5,29 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use retarget::{Error, FrameSpec, HandModel, UrdfImport};
 use serde::Deserialize;
+
+/// Loading a hand model failed.
+#[derive(Debug, thiserror::Error)]
+pub enum HandSourceError {
+    /// A model, URDF or import file cannot be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file does not describe a valid hand (the error names the file).
+    #[error(transparent)]
+    Model {
+        /// The model's error, in its file.
+        #[from]
+        source: Error,
+    },
+}
 
 /// The hand to load.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -47,7 +67,7 @@ impl ImportFile {
 
 impl HandSource {
     /// Load and validate the model.
-    pub fn load(&self) -> anyhow::Result<HandModel> {
+    pub fn load(&self) -> Result<HandModel, HandSourceError> {
         match self {
             HandSource::BuiltinOrcaV1Right => Ok(HandModel::orca_v1_right()),
             HandSource::ModelFile(path) => {
@@ -84,6 +104,24 @@ impl HandSource {
     }
 }
 
-fn read(path: &Path) -> anyhow::Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+fn read(path: &Path) -> Result<String, HandSourceError> {
+    std::fs::read_to_string(path).map_err(|source| HandSourceError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_file_is_named() {
+        let path = PathBuf::from("/nonexistent/pomdar/hand.toml");
+        let err = HandSource::ModelFile(path).load().unwrap_err().to_string();
+        assert!(
+            err.starts_with("cannot read /nonexistent/pomdar/hand.toml: "),
+            "{err}"
+        );
+    }
 }

@@ -1,14 +1,76 @@
 //! The files in `launch_configs/`, by kind, so every one of them can be checked by a test and
 //! by the operator before a session.
 
-use std::path::Path;
-
-use anyhow::{Context, bail};
+use std::path::{Path, PathBuf};
 
 use retarget::RetargetConfig;
 
 use crate::hand_source::ImportFile;
 use station::StationConfig;
+
+/// A launch config file is of no known kind, cannot be read, or is not valid.
+#[derive(Debug, thiserror::Error)]
+pub enum LaunchConfigError {
+    /// The file is not in one of the known folders.
+    #[error(
+        "{path}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/, baselines/ or ingress/)"
+    )]
+    UnknownKind {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file cannot be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A hand import file or retargeting configuration is not valid (the error names the file).
+    #[error(transparent)]
+    Retarget {
+        /// The error, in its file.
+        #[from]
+        source: retarget::Error,
+    },
+    /// A station preset is not valid.
+    #[error("{path}: {source}")]
+    Station {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, by key.
+        #[source]
+        source: station::ConfigError,
+    },
+    /// Calibration settings are not valid.
+    #[error("{path}: {source}")]
+    Calibration {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, by key.
+        #[source]
+        source: calibration::Error,
+    },
+    /// A task catalog, scoring rules or a baseline table is not valid (the error names the
+    /// file).
+    #[error(transparent)]
+    Scoring {
+        /// The error, with the file as its origin.
+        #[from]
+        source: scoring::ScoringError,
+    },
+    /// Glove ingress settings are not valid.
+    #[error("{path}: {source}")]
+    Ingress {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, by key.
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+}
 
 /// The kinds of file under `launch_configs/`, by the folder they live in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,15 +114,16 @@ impl LaunchConfigKind {
 }
 
 /// Read and validate one launch config file; the error names the file and key.
-pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
+pub fn check_file(path: &Path) -> Result<LaunchConfigKind, LaunchConfigError> {
     let Some(kind) = LaunchConfigKind::of(path) else {
-        bail!(
-            "{}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/, baselines/ or ingress/)",
-            path.display()
-        );
+        return Err(LaunchConfigError::UnknownKind {
+            path: path.to_path_buf(),
+        });
     };
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = std::fs::read_to_string(path).map_err(|source| LaunchConfigError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
     match kind {
         LaunchConfigKind::HandImport => {
             ImportFile::from_toml_str(&text).map_err(|e| e.in_file(path))?;
@@ -69,11 +132,18 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
             RetargetConfig::from_toml_str(&text).map_err(|e| e.in_file(path))?;
         }
         LaunchConfigKind::Station => {
-            StationConfig::from_toml_str(&text).with_context(|| path.display().to_string())?;
+            StationConfig::from_toml_str(&text).map_err(|source| LaunchConfigError::Station {
+                path: path.to_path_buf(),
+                source,
+            })?;
         }
         LaunchConfigKind::CalibrationSettings => {
-            calibration::CalibrationSettings::from_toml_str(&text)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            calibration::CalibrationSettings::from_toml_str(&text).map_err(|source| {
+                LaunchConfigError::Calibration {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         }
         LaunchConfigKind::TaskCatalog => {
             scoring::TaskCatalog::from_toml_str(&text, &path.display().to_string())?;
@@ -93,8 +163,12 @@ pub fn check_file(path: &Path) -> anyhow::Result<LaunchConfigKind> {
             )?;
         }
         LaunchConfigKind::Ingress => {
-            crate::ingress::ingress_config::IngressConfig::from_toml_str(&text)
-                .with_context(|| path.display().to_string())?;
+            crate::ingress::ingress_config::IngressConfig::from_toml_str(&text).map_err(|e| {
+                LaunchConfigError::Ingress {
+                    path: path.to_path_buf(),
+                    source: e.into(),
+                }
+            })?;
         }
     }
     Ok(kind)

@@ -1,19 +1,91 @@
 //! `pomdar model`: a hand model's joints, limits, named frames and embodiments.
 
-use anyhow::{Context, bail};
 use retarget::{EmbodimentCatalog, Finger, HandModel};
 use serde_json::json;
 
-use crate::hand_source::HandSource;
+use crate::hand_source::{HandSource, HandSourceError};
+
+/// The model could not be loaded or posed, a `--pose` item is not valid, or the report
+/// could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelReportError {
+    /// The model could not be loaded.
+    #[error(transparent)]
+    Load {
+        /// The loader's error (names the file).
+        #[from]
+        source: HandSourceError,
+    },
+    /// A `--pose` item without `=`.
+    #[error("--pose: expected NAME=RADIANS, got '{item}'")]
+    PoseSyntax {
+        /// The item as given.
+        item: String,
+    },
+    /// A `--pose` joint the model does not have.
+    #[error("--pose: '{name}' is not a joint of {model}; joints: {joints}")]
+    UnknownJoint {
+        /// The joint name given.
+        name: String,
+        /// The model's name.
+        model: String,
+        /// The model's joints, comma-separated.
+        joints: String,
+    },
+    /// A `--pose` value that is not a number.
+    #[error("--pose: '{value}' is not a number (radians) for {name}: {source}")]
+    NotANumber {
+        /// The joint name given.
+        name: String,
+        /// The value given.
+        value: String,
+        /// The parse error.
+        #[source]
+        source: std::num::ParseFloatError,
+    },
+    /// A `--pose` value outside the joint's limits.
+    #[error("--pose: {name} = {value} rad is outside its limits [{lower}, {upper}] rad")]
+    OutsideLimits {
+        /// The joint name given.
+        name: String,
+        /// The value, radians.
+        value: f64,
+        /// Lower limit, radians.
+        lower: f64,
+        /// Upper limit, radians.
+        upper: f64,
+    },
+    /// Forward kinematics failed at the requested pose.
+    #[error(transparent)]
+    Pose {
+        /// The model's error.
+        #[from]
+        source: retarget::Error,
+    },
+    /// The palm frame cannot be built at the requested pose.
+    #[error("palm frame at the requested pose: {source}")]
+    PalmFrame {
+        /// The model's error.
+        #[source]
+        source: retarget::Error,
+    },
+    /// The JSON report could not be serialised.
+    #[error(transparent)]
+    Json {
+        /// serde_json's error.
+        #[from]
+        source: serde_json::Error,
+    },
+}
 
 /// Load the model, pose it and print the report.
-pub fn run(source: &HandSource, pose: &[String], json: bool) -> anyhow::Result<()> {
+pub fn run(source: &HandSource, pose: &[String], json: bool) -> Result<(), ModelReportError> {
     let model = source.load()?;
     let q = parse_pose(&model, pose)?;
     let state = model.forward_new(&q)?;
     let palm = model
         .palm_frame(&state)
-        .context("palm frame at the requested pose")?;
+        .map_err(|source| ModelReportError::PalmFrame { source })?;
     let frames = model.frames();
     let named: Vec<(String, [f64; 3])> = Finger::ALL
         .iter()
@@ -94,33 +166,76 @@ pub fn run(source: &HandSource, pose: &[String], json: bool) -> anyhow::Result<(
     Ok(())
 }
 
-fn parse_pose(model: &HandModel, pose: &[String]) -> anyhow::Result<Vec<f64>> {
+fn parse_pose(model: &HandModel, pose: &[String]) -> Result<Vec<f64>, ModelReportError> {
     let mut q = model.zero_pose();
     for item in pose {
         let Some((name, value)) = item.split_once('=') else {
-            bail!("--pose: expected NAME=RADIANS, got '{item}'");
+            return Err(ModelReportError::PoseSyntax { item: item.clone() });
         };
-        let index = model.dof_index(name.trim()).with_context(|| {
-            format!(
-                "--pose: '{}' is not a joint of {}; joints: {}",
-                name.trim(),
-                model.name(),
-                model.dof_names().collect::<Vec<_>>().join(", ")
-            )
-        })?;
+        let index = model
+            .dof_index(name.trim())
+            .ok_or_else(|| ModelReportError::UnknownJoint {
+                name: name.trim().to_string(),
+                model: model.name().to_string(),
+                joints: model.dof_names().collect::<Vec<_>>().join(", "),
+            })?;
         let value: f64 = value
             .trim()
             .parse()
-            .with_context(|| format!("--pose: '{value}' is not a number (radians) for {name}"))?;
+            .map_err(|source| ModelReportError::NotANumber {
+                name: name.to_string(),
+                value: value.to_string(),
+                source,
+            })?;
         let limits = model.dofs()[index].limits;
         if !limits.contains(value) {
-            bail!(
-                "--pose: {name} = {value} rad is outside its limits [{}, {}] rad",
-                limits.lower_rad,
-                limits.upper_rad
-            );
+            return Err(ModelReportError::OutsideLimits {
+                name: name.to_string(),
+                value,
+                lower: limits.lower_rad,
+                upper: limits.upper_rad,
+            });
         }
         q[index] = value;
     }
     Ok(q)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pose_error(item: &str) -> String {
+        let model = HandModel::orca_v1_right();
+        parse_pose(&model, &[item.to_string()])
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn pose_errors_say_what_is_wrong() {
+        let model = HandModel::orca_v1_right();
+        let joint = model.dof_names().next().unwrap().to_string();
+        assert_eq!(
+            pose_error("thumb"),
+            "--pose: expected NAME=RADIANS, got 'thumb'"
+        );
+        assert!(
+            pose_error("nope=0.1").starts_with("--pose: 'nope' is not a joint of "),
+            "{}",
+            pose_error("nope=0.1")
+        );
+        let err = pose_error(&format!("{joint}=x"));
+        assert!(
+            err.starts_with(&format!(
+                "--pose: 'x' is not a number (radians) for {joint}: "
+            )),
+            "{err}"
+        );
+        let err = pose_error(&format!("{joint}=99"));
+        assert!(
+            err.starts_with(&format!("--pose: {joint} = 99 rad is outside its limits [")),
+            "{err}"
+        );
+    }
 }

@@ -82,7 +82,7 @@ pub fn parse_calibration_action(text: &str) -> Result<CalibrationAction, String>
 
 /// Reads and parses a script; errors name the file and the line.
 pub fn load_calibration_script(path: &Path) -> anyhow::Result<Vec<CalScriptLine>> {
-    load_script_with(path, parse_calibration_action)
+    Ok(load_script_with(path, parse_calibration_action)?)
 }
 
 /// Parses a script's text; an error is `LINE: reason`.

@@ -35,5 +35,5 @@ pub fn model(args: ModelArgs) -> anyhow::Result<()> {
         (None, Some(urdf), Some(import)) => HandSource::Urdf { urdf, import },
         _ => HandSource::BuiltinOrcaV1Right,
     };
-    model_report::run(&source, &args.pose, args.json)
+    Ok(model_report::run(&source, &args.pose, args.json)?)
 }

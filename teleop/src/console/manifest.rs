@@ -161,7 +161,7 @@ impl Manifest {
     pub fn save(&self, path: &Path) -> anyhow::Result<()> {
         let mut text = serde_json::to_string_pretty(self)?;
         text.push('\n');
-        write_atomically(path, text)
+        Ok(write_atomically(path, text)?)
     }
 }
 

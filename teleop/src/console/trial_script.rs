@@ -26,7 +26,7 @@ pub type TrialScriptLine = ScriptLine<Action, Screen>;
 
 /// Reads and parses a trial console script; errors name the file and the line.
 pub fn load_script(path: &Path) -> anyhow::Result<Vec<TrialScriptLine>> {
-    load_script_with(path, parse_action)
+    Ok(load_script_with(path, parse_action)?)
 }
 
 /// Parses a trial console script's text; an error is `LINE: reason`.

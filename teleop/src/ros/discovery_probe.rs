@@ -20,7 +20,7 @@ use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
 use crate::ros::NetworkContext as _;
-use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
 
 /// What to probe.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,7 +127,7 @@ fn spawn_counter<M: RosMessage + Send + Sync + 'static>(
     topic: &str,
     duration: Duration,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<JoinHandle<Vec<Instant>>> {
+) -> Result<JoinHandle<Vec<Instant>>, RosError> {
     // Best effort matches reliable and best-effort publishers alike.
     let subscription = node.subscription::<M>(topic, QosConfig::best_effort(1000))?;
     Ok(tokio::spawn(async move {
@@ -157,7 +157,7 @@ fn counter_for(
     type_name: &str,
     duration: Duration,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<Option<JoinHandle<Vec<Instant>>>> {
+) -> Result<Option<JoinHandle<Vec<Instant>>>, RosError> {
     let shutdown = shutdown.clone();
     let handle = if type_name == dds_type::<JointState>() {
         spawn_counter::<JointState>(node, topic, duration, shutdown)?
@@ -181,7 +181,7 @@ pub async fn probe(
     network: &NetworkConfig,
     options: &ProbeOptions,
     shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<ProbeReport> {
+) -> Result<ProbeReport, RosError> {
     let domain_id = crate::ros::domain_id(network.domain_id)?;
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_probe")?;

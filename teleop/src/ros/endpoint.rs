@@ -3,7 +3,6 @@
 //! Topic types come from [`msgs::RosMessage`] (ROS 2 naming on the wire: topic `rt/<name>`,
 //! type `pkg::msg::dds_::Type_`), so peers such as Cyclone DDS or rclpy match by type name.
 
-use anyhow::Context as _;
 use msgs::RosMessage;
 use ros2_client::dds::rustdds::Topic;
 use ros2_client::{
@@ -11,7 +10,7 @@ use ros2_client::{
     Subscription,
 };
 
-use crate::ros::{QosConfig, QosProfileOf as _};
+use crate::ros::{QosConfig, QosProfileOf as _, RosError};
 
 /// A message with the times the station knows about it.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,24 +35,32 @@ impl std::fmt::Debug for RosNode {
     }
 }
 
-fn topic_name(name: &str) -> anyhow::Result<Name> {
+fn topic_name(name: &str) -> Result<Name, RosError> {
     let trimmed = name.trim_start_matches('/');
     let (namespace, base) = match trimmed.rsplit_once('/') {
         Some((ns, base)) => (format!("/{ns}"), base),
         None => ("/".to_string(), trimmed),
     };
-    Name::new(&namespace, base).with_context(|| format!("'{name}' is not a valid ROS 2 topic name"))
+    Name::new(&namespace, base).map_err(|source| RosError::TopicName {
+        topic: name.to_string(),
+        source,
+    })
 }
 
 impl RosNode {
     /// Create node `name` in `namespace` and spawn its spinner on the current tokio runtime.
-    pub fn new(context: &Context, namespace: &str, name: &str) -> anyhow::Result<RosNode> {
-        let node_name = NodeName::new(namespace, name)
-            .with_context(|| format!("'{namespace}/{name}' is not a valid ROS 2 node name"))?;
+    pub fn new(context: &Context, namespace: &str, name: &str) -> Result<RosNode, RosError> {
+        let node_name = NodeName::new(namespace, name).map_err(|source| RosError::NodeName {
+            namespace: namespace.to_string(),
+            name: name.to_string(),
+            source,
+        })?;
         let mut node = context
             .new_node(node_name, NodeOptions::new().enable_rosout(false))
-            .context("cannot create the ROS 2 node")?;
-        let spinner = node.spinner().context("cannot start the node's spinner")?;
+            .map_err(|source| RosError::Node { source })?;
+        let spinner = node
+            .spinner()
+            .map_err(|source| RosError::Spinner { source })?;
         tokio::spawn(spinner.spin());
         Ok(RosNode {
             node,
@@ -76,7 +83,7 @@ impl RosNode {
         &self,
         topic: &str,
         qos: QosConfig,
-    ) -> anyhow::Result<(Topic, QosProfile)> {
+    ) -> Result<(Topic, QosProfile), RosError> {
         let profile = qos.profile();
         let definition = M::DEFINITION;
         let handle = self
@@ -86,7 +93,10 @@ impl RosNode {
                 MessageTypeName::new(definition.package, definition.name),
                 &profile,
             )
-            .with_context(|| format!("cannot create topic {topic}"))?;
+            .map_err(|source| RosError::Topic {
+                topic: topic.to_string(),
+                source,
+            })?;
         Ok((handle, profile))
     }
 
@@ -95,11 +105,14 @@ impl RosNode {
         &mut self,
         topic: &str,
         qos: QosConfig,
-    ) -> anyhow::Result<Publisher<M>> {
+    ) -> Result<Publisher<M>, RosError> {
         let (handle, profile) = self.topic::<M>(topic, qos)?;
         self.node
             .create_publisher(&handle, Some(profile))
-            .with_context(|| format!("cannot publish on {topic}"))
+            .map_err(|source| RosError::Publisher {
+                topic: topic.to_string(),
+                source,
+            })
     }
 
     /// A subscription to `M` on `topic`.
@@ -107,11 +120,14 @@ impl RosNode {
         &mut self,
         topic: &str,
         qos: QosConfig,
-    ) -> anyhow::Result<Subscription<M>> {
+    ) -> Result<Subscription<M>, RosError> {
         let (handle, profile) = self.topic::<M>(topic, qos)?;
         self.node
             .create_subscription(&handle, Some(profile))
-            .with_context(|| format!("cannot subscribe to {topic}"))
+            .map_err(|source| RosError::Subscription {
+                topic: topic.to_string(),
+                source,
+            })
     }
 }
 
@@ -135,6 +151,10 @@ mod tests {
                 .to_string(),
             "/fr3/arm/end_effector_pose_cmd"
         );
-        assert!(topic_name("/bad name").is_err());
+        let err = topic_name("/bad name").unwrap_err().to_string();
+        assert!(
+            err.starts_with("'/bad name' is not a valid ROS 2 topic name: "),
+            "{err}"
+        );
     }
 }

@@ -3,10 +3,12 @@
 
 pub mod discovery_probe;
 mod endpoint;
+mod error;
 mod participant;
 mod qos;
 
 pub use endpoint::{RosNode, Stamped};
+pub use error::RosError;
 pub use participant::{NetworkContext, default_domain_id, domain_id};
 pub use qos::QosProfileOf;
 pub use station::convert;

@@ -13,42 +13,38 @@
 
 use std::net::IpAddr;
 
-use anyhow::{Context as _, bail};
 use ros2_client::Context;
 use ros2_client::dds::rustdds::DomainParticipantBuilder;
 use station::NetworkConfig;
 
+use crate::ros::RosError;
+
 /// Check that `address` can restrict DDS to an interface of this host: a unicast address
 /// one of its interfaces holds (a UDP socket binds to it).
-pub fn check_interface_address(address: IpAddr) -> anyhow::Result<()> {
+pub fn check_interface_address(address: IpAddr) -> Result<(), RosError> {
     if address.is_unspecified() || address.is_multicast() {
-        bail!(
-            "network.interfaces (--interface): {address} is not an interface address; give one of this host's unicast addresses, or none for every interface"
-        );
+        return Err(RosError::InterfaceNotUnicast { address });
     }
-    std::net::UdpSocket::bind((address, 0)).with_context(|| {
-        format!(
-            "network.interfaces (--interface): {address} is not an address of this host; give one of this host's addresses (`ip -brief address`), or none for every interface"
-        )
-    })?;
+    std::net::UdpSocket::bind((address, 0))
+        .map_err(|source| RosError::InterfaceNotOnHost { address, source })?;
     Ok(())
 }
 
 /// The effective domain id: `configured`, else the `ROS_DOMAIN_ID` environment variable (the
 /// ROS convention), else 0. Rejects ids outside 0–232 (the range ROS 2 allows).
-pub fn domain_id(configured: Option<u16>) -> anyhow::Result<u16> {
+pub fn domain_id(configured: Option<u16>) -> Result<u16, RosError> {
     let id = match configured {
         Some(id) => id,
         None => match std::env::var("ROS_DOMAIN_ID") {
             Ok(text) if !text.trim().is_empty() => text
                 .trim()
                 .parse()
-                .with_context(|| format!("ROS_DOMAIN_ID='{text}' is not a number in 0..=232"))?,
+                .map_err(|source| RosError::DomainIdNotANumber { text, source })?,
             _ => 0,
         },
     };
     if id > 232 {
-        bail!("ROS domain id {id} is outside 0..=232");
+        return Err(RosError::DomainIdOutOfRange { id });
     }
     Ok(id)
 }
@@ -56,11 +52,11 @@ pub fn domain_id(configured: Option<u16>) -> anyhow::Result<u16> {
 /// The DDS participant of a [`NetworkConfig`].
 pub trait NetworkContext {
     /// Create the ROS 2 context (one DDS participant) for this configuration.
-    fn context(&self) -> anyhow::Result<Context>;
+    fn context(&self) -> Result<Context, RosError>;
 }
 
 impl NetworkContext for NetworkConfig {
-    fn context(&self) -> anyhow::Result<Context> {
+    fn context(&self) -> Result<Context, RosError> {
         let domain = domain_id(self.domain_id)?;
         let mut builder = DomainParticipantBuilder::new(domain);
         for address in &self.interfaces {
@@ -71,8 +67,8 @@ impl NetworkContext for NetworkConfig {
         }
         let participant = builder
             .build()
-            .with_context(|| format!("cannot create a DDS participant on domain {domain}"))?;
-        Context::from_domain_participant(participant).context("cannot create the ROS 2 context")
+            .map_err(|source| RosError::Participant { domain, source })?;
+        Context::from_domain_participant(participant).map_err(|source| RosError::Context { source })
     }
 }
 
@@ -87,11 +83,18 @@ mod tests {
     use super::*;
 
     #[test]
+    fn configured_domain_ids_are_checked() {
+        assert_eq!(domain_id(Some(232)).unwrap(), 232);
+        let err = domain_id(Some(233)).unwrap_err();
+        assert_eq!(err.to_string(), "ROS domain id 233 is outside 0..=232");
+    }
+
+    #[test]
     fn interface_addresses_must_belong_to_this_host() {
         check_interface_address(IpAddr::from([127, 0, 0, 1])).unwrap();
         // TEST-NET-3 (RFC 5737): documentation only, never assigned to a host.
         let err = check_interface_address(IpAddr::from([203, 0, 113, 77])).unwrap_err();
-        let text = format!("{err:#}");
+        let text = err.to_string();
         assert!(text.contains("network.interfaces"), "{text}");
         assert!(
             text.contains("203.0.113.77 is not an address of this host"),

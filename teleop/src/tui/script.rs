@@ -22,6 +22,8 @@
 
 use std::path::Path;
 
+use crate::tui::TuiError;
+
 /// A state of a console that a script can wait for.
 pub trait ScriptState: Copy + PartialEq + std::fmt::Debug {
     /// The state of a name (`running`).
@@ -74,10 +76,15 @@ pub const DEFAULT_WAIT_S: f64 = 30.0;
 pub fn load_script_with<A, S: ScriptState>(
     path: &Path,
     parse_action: impl Fn(&str) -> Result<A, String>,
-) -> anyhow::Result<Vec<ScriptLine<A, S>>> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow::anyhow!("cannot read the script {}: {e}", path.display()))?;
-    parse_script_with(&text, parse_action).map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))
+) -> Result<Vec<ScriptLine<A, S>>, TuiError> {
+    let text = std::fs::read_to_string(path).map_err(|source| TuiError::ReadScript {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_script_with(&text, parse_action).map_err(|reason| TuiError::Script {
+        path: path.to_path_buf(),
+        reason,
+    })
 }
 
 /// Parses a script's text (the grammar above) with the console's actions and states; an error
@@ -210,5 +217,27 @@ mod tests {
         assert!(e.contains("without an action"), "{e}");
         let e = parse_script("1 fly").unwrap_err();
         assert!(e.contains("unknown command 'fly'"), "{e}");
+    }
+
+    #[test]
+    fn file_errors_name_the_file_and_the_line() {
+        let dir = std::env::temp_dir().join(format!("pomdar-script-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bad.script");
+        std::fs::write(&path, "engage\n1 fly\n").unwrap();
+        let e = crate::console::trial_script::load_script(&path).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with(&format!("{}:2: unknown command 'fly'", path.display())),
+            "{e}"
+        );
+        let missing = dir.join("missing.script");
+        let e = crate::console::trial_script::load_script(&missing).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with(&format!("cannot read the script {}: ", missing.display())),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -10,6 +10,8 @@ use std::time::Duration;
 use ratatui::crossterm::event::{self, Event, KeyCode, KeyEventKind, KeyModifiers};
 use tokio::sync::mpsc;
 
+use crate::tui::TuiError;
+
 /// Input from the operator.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Input {
@@ -49,16 +51,18 @@ impl std::fmt::Debug for FullScreen {
 
 impl FullScreen {
     /// Enters full-screen mode and starts reading keys into `keys`.
-    pub fn enter(keys: mpsc::UnboundedSender<Input>) -> anyhow::Result<FullScreen> {
+    pub fn enter(keys: mpsc::UnboundedSender<Input>) -> Result<FullScreen, TuiError> {
         // ratatui::init restores the terminal on a panic as well.
-        let terminal = ratatui::try_init().map_err(|e| {
-            anyhow::anyhow!("cannot open the full-screen console: {e} (use --plain)")
-        })?;
+        let terminal = ratatui::try_init().map_err(|source| TuiError::FullScreen { source })?;
         let stop_keys = Arc::new(AtomicBool::new(false));
         let stop = stop_keys.clone();
         std::thread::Builder::new()
             .name("console-keys".into())
-            .spawn(move || read_keys(&keys, &stop))?;
+            .spawn(move || read_keys(&keys, &stop))
+            .map_err(|source| TuiError::InputThread {
+                thread: "console-keys",
+                source,
+            })?;
         Ok(FullScreen {
             terminal,
             stop_keys,
@@ -66,8 +70,10 @@ impl FullScreen {
     }
 
     /// Draws a frame.
-    pub fn draw(&mut self, render: impl FnOnce(&mut ratatui::Frame<'_>)) -> anyhow::Result<()> {
-        self.terminal.draw(render)?;
+    pub fn draw(&mut self, render: impl FnOnce(&mut ratatui::Frame<'_>)) -> Result<(), TuiError> {
+        self.terminal
+            .draw(render)
+            .map_err(|source| TuiError::Draw { source })?;
         Ok(())
     }
 }
@@ -107,7 +113,7 @@ fn read_keys(keys: &mpsc::UnboundedSender<Input>, stop: &AtomicBool) {
 }
 
 /// Reads stdin lines into `lines` on a thread (the line console); [`Input::Closed`] at the end.
-pub fn read_stdin_lines(lines: mpsc::UnboundedSender<Input>) -> anyhow::Result<()> {
+pub fn read_stdin_lines(lines: mpsc::UnboundedSender<Input>) -> Result<(), TuiError> {
     std::thread::Builder::new()
         .name("console-stdin".into())
         .spawn(move || {
@@ -118,6 +124,10 @@ pub fn read_stdin_lines(lines: mpsc::UnboundedSender<Input>) -> anyhow::Result<(
                 }
             }
             lines.send(Input::Closed).ok();
+        })
+        .map_err(|source| TuiError::InputThread {
+            thread: "console-stdin",
+            source,
         })?;
     Ok(())
 }
