@@ -11,7 +11,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
-use std::net::UdpSocket;
+use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
 use futures::StreamExt;
@@ -71,6 +71,138 @@ fn bench_parse(glove: &SimGlove) {
     );
 }
 
+/// The ingress's output as the bench hears it: (receive time in ns, the packet id tagged into
+/// the forearm point's x).
+type Heard = tokio::sync::mpsc::UnboundedReceiver<(i64, f32)>;
+
+/// Subscribes to `/ingress/mano` on `network` and forwards, for each message, its receive
+/// time and the packet id it carries; returns the receiver and the listening task.
+fn listen(network: &NetworkConfig, clock: StationClock) -> (Heard, tokio::task::JoinHandle<()>) {
+    let context = network.context().unwrap();
+    let mut node = RosNode::new(&context, "/", "rokoko_bench_listener").unwrap();
+    let sub = node
+        .subscription::<Float32MultiArray>("/ingress/mano", QosConfig::best_effort(1000))
+        .unwrap();
+    let (heard_tx, heard_rx) = tokio::sync::mpsc::unbounded_channel::<(i64, f32)>();
+    let listener = tokio::spawn(async move {
+        // The node lives as long as its subscription is read.
+        let _node = node;
+        let mut stream = Box::pin(sub.async_stream());
+        while let Some(Ok((m, _))) = stream.next().await {
+            // The packet's id rides in the forearm point's x (see `bench_live`).
+            heard_tx.send((clock.now_ns(), m.data[0])).ok();
+        }
+    });
+    (heard_rx, listener)
+}
+
+/// Sends tagged packets until the subscriber hears one (DDS discovery), then lets the
+/// pipeline drain and discards what was heard. Returns the last id sent.
+async fn discover(
+    socket: &UdpSocket,
+    addr: SocketAddr,
+    tagged: &impl Fn(usize) -> Vec<u8>,
+    heard_rx: &mut Heard,
+) -> usize {
+    let start = Instant::now();
+    let mut k = 0usize;
+    loop {
+        k += 1;
+        socket.send_to(&tagged(k), addr).unwrap();
+        if tokio::time::timeout(Duration::from_millis(50), heard_rx.recv())
+            .await
+            .is_ok()
+        {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(15), "no discovery");
+    }
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    while heard_rx.try_recv().is_ok() {}
+    k
+}
+
+/// Latency at 100 packets/s: sends ids `first..first + 1_000` and prints the `rokoko_latency`
+/// line (p50 / p99 / max of send → heard).
+async fn bench_latency(
+    socket: &UdpSocket,
+    addr: SocketAddr,
+    tagged: &impl Fn(usize) -> Vec<u8>,
+    heard_rx: &mut Heard,
+    clock: StationClock,
+    first: usize,
+) {
+    let mut sent_ns = std::collections::HashMap::new();
+    let mut latencies = Vec::new();
+    let mut collect = |heard_rx: &mut Heard, sent_ns: &std::collections::HashMap<usize, i64>| {
+        while let Ok((at, tag)) = heard_rx.try_recv() {
+            if let Some(t0) = sent_ns.get(&(tag as usize)) {
+                latencies.push((at - t0) as f64 * 1e-6);
+            }
+        }
+    };
+    let mut interval = tokio::time::interval(Duration::from_millis(10));
+    for id in first..first + 1_000 {
+        interval.tick().await;
+        sent_ns.insert(id, clock.now_ns());
+        socket.send_to(&tagged(id), addr).unwrap();
+        collect(heard_rx, &sent_ns);
+    }
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    collect(heard_rx, &sent_ns);
+    latencies.sort_by(f64::total_cmp);
+    println!(
+        "{{\"bench\":\"rokoko_latency\",\"sent\":1000,\"received\":{},\"p50_ms\":{:.3},\"p99_ms\":{:.3},\"max_ms\":{:.3}}}",
+        latencies.len(),
+        percentile(&latencies, 0.5),
+        percentile(&latencies, 0.99),
+        latencies.last().copied().unwrap_or(f64::NAN)
+    );
+}
+
+/// What the throughput pass saw: packets sent, and the packets with an id from the pass heard
+/// by the subscriber, over how long.
+struct Throughput {
+    sent: usize,
+    heard: usize,
+    seconds: f64,
+}
+
+/// Throughput: `packets` (built beforehand, ids from `base`) sent from another thread as
+/// fast as it can; the rate is what the subscriber received over the time it was receiving
+/// (what overflows the socket buffer is dropped by the kernel, not counted).
+async fn bench_throughput(
+    socket: UdpSocket,
+    addr: SocketAddr,
+    packets: Vec<Vec<u8>>,
+    heard_rx: &mut Heard,
+    base: usize,
+) -> Throughput {
+    let sender = std::thread::spawn(move || {
+        for p in &packets {
+            socket.send_to(p, addr).unwrap();
+        }
+        packets.len()
+    });
+    let mut first_ns = None;
+    let mut last_ns = 0;
+    let mut heard = 0usize;
+    while let Ok(Some((at, tag))) =
+        tokio::time::timeout(Duration::from_millis(500), heard_rx.recv()).await
+    {
+        if tag as usize >= base {
+            first_ns.get_or_insert(at);
+            last_ns = at;
+            heard += 1;
+        }
+    }
+    Throughput {
+        sent: sender.join().unwrap(),
+        heard,
+        seconds: (last_ns - first_ns.unwrap_or(last_ns)) as f64 * 1e-9,
+    }
+}
+
 async fn bench_live(glove: &SimGlove) {
     let network = NetworkConfig {
         domain_id: Some(200 + (std::process::id() % 30) as u16),
@@ -93,19 +225,7 @@ async fn bench_live(glove: &SimGlove) {
         false,
     ));
     let addr = bound_rx.await.unwrap();
-    let context = network.context().unwrap();
-    let mut node = RosNode::new(&context, "/", "rokoko_bench_listener").unwrap();
-    let sub = node
-        .subscription::<Float32MultiArray>("/ingress/mano", QosConfig::best_effort(1000))
-        .unwrap();
-    let (heard_tx, mut heard_rx) = tokio::sync::mpsc::unbounded_channel::<(i64, f32)>();
-    let listener = tokio::spawn(async move {
-        let mut stream = Box::pin(sub.async_stream());
-        while let Some(Ok((m, _))) = stream.next().await {
-            // The packet's id rides in the forearm point's x (see below).
-            heard_tx.send((clock.now_ns(), m.data[0])).ok();
-        }
-    });
+    let (mut heard_rx, listener) = listen(&network, clock);
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     let (points, wrist) = glove.frame(0.0);
     let tagged = |k: usize| {
@@ -113,85 +233,23 @@ async fn bench_live(glove: &SimGlove) {
         p[0].x = k as f64;
         right_hand_packet(k as f64 * 0.01, KeypointLayout::Lab22, &p, &wrist)
     };
-    // Discovery.
-    let start = Instant::now();
-    let mut k = 0usize;
-    loop {
-        k += 1;
-        socket.send_to(&tagged(k), addr).unwrap();
-        if tokio::time::timeout(Duration::from_millis(50), heard_rx.recv())
-            .await
-            .is_ok()
-        {
-            break;
-        }
-        assert!(start.elapsed() < Duration::from_secs(15), "no discovery");
-    }
-    tokio::time::sleep(Duration::from_millis(200)).await;
-    while heard_rx.try_recv().is_ok() {}
 
-    // Latency at 100 packets/s.
-    let mut sent_ns = std::collections::HashMap::new();
-    let mut latencies = Vec::new();
-    let mut interval = tokio::time::interval(Duration::from_millis(10));
-    let first = k + 1;
-    for id in first..first + 1_000 {
-        interval.tick().await;
-        sent_ns.insert(id, clock.now_ns());
-        socket.send_to(&tagged(id), addr).unwrap();
-        while let Ok((at, tag)) = heard_rx.try_recv() {
-            if let Some(t0) = sent_ns.get(&(tag as usize)) {
-                latencies.push((at - t0) as f64 * 1e-6);
-            }
-        }
-    }
-    tokio::time::sleep(Duration::from_millis(200)).await;
-    while let Ok((at, tag)) = heard_rx.try_recv() {
-        if let Some(t0) = sent_ns.get(&(tag as usize)) {
-            latencies.push((at - t0) as f64 * 1e-6);
-        }
-    }
-    latencies.sort_by(f64::total_cmp);
-    println!(
-        "{{\"bench\":\"rokoko_latency\",\"sent\":1000,\"received\":{},\"p50_ms\":{:.3},\"p99_ms\":{:.3},\"max_ms\":{:.3}}}",
-        latencies.len(),
-        percentile(&latencies, 0.5),
-        percentile(&latencies, 0.99),
-        latencies.last().copied().unwrap_or(f64::NAN)
-    );
+    let first = discover(&socket, addr, &tagged, &mut heard_rx).await + 1;
+    bench_latency(&socket, addr, &tagged, &mut heard_rx, clock, first).await;
 
-    // Throughput: 20,000 packets built beforehand, sent from another thread as fast as it
-    // can; the rate is what the subscriber received over the time it was receiving (what
-    // overflows the socket buffer is dropped by the kernel, not counted).
     let base = first + 1_000;
     let packets: Vec<Vec<u8>> = (base..base + 20_000).map(tagged).collect();
-    let sender = std::thread::spawn(move || {
-        for p in &packets {
-            socket.send_to(p, addr).unwrap();
-        }
-        packets.len()
-    });
-    let mut first_ns = None;
-    let mut last_ns = 0;
-    let mut count = 0usize;
-    while let Ok(Some((at, tag))) =
-        tokio::time::timeout(Duration::from_millis(500), heard_rx.recv()).await
-    {
-        if tag as usize >= base {
-            first_ns.get_or_insert(at);
-            last_ns = at;
-            count += 1;
-        }
-    }
-    let sent = sender.join().unwrap();
+    let pass = bench_throughput(socket, addr, packets, &mut heard_rx, base).await;
     shutdown.send(true).unwrap();
     let counters = ingress.await.unwrap().unwrap();
     listener.abort();
-    let seconds = (last_ns - first_ns.unwrap_or(last_ns)) as f64 * 1e-9;
     println!(
-        "{{\"bench\":\"rokoko_throughput\",\"sent\":{sent},\"received_by_ingress\":{},\"published_and_heard\":{count},\"seconds\":{seconds:.2},\"per_s\":{:.0}}}",
+        "{{\"bench\":\"rokoko_throughput\",\"sent\":{},\"received_by_ingress\":{},\"published_and_heard\":{},\"seconds\":{:.2},\"per_s\":{:.0}}}",
+        pass.sent,
         counters.received as usize - (base - 1),
-        count as f64 / seconds.max(1e-9)
+        pass.heard,
+        pass.seconds,
+        pass.heard as f64 / pass.seconds.max(1e-9)
     );
 }
 

@@ -22,9 +22,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use scoring::{
-    CorrectnessKind, ReportInputs, ScoreReport, TaskCatalog, TrialRecord, compute_baseline,
-    render_figures, render_markdown, render_overall_csv, render_scores_csv, render_terminal,
-    render_trials_csv, score_trial,
+    BaselineTable, CorrectnessKind, ReportInputs, ScoreReport, TaskCatalog, TrialRecord,
+    compute_baseline, render_figures, render_markdown, render_overall_csv, render_scores_csv,
+    render_terminal, render_trials_csv, score_trial,
 };
 use serde_json::{Value, json};
 use teleop::mcap_log::{TrialReader, read_trial_events};
@@ -210,14 +210,8 @@ fn dir_bytes(dir: &Path) -> u64 {
     total
 }
 
-fn main() {
-    let root = std::env::temp_dir().join("pomdar_score_bench");
-    ensure_set(&root);
-    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
-
-    // The baseline from the human trials.
-    let started = Instant::now();
-    let inputs = ScoringInputs::load(None, None, None).unwrap();
+/// The baseline from the human trials under `root/human`.
+fn human_baseline(root: &Path, inputs: &ScoringInputs) -> BaselineTable {
     let human = collect_trial_files(&[root.join("human")]);
     let records: Vec<TrialRecord> = process_files(
         &human.files,
@@ -225,63 +219,69 @@ fn main() {
         ProgressStyle::Silent,
         "",
     );
-    let baseline = compute_baseline(&records, &inputs.catalog, &inputs.rules, "bench").table;
-    let baseline_s = started.elapsed().as_secs_f64();
-    assert_eq!(baseline.tasks.len(), 18);
+    compute_baseline(&records, &inputs.catalog, &inputs.rules, "bench").table
+}
 
-    let mut passes = Vec::new();
-    let mut last_report = None;
-    for pass in 1..=PASSES {
-        let started = Instant::now();
-        let found = collect_trial_files(&[root.join("trials")]);
-        let results = process_files(
-            &found.files,
-            |p| {
-                let log = load_trial_log(p)?;
-                score_trial(&log, &inputs.catalog, Some(&baseline), &inputs.rules)
-                    .map_err(|e| e.to_string())
-            },
-            ProgressStyle::Silent,
-            "",
-        );
-        let scores: Vec<_> = results.into_iter().map(Result::unwrap).collect();
-        let files = scores.len();
-        let report = ScoreReport::build(ReportInputs {
-            catalog: &inputs.catalog,
-            baseline: Some(&baseline),
-            rules: &inputs.rules,
-            rules_origin: &inputs.rules_origin,
-            dof: &inputs.dof,
-            scores,
-            rejected: Vec::new(),
-            skipped: Vec::new(),
-        });
-        let rendered = render_terminal(&report).len()
-            + render_markdown(&report).len()
-            + render_scores_csv(&report).len()
-            + render_overall_csv(&report).len()
-            + render_trials_csv(&report).len()
-            + report.to_json().len();
-        let scoring_s = started.elapsed().as_secs_f64();
+/// One timed pass of `pomdar score` minus the printing: find, read and score every trial,
+/// build the report and render it (terminal, Markdown, CSV, JSON) in memory; then, timed
+/// apart, the figures. Prints the pass's JSON line; returns the report and both durations.
+fn score_pass(
+    root: &Path,
+    inputs: &ScoringInputs,
+    baseline: &BaselineTable,
+    pass: usize,
+    workers: usize,
+) -> (ScoreReport, f64, f64) {
+    let started = Instant::now();
+    let found = collect_trial_files(&[root.join("trials")]);
+    let results = process_files(
+        &found.files,
+        |p| {
+            let log = load_trial_log(p)?;
+            score_trial(&log, &inputs.catalog, Some(baseline), &inputs.rules)
+                .map_err(|e| e.to_string())
+        },
+        ProgressStyle::Silent,
+        "",
+    );
+    let scores: Vec<_> = results.into_iter().map(Result::unwrap).collect();
+    let files = scores.len();
+    let report = ScoreReport::build(ReportInputs {
+        catalog: &inputs.catalog,
+        baseline: Some(baseline),
+        rules: &inputs.rules,
+        rules_origin: &inputs.rules_origin,
+        dof: &inputs.dof,
+        scores,
+        rejected: Vec::new(),
+        skipped: Vec::new(),
+    });
+    let rendered = render_terminal(&report).len()
+        + render_markdown(&report).len()
+        + render_scores_csv(&report).len()
+        + render_overall_csv(&report).len()
+        + render_trials_csv(&report).len()
+        + report.to_json().len();
+    let scoring_s = started.elapsed().as_secs_f64();
 
-        let started = Instant::now();
-        let (figures, _, errors) = render_figures(&report);
-        let figures_s = started.elapsed().as_secs_f64();
-        assert!(errors.is_empty() && figures.len() == 4);
-        println!(
-            "{{\"bench\":\"score_trials\",\"pass\":{pass},\"files\":{files},\"workers\":{workers},\
-             \"scoring_s\":{scoring_s:.3},\"per_file_ms\":{:.3},\"report_bytes\":{rendered},\
-             \"figures\":{},\"figures_s\":{figures_s:.3}}}",
-            scoring_s * 1000.0 / files as f64,
-            figures.len()
-        );
-        passes.push((scoring_s, figures_s));
-        last_report = Some(report);
-    }
-    let report = last_report.unwrap();
+    let started = Instant::now();
+    let (figures, _, errors) = render_figures(&report);
+    let figures_s = started.elapsed().as_secs_f64();
+    assert!(errors.is_empty() && figures.len() == 4);
+    println!(
+        "{{\"bench\":\"score_trials\",\"pass\":{pass},\"files\":{files},\"workers\":{workers},\
+         \"scoring_s\":{scoring_s:.3},\"per_file_ms\":{:.3},\"report_bytes\":{rendered},\
+         \"figures\":{},\"figures_s\":{figures_s:.3}}}",
+        scoring_s * 1000.0 / files as f64,
+        figures.len()
+    );
+    (report, scoring_s, figures_s)
+}
 
-    // What the summary-indexed reader saves: chunks it decompressed, and a whole-file read
-    // (`TrialReader`, every message decoded into memory) of one file in 20 for comparison.
+/// What the summary-indexed reader saves: chunks it decompressed, and a whole-file read
+/// (`TrialReader`, every message decoded into memory) of one file in 20 for comparison.
+/// Prints its JSON line.
+fn print_reader_savings(root: &Path) {
     let found = collect_trial_files(&[root.join("trials")]);
     let (mut read, mut total) = (0, 0);
     for path in &found.files {
@@ -300,8 +300,11 @@ fn main() {
          \"whole_file_read_ms_per_file\":{whole_ms:.2},\"whole_file_sample\":{}}}",
         sample.len()
     );
-    passes.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let (median_s, _) = passes[PASSES / 2];
+}
+
+/// The summary line: set size, baseline time, the median pass's scoring time and each
+/// embodiment's overall score from the last report.
+fn print_summary(root: &Path, report: &ScoreReport, baseline_s: f64, median_s: f64) {
     let overall: Vec<String> = report
         .embodiments
         .iter()
@@ -321,4 +324,31 @@ fn main() {
         median_s * 1000.0 / report.trials.len() as f64,
         overall.join(", ")
     );
+}
+
+fn main() {
+    let root = std::env::temp_dir().join("pomdar_score_bench");
+    ensure_set(&root);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+
+    // The baseline's time includes loading the catalog and rules.
+    let started = Instant::now();
+    let inputs = ScoringInputs::load(None, None, None).unwrap();
+    let baseline = human_baseline(&root, &inputs);
+    let baseline_s = started.elapsed().as_secs_f64();
+    assert_eq!(baseline.tasks.len(), 18);
+
+    let mut passes = Vec::new();
+    let mut last_report = None;
+    for pass in 1..=PASSES {
+        let (report, scoring_s, figures_s) = score_pass(&root, &inputs, &baseline, pass, workers);
+        passes.push((scoring_s, figures_s));
+        last_report = Some(report);
+    }
+    let report = last_report.unwrap();
+
+    print_reader_savings(&root);
+    passes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (median_s, _) = passes[PASSES / 2];
+    print_summary(&root, &report, baseline_s, median_s);
 }

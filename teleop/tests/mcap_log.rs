@@ -257,7 +257,13 @@ fn trial_reads_back_with_same_topics_types_counts_and_values() {
     assert_eq!(read, written);
     assert_eq!(stop.0, TRIAL_EVENTS_TOPIC);
 
-    // Topics, types, counts, schemas, QoS.
+    assert_round_trip_topics(&log);
+    assert_round_trip_values(&log);
+    assert_round_trip_metadata_and_statistics(&log, written.len() as u64 + 1);
+}
+
+/// The 3 s round-trip trial's topics: types, counts, schemas, QoS.
+fn assert_round_trip_topics(log: &TrialReader) {
     let expect = [
         (
             "/ingress/mano",
@@ -294,8 +300,10 @@ fn trial_reads_back_with_same_topics_types_counts_and_values() {
         assert_eq!(info.message_count, count, "{topic}");
         assert_eq!(info.offered_qos().unwrap().unwrap(), vec![qos], "{topic}");
     }
+}
 
-    // Decoded values.
+/// The round-trip trial's decoded values, and a decode as the wrong type refused.
+fn assert_round_trip_values(log: &TrialReader) {
     let mut rng = Rng(TRIAL_SEED);
     let mano = log
         .decode_topic::<Float32MultiArray>("/ingress/mano")
@@ -327,16 +335,17 @@ fn trial_reads_back_with_same_topics_types_counts_and_values() {
     let first_joint = log.messages().find(|m| m.is::<JointState>()).unwrap();
     let err = first_joint.decode::<PoseStamped>().unwrap_err();
     assert!(matches!(err, LogError::TypeMismatch { .. }), "{err}");
+}
 
-    // Metadata record.
+/// The round-trip trial's metadata record and summary statistics.
+fn assert_round_trip_metadata_and_statistics(log: &TrialReader, message_count: u64) {
     assert_eq!(log.metadata().len(), 1);
     let trial = log.metadata_named("pomdar_trial").unwrap();
     assert_eq!(trial["task"], "V1");
     assert_eq!(trial["trial_index"], "3");
 
-    // Statistics.
     let stats = log.statistics().expect("summary with statistics");
-    assert_eq!(stats.message_count, written.len() as u64 + 1);
+    assert_eq!(stats.message_count, message_count);
     assert_eq!(stats.channel_count, 4);
     assert_eq!(stats.schema_count, 4);
     assert_eq!(stats.metadata_count, 1);
@@ -412,6 +421,159 @@ struct Snapshot {
     written: usize,
 }
 
+/// The finished crash-test recording, what every recovered cut of a snapshot is checked
+/// against.
+struct Finished {
+    bytes: Vec<u8>,
+    /// Every message written, in order.
+    written: Vec<Written>,
+    /// The message counts the writer reported durable, at every write.
+    flush_counts: BTreeSet<usize>,
+    /// Where each chunk ends in the file, and how many messages end there: the file as it was
+    /// before a kill is a prefix of it up to the last flush.
+    boundaries: Vec<(usize, usize)>,
+    /// Where the header record ends; a cut before it leaves nothing to recover.
+    header_end: usize,
+}
+
+impl Finished {
+    fn new(bytes: Vec<u8>, written: Vec<Written>, flush_counts: BTreeSet<usize>) -> Finished {
+        let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+        let mut chunks = summary.chunk_indexes.clone();
+        chunks.sort_by_key(|c| c.chunk_start_offset);
+        let mut boundaries = Vec::new(); // (chunk end offset, messages up to it)
+        let mut total = 0usize;
+        for chunk in &chunks {
+            total += summary.stream_chunk(&bytes, chunk).unwrap().count();
+            boundaries.push((
+                (chunk.chunk_start_offset + chunk.chunk_length) as usize,
+                total,
+            ));
+        }
+        let header_end = 8 + 9 + u64::from_le_bytes(bytes[9..17].try_into().unwrap()) as usize;
+        Finished {
+            bytes,
+            written,
+            flush_counts,
+            boundaries,
+            header_end,
+        }
+    }
+
+    /// The snapshot's bytes up to its last flush are the finished file's.
+    fn assert_prefix_of(&self, s: usize, snap: &Snapshot) {
+        assert!(snap.bytes.len() <= self.bytes.len());
+        let flushed_len = self
+            .boundaries
+            .iter()
+            .filter(|(_, n)| *n <= snap.durable)
+            .map(|(end, _)| *end)
+            .max()
+            .unwrap_or(0);
+        assert_eq!(
+            snap.bytes[..flushed_len],
+            self.bytes[..flushed_len],
+            "snapshot {s}"
+        );
+    }
+
+    /// Where to cut a snapshot: random cuts, the whole snapshot, and the bytes around every
+    /// chunk end.
+    fn cuts(&self, snap: &Snapshot, rng: &mut Rng) -> BTreeSet<usize> {
+        let mut cuts: BTreeSet<usize> = (0..25)
+            .map(|_| rng.below(snap.bytes.len() as u64) as usize)
+            .collect();
+        cuts.insert(snap.bytes.len());
+        for (end, _) in &self.boundaries {
+            for cut in [end - 1, *end, end + 1] {
+                if cut <= snap.bytes.len() {
+                    cuts.insert(cut);
+                }
+            }
+        }
+        cuts
+    }
+
+    /// Recovers snapshot `s` cut at `cut` bytes and checks it holds exactly the messages up
+    /// to the last flush the cut keeps whole, with channels, metadata and the recovery note.
+    /// Returns whether there was anything to recover (false: the cut leaves no header, and
+    /// recovery refused it as not MCAP).
+    fn assert_cut_recovers(&self, dir: &TestDir, s: usize, snap: &Snapshot, cut: usize) -> bool {
+        let input = dir.join(&format!("s{s}_{cut}.mcap.part"));
+        let output = dir.join(&format!("s{s}_{cut}.mcap"));
+        std::fs::write(&input, &snap.bytes[..cut]).unwrap();
+        let result = recover(&input, &output);
+        if cut < self.header_end {
+            let err = result.expect_err("no header: nothing to recover");
+            assert!(matches!(err, LogError::NotMcap { .. }), "cut {cut}: {err}");
+            return false;
+        }
+        let report = result.unwrap_or_else(|e| panic!("snapshot {s} cut {cut}: {e}"));
+        let expected = self
+            .boundaries
+            .iter()
+            .filter(|(end, n)| *end <= cut && *n <= snap.durable)
+            .map(|(_, n)| *n)
+            .max()
+            .unwrap_or(0);
+        assert!(self.flush_counts.contains(&expected));
+        assert_eq!(
+            report.message_count as usize, expected,
+            "snapshot {s} cut {cut}\n{report}"
+        );
+        let log = TrialReader::open(&output).unwrap();
+        assert_eq!(
+            as_written(&log),
+            self.written[..expected],
+            "snapshot {s} cut {cut}"
+        );
+        // Channels and the trial metadata survive with the first flushed chunk.
+        if expected > 0 {
+            assert_eq!(log.topics().len(), 4);
+            assert_eq!(log.metadata_named("pomdar_trial").unwrap()["task"], "V1");
+            let qos = log
+                .topic("/ingress/mano")
+                .unwrap()
+                .offered_qos()
+                .unwrap()
+                .unwrap();
+            assert_eq!(qos, vec![OfferedQos::best_effort(100)]);
+        }
+        let recovery = log.metadata_named(RECOVERY_METADATA_NAME).unwrap();
+        assert_eq!(recovery["messages_recovered"], expected.to_string());
+        assert!(report.unrecoverable_bytes <= cut as u64);
+        assert_eq!(
+            report.tail_damaged,
+            report.unrecoverable_bytes > 0,
+            "{report}"
+        );
+        true
+    }
+
+    /// The whole snapshot loses at most the unflushed second (plus one message period).
+    fn assert_whole_snapshot_recovers(&self, dir: &TestDir, s: usize, snap: &Snapshot) {
+        let input = dir.join(&format!("whole{s}.mcap.part"));
+        let output = dir.join(&format!("whole{s}.mcap"));
+        std::fs::write(&input, &snap.bytes).unwrap();
+        let report = recover(&input, &output).unwrap();
+        assert_eq!(report.message_count as usize, snap.durable);
+        let last_written = self.written[..snap.written]
+            .iter()
+            .map(|w| w.1)
+            .max()
+            .unwrap();
+        let lost_ns = last_written - report.last_log_time_ns.unwrap_or(T0);
+        println!(
+            "snapshot {s}: {} of {} messages, {:.3} s of log time lost, {} bytes unrecoverable",
+            report.message_count,
+            snap.written,
+            lost_ns as f64 / 1e9,
+            report.unrecoverable_bytes
+        );
+        assert!(lost_ns <= S + 5 * MS, "lost {lost_ns} ns\n{report}");
+    }
+}
+
 #[test]
 fn crashed_recording_recovers_exactly_up_to_the_last_flush() {
     let dir = TestDir::new("crash");
@@ -436,117 +598,16 @@ fn crashed_recording_recovers_exactly_up_to_the_last_flush() {
     writer.finish().unwrap();
     assert_eq!(snapshots.len(), moments.len());
 
-    // Where each chunk ends in the finished file, and how many messages end there: the file
-    // as it was before the kill is a prefix of it up to the last flush.
-    let finished = std::fs::read(&path).unwrap();
-    let summary = mcap::Summary::read(&finished).unwrap().unwrap();
-    let mut chunks = summary.chunk_indexes.clone();
-    chunks.sort_by_key(|c| c.chunk_start_offset);
-    let mut boundaries = Vec::new(); // (chunk end offset, messages up to it)
-    let mut total = 0usize;
-    for chunk in &chunks {
-        total += summary.stream_chunk(&finished, chunk).unwrap().count();
-        boundaries.push((
-            (chunk.chunk_start_offset + chunk.chunk_length) as usize,
-            total,
-        ));
-    }
-    let header_end = 8 + 9 + u64::from_le_bytes(finished[9..17].try_into().unwrap()) as usize;
-
+    let finished = Finished::new(std::fs::read(&path).unwrap(), written, flush_counts);
     let mut checked = 0;
     for (s, snap) in snapshots.iter().enumerate() {
-        assert!(snap.bytes.len() <= finished.len());
-        let flushed_len = boundaries
-            .iter()
-            .filter(|(_, n)| *n <= snap.durable)
-            .map(|(end, _)| *end)
-            .max()
-            .unwrap_or(0);
-        assert_eq!(
-            snap.bytes[..flushed_len],
-            finished[..flushed_len],
-            "snapshot {s}"
-        );
-
-        // Random cuts, the whole snapshot, and the bytes around every chunk end.
-        let mut cuts: BTreeSet<usize> = (0..25)
-            .map(|_| rng.below(snap.bytes.len() as u64) as usize)
-            .collect();
-        cuts.insert(snap.bytes.len());
-        for (end, _) in &boundaries {
-            for cut in [end - 1, *end, end + 1] {
-                if cut <= snap.bytes.len() {
-                    cuts.insert(cut);
-                }
+        finished.assert_prefix_of(s, snap);
+        for cut in finished.cuts(snap, &mut rng) {
+            if finished.assert_cut_recovers(&dir, s, snap, cut) {
+                checked += 1;
             }
         }
-        for cut in cuts {
-            let input = dir.join(&format!("s{s}_{cut}.mcap.part"));
-            let output = dir.join(&format!("s{s}_{cut}.mcap"));
-            std::fs::write(&input, &snap.bytes[..cut]).unwrap();
-            let result = recover(&input, &output);
-            if cut < header_end {
-                let err = result.expect_err("no header: nothing to recover");
-                assert!(matches!(err, LogError::NotMcap { .. }), "cut {cut}: {err}");
-                continue;
-            }
-            let report = result.unwrap_or_else(|e| panic!("snapshot {s} cut {cut}: {e}"));
-            let expected = boundaries
-                .iter()
-                .filter(|(end, n)| *end <= cut && *n <= snap.durable)
-                .map(|(_, n)| *n)
-                .max()
-                .unwrap_or(0);
-            assert!(flush_counts.contains(&expected));
-            assert_eq!(
-                report.message_count as usize, expected,
-                "snapshot {s} cut {cut}\n{report}"
-            );
-            let log = TrialReader::open(&output).unwrap();
-            assert_eq!(
-                as_written(&log),
-                written[..expected],
-                "snapshot {s} cut {cut}"
-            );
-            // Channels and the trial metadata survive with the first flushed chunk.
-            if expected > 0 {
-                assert_eq!(log.topics().len(), 4);
-                assert_eq!(log.metadata_named("pomdar_trial").unwrap()["task"], "V1");
-                let qos = log
-                    .topic("/ingress/mano")
-                    .unwrap()
-                    .offered_qos()
-                    .unwrap()
-                    .unwrap();
-                assert_eq!(qos, vec![OfferedQos::best_effort(100)]);
-            }
-            let recovery = log.metadata_named(RECOVERY_METADATA_NAME).unwrap();
-            assert_eq!(recovery["messages_recovered"], expected.to_string());
-            assert!(report.unrecoverable_bytes <= cut as u64);
-            assert_eq!(
-                report.tail_damaged,
-                report.unrecoverable_bytes > 0,
-                "{report}"
-            );
-            checked += 1;
-        }
-
-        // The whole snapshot loses at most the unflushed second (plus one message period).
-        let input = dir.join(&format!("whole{s}.mcap.part"));
-        let output = dir.join(&format!("whole{s}.mcap"));
-        std::fs::write(&input, &snap.bytes).unwrap();
-        let report = recover(&input, &output).unwrap();
-        assert_eq!(report.message_count as usize, snap.durable);
-        let last_written = written[..snap.written].iter().map(|w| w.1).max().unwrap();
-        let lost_ns = last_written - report.last_log_time_ns.unwrap_or(T0);
-        println!(
-            "snapshot {s}: {} of {} messages, {:.3} s of log time lost, {} bytes unrecoverable",
-            report.message_count,
-            snap.written,
-            lost_ns as f64 / 1e9,
-            report.unrecoverable_bytes
-        );
-        assert!(lost_ns <= S + 5 * MS, "lost {lost_ns} ns\n{report}");
+        finished.assert_whole_snapshot_recovers(&dir, s, snap);
     }
     println!("{checked} truncated files recovered and checked");
 }

@@ -170,29 +170,42 @@ fn assert_silent_after(heard: &Heard, stopped: Instant, what: &str) {
     );
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds() {
-    let domain = test_domain(3);
-    let root = scratch_dir("console-interrupt");
-    let dir = root.join("kill/orca_full/V1");
+/// The robot's command listener: every joint target heard on `/pomdar/hand/joint_targets`.
+struct RobotEar {
+    heard: Heard,
+    listener: tokio::task::JoinHandle<()>,
+    /// Keeps the subscription's node alive for the test.
+    _node: RosNode,
+}
 
-    // The robot's ear and the glove.
-    let context = loopback(domain).context().unwrap();
-    let mut node = RosNode::new(&context, "/", "robot").unwrap();
-    let sub = node
-        .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(50))
-        .unwrap();
-    let heard: Heard = Arc::default();
-    let ear = heard.clone();
-    let listener = tokio::spawn(async move {
-        let mut stream = Box::pin(sub.async_stream());
-        while let Some(item) = stream.next().await {
-            if item.is_ok() {
-                ear.lock().unwrap().push(Instant::now());
+impl RobotEar {
+    fn start(domain: u16) -> RobotEar {
+        let context = loopback(domain).context().unwrap();
+        let mut node = RosNode::new(&context, "/", "robot").unwrap();
+        let sub = node
+            .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(50))
+            .unwrap();
+        let heard: Heard = Arc::default();
+        let ear = heard.clone();
+        let listener = tokio::spawn(async move {
+            let mut stream = Box::pin(sub.async_stream());
+            while let Some(item) = stream.next().await {
+                if item.is_ok() {
+                    ear.lock().unwrap().push(Instant::now());
+                }
             }
+        });
+        RobotEar {
+            heard,
+            listener,
+            _node: node,
         }
-    });
-    let _glove = Process(
+    }
+}
+
+/// A `pomdar sim-glove` publishing on loopback `domain`.
+fn start_glove(domain: u16) -> Process {
+    Process(
         Command::new(pomdar_binary().unwrap())
             .args([
                 "sim-glove",
@@ -205,11 +218,13 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
             .stderr(Stdio::null())
             .spawn()
             .unwrap(),
-    );
+    )
+}
 
-    // 1. Ctrl-C during trial 2: trial 1 stays scored, trial 2 is logged as aborted
-    //    ("interrupted") and set aside; exit status 130; the station stops commanding.
-    let mut console = LineConsole::start(&console_args(&root, domain));
+/// 1. Ctrl-C during trial 2: trial 1 stays scored, trial 2 is logged as aborted
+///    ("interrupted") and set aside; exit status 130; the station stops commanding.
+fn ctrl_c_during_trial_two(root: &Path, dir: &Path, domain: u16, heard: &Heard) {
+    let mut console = LineConsole::start(&console_args(root, domain));
     console.wait_for("WAITING FOR ENGAGE", 30.0);
     console.say("engage");
     console.wait_for("engaged", 30.0);
@@ -232,9 +247,9 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     let code = console.process.0.wait().unwrap().code();
     let stopped = Instant::now();
     assert_eq!(code, Some(130), "{}", console.stderr.lock().unwrap());
-    assert_silent_after(&heard, stopped, "after Ctrl-C");
+    assert_silent_after(heard, stopped, "after Ctrl-C");
     assert_eq!(
-        statuses(&dir),
+        statuses(dir),
         [
             ("V1-t01.mcap".to_string(), "scored".to_string()),
             (
@@ -251,11 +266,13 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
         event_names(&dir.join("V1-t02.mcap.interrupted")),
         ["start", "progress", "abort", "stop"]
     );
-    assert_eq!(manifest(&dir)["trials"][0]["progress"], 2.0);
+    assert_eq!(manifest(dir)["trials"][0]["progress"], 2.0);
+}
 
-    // 2. Resumed at trial 2, then SIGKILL mid-trial: the manifest still holds everything
-    //    finished, the running trial's log is a .part, the robot hears nothing more.
-    let mut console = LineConsole::start(&console_args(&root, domain));
+/// 2. Resumed at trial 2, then SIGKILL mid-trial: the manifest still holds everything
+///    finished, the running trial's log is a .part, the robot hears nothing more.
+fn sigkill_after_resuming(root: &Path, dir: &Path, domain: u16, heard: &Heard) {
+    let mut console = LineConsole::start(&console_args(root, domain));
     console.wait_for("resumed", 30.0);
     console.say("engage");
     console.wait_for("engaged", 30.0);
@@ -266,10 +283,10 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     console.process.0.kill().unwrap();
     console.process.0.wait().unwrap();
     let stopped = Instant::now();
-    assert_silent_after(&heard, stopped, "after SIGKILL");
+    assert_silent_after(heard, stopped, "after SIGKILL");
     assert!(dir.join("V1-t02-a2.mcap.part").exists());
     assert_eq!(
-        statuses(&dir).len(),
+        statuses(dir).len(),
         2,
         "the manifest is as the Ctrl-C left it"
     );
@@ -277,15 +294,17 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
         event_names(&dir.join("V1-t01.mcap")),
         ["start", "progress", "progress", "stop"]
     );
+}
 
-    // 3. Resumed by a script: the .part is recovered and set aside, trials 2 and 3 run.
+/// 3. Resumed by a script: the .part is recovered and set aside, trials 2 and 3 run.
+fn finish_by_script(root: &Path, dir: &Path, domain: u16) {
     let script = root.join("finish.script");
     std::fs::write(
         &script,
         "engage\nwait ready 60\nstart\nwait running 60\n+1 progress\n+1 stop\nwait summary 60\nstart\nwait running 60\n+1 stop\nwait complete 60\n",
     )
     .unwrap();
-    let mut args = console_args(&root, domain);
+    let mut args = console_args(root, domain);
     args.extend(["--script".to_string(), script.display().to_string()]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let out = run_pomdar(&args);
@@ -296,7 +315,7 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
         "{stderr}"
     );
     assert_eq!(
-        statuses(&dir),
+        statuses(dir),
         [
             ("V1-t01.mcap", "scored"),
             ("V1-t02.mcap.interrupted", "interrupted"),
@@ -310,8 +329,23 @@ async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds(
     let recovered = event_names(&dir.join("V1-t02-a2.mcap.interrupted"));
     assert_eq!(&recovered[..2], ["start", "progress"], "{recovered:?}");
     assert!(!dir.join("V1-t02-a2.mcap.part").exists());
-    assert_eq!(manifest(&dir)["runs"], 3);
+    assert_eq!(manifest(dir)["runs"], 3);
     assert!(dir.join("report/report.md").exists());
-    listener.abort();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ctrl_c_or_a_kill_mid_trial_loses_no_finished_trial_and_the_robot_holds() {
+    let domain = test_domain(3);
+    let root = scratch_dir("console-interrupt");
+    let dir = root.join("kill/orca_full/V1");
+
+    // The robot's ear and the glove.
+    let robot = RobotEar::start(domain);
+    let _glove = start_glove(domain);
+
+    ctrl_c_during_trial_two(&root, &dir, domain, &robot.heard);
+    sigkill_after_resuming(&root, &dir, domain, &robot.heard);
+    finish_by_script(&root, &dir, domain);
+    robot.listener.abort();
     std::fs::remove_dir_all(&root).ok();
 }

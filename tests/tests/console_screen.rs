@@ -7,6 +7,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use std::io::{Read as _, Write as _};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -68,51 +69,48 @@ fn script_available() -> bool {
         .is_ok_and(|o| o.status.success())
 }
 
-#[test]
-fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
-    if !script_available() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "util-linux `script` is needed for the pty test in CI"
+impl Console {
+    /// `pomdar trial --simulate` (two recorded V2 trials, sessions under `dir`) under
+    /// `script` in a 30 × 110 pty; its output parsed into the screen as it comes.
+    fn start(dir: &Path) -> Console {
+        let binary = pomdar_binary().unwrap();
+        let command = format!(
+            "stty rows {ROWS} cols {COLS} && exec '{}' trial --task V2 --user pty --operator ci --practice 0 --trials 2 --simulate --domain-id {} --countdown 3 --out '{}'",
+            binary.display(),
+            test_domain(2),
+            dir.join("sessions").display()
         );
-        eprintln!("SKIPPED: util-linux `script` (a pseudo-terminal) is not available here");
-        return;
-    }
-    let binary = pomdar_binary().unwrap();
-    let dir = scratch_dir("console-screen");
-    let command = format!(
-        "stty rows {ROWS} cols {COLS} && exec '{}' trial --task V2 --user pty --operator ci --practice 0 --trials 2 --simulate --domain-id {} --countdown 3 --out '{}'",
-        binary.display(),
-        test_domain(2),
-        dir.join("sessions").display()
-    );
-    let mut child = Command::new("script")
-        .args(["-q", "-f", "-e", "-c", &command, "/dev/null"])
-        .env("TERM", "xterm-256color")
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let screen = Arc::new(Mutex::new(vt100::Parser::new(
-        ROWS.try_into().unwrap(),
-        COLS.try_into().unwrap(),
-        0,
-    )));
-    let mut stdout = child.stdout.take().unwrap();
-    let feed = screen.clone();
-    std::thread::spawn(move || {
-        let mut buffer = [0u8; 4096];
-        while let Ok(n) = stdout.read(&mut buffer) {
-            if n == 0 {
-                break;
+        let mut child = Command::new("script")
+            .args(["-q", "-f", "-e", "-c", &command, "/dev/null"])
+            .env("TERM", "xterm-256color")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let screen = Arc::new(Mutex::new(vt100::Parser::new(
+            ROWS.try_into().unwrap(),
+            COLS.try_into().unwrap(),
+            0,
+        )));
+        let mut stdout = child.stdout.take().unwrap();
+        let feed = screen.clone();
+        std::thread::spawn(move || {
+            let mut buffer = [0u8; 4096];
+            while let Ok(n) = stdout.read(&mut buffer) {
+                if n == 0 {
+                    break;
+                }
+                feed.lock().unwrap().process(&buffer[..n]);
             }
-            feed.lock().unwrap().process(&buffer[..n]);
-        }
-    });
-    let mut console = Console { child, screen };
+        });
+        Console { child, screen }
+    }
+}
 
-    // Waiting for engage: the task, its instruction, the health, the key bar.
+/// Waiting for engage: the task, its instruction, the health, the key bar; a start is
+/// refused before engaging; then engaged and ready.
+fn engage(console: &mut Console) {
     let s = console.wait_for(
         &[
             "WAITING FOR ENGAGE",
@@ -127,11 +125,15 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         s.contains("POMDAR trial console") && s.contains("Health") && s.contains("glove"),
         "{s}"
     );
-    // A start is refused before engaging.
     console.press(" ");
     console.wait_for(&["cannot start: "], WAIT_S);
     console.press("e");
     console.wait_for(&["READY", "drive", "engaged", "trial 1/2"], WAIT_S);
+}
+
+/// Trial 1: counting down, running (timer, two marks, a note typed into the prompt), then the
+/// trial summary with its correctness and what comes next.
+fn run_first_trial(console: &mut Console) {
     console.press(" ");
     console.wait_for(&["COUNTING DOWN"], WAIT_S);
     let s = console.wait_for(&["RUNNING", "V2-t01.mcap"], WAIT_S);
@@ -158,7 +160,11 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         s.contains("hand 1 listening"),
         "the mock hand is the one listener: {s}"
     );
-    // q between trials quits; the session is not complete and says how to resume.
+}
+
+/// q between trials quits (exit 0) and restores the terminal (the alternate screen left);
+/// the session is not complete and says how to resume.
+fn quit_between_trials(console: &mut Console) {
     console.press("q");
     let status = console.child.wait().unwrap();
     assert_eq!(status.code(), Some(0), "screen:\n{}", console.contents());
@@ -173,7 +179,23 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         end.contains("1 of 2 recorded trials done") && end.contains("resume"),
         "{end}"
     );
-    drop(parser);
+}
+
+#[test]
+fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
+    if !script_available() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "util-linux `script` is needed for the pty test in CI"
+        );
+        eprintln!("SKIPPED: util-linux `script` (a pseudo-terminal) is not available here");
+        return;
+    }
+    let dir = scratch_dir("console-screen");
+    let mut console = Console::start(&dir);
+    engage(&mut console);
+    run_first_trial(&mut console);
+    quit_between_trials(&mut console);
     let manifest: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(dir.join("sessions/pty/orca_full/V2/session.json")).unwrap(),
     )

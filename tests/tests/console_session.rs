@@ -6,7 +6,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use msgs::JointState;
 use pomdar_tests::pomdar_binary::run_pomdar;
@@ -92,9 +92,8 @@ fn names(events: &[serde_json::Value]) -> Vec<String> {
         .collect()
 }
 
-#[test]
-fn a_scripted_session_logs_scores_and_reports_every_trial() {
-    let root = scratch_dir("console-session");
+/// The baseline table the sessions score against: V1 and G2.
+fn write_baseline(root: &Path) -> PathBuf {
     let baseline = root.join("baseline.toml");
     std::fs::write(
         &baseline,
@@ -103,9 +102,12 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
         ),
     )
     .unwrap();
+    baseline
+}
 
-    // V1: practice (1 notch), trial 1 (3 notches), trial 2 redone after its stop, trial 2
-    // again (6 notches, one taken back), trial 3 (2 notches and a drop).
+/// V1: practice (1 notch), trial 1 (3 notches), trial 2 redone after its stop, trial 2
+/// again (6 notches, one taken back), trial 3 (2 notches and a drop).
+fn v1_script() -> String {
     let mut v1 = String::from("engage\nwait ready 60\n");
     v1.push_str(&trial_lines(&["progress"]));
     v1.push_str("wait summary 60\n");
@@ -125,11 +127,13 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
         "note glove slipped",
     ]));
     v1.push_str("wait complete 60\n");
-    let out = session(&root, "V1", 1, 3, &v1, &baseline, test_domain(0));
-    assert!(out.status.success(), "V1 session failed: {:?}", out.status);
+    v1
+}
 
-    let dir = root.join("sessions/sim/orca_full/V1");
-    let mut files: Vec<String> = std::fs::read_dir(&dir)
+/// The V1 session's directory holds every trial's log (the redone one set aside), its
+/// report and its manifest.
+fn assert_v1_files(dir: &Path) {
+    let mut files: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
         .flatten()
         .map(|e| e.file_name().to_string_lossy().to_string())
@@ -147,84 +151,94 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
             "session.json"
         ]
     );
+}
 
-    // Each log: its metadata, its events in order, glove input and joint targets.
-    let expect = [
-        (
-            "V1-p01.mcap",
-            "true",
-            "1",
-            vec!["start", "progress", "stop"],
-        ),
-        (
-            "V1-t01.mcap",
-            "false",
-            "1",
-            vec!["start", "progress", "progress", "progress", "stop"],
-        ),
-        (
-            "V1-t02.mcap.redone",
-            "false",
-            "2",
-            vec!["start", "progress", "stop"],
-        ),
-        (
-            "V1-t02-a2.mcap",
-            "false",
-            "2",
-            vec![
-                "start", "progress", "progress", "progress", "progress", "progress", "progress",
-                "progress", "progress", "stop",
-            ],
-        ),
-        (
-            "V1-t03.mcap",
-            "false",
-            "3",
-            vec!["start", "progress", "drop", "progress", "note", "stop"],
-        ),
-    ];
-    for (file, practice, index, want) in &expect {
-        let path = dir.join(file);
-        let log = read_trial_events(&path).unwrap();
-        let meta = log.metadata_named("pomdar_trial").unwrap();
-        assert_eq!(meta["task"], "V1", "{file}");
-        assert_eq!(meta["embodiment"], "orca_full", "{file}");
-        assert_eq!(meta["user"], "sim", "{file}");
-        assert_eq!(meta["operator"], "ci", "{file}");
-        assert_eq!(&meta["practice"], practice, "{file}");
-        assert_eq!(&meta["trial_index"], index, "{file}");
-        assert_eq!(names(&events(&path)), *want, "{file}");
-        let reader = TrialReader::open(&path).unwrap();
-        let targets: Vec<JointState> = reader.decode_topic("/pomdar/hand/joint_targets").unwrap();
-        let glove = reader.messages_on("/ingress/mano").count();
+/// One V1 log: its metadata (practice or not, trial index), its events in order (`want`),
+/// glove input and finite joint targets, every target inside the trial.
+fn assert_v1_log(dir: &Path, file: &str, practice: &str, index: &str, want: &[&str]) {
+    let path = dir.join(file);
+    let log = read_trial_events(&path).unwrap();
+    let meta = log.metadata_named("pomdar_trial").unwrap();
+    assert_eq!(meta["task"], "V1", "{file}");
+    assert_eq!(meta["embodiment"], "orca_full", "{file}");
+    assert_eq!(meta["user"], "sim", "{file}");
+    assert_eq!(meta["operator"], "ci", "{file}");
+    assert_eq!(meta["practice"], practice, "{file}");
+    assert_eq!(meta["trial_index"], index, "{file}");
+    assert_eq!(names(&events(&path)), want, "{file}");
+    let reader = TrialReader::open(&path).unwrap();
+    let targets: Vec<JointState> = reader.decode_topic("/pomdar/hand/joint_targets").unwrap();
+    let glove = reader.messages_on("/ingress/mano").count();
+    assert!(
+        glove > 50,
+        "{file}: {glove} glove frames in a ≥ 2 s trial at 100 Hz"
+    );
+    assert!(
+        targets.len() > 20,
+        "{file}: {} joint targets in a ≥ 2 s trial at 25 Hz",
+        targets.len()
+    );
+    assert!(
+        targets
+            .iter()
+            .all(|t| t.position.iter().all(|v| v.is_finite()))
+    );
+    let (start, stop) = (log.events[0].0, log.events.last().unwrap().0);
+    for m in reader.messages_on("/pomdar/hand/joint_targets") {
         assert!(
-            glove > 50,
-            "{file}: {glove} glove frames in a ≥ 2 s trial at 100 Hz"
+            m.log_time_ns >= start && m.log_time_ns <= stop,
+            "{file}: a target outside the trial"
         );
-        assert!(
-            targets.len() > 20,
-            "{file}: {} joint targets in a ≥ 2 s trial at 25 Hz",
-            targets.len()
-        );
-        assert!(
-            targets
-                .iter()
-                .all(|t| t.position.iter().all(|v| v.is_finite()))
-        );
-        let (start, stop) = (log.events[0].0, log.events.last().unwrap().0);
-        for m in reader.messages_on("/pomdar/hand/joint_targets") {
-            assert!(
-                m.log_time_ns >= start && m.log_time_ns <= stop,
-                "{file}: a target outside the trial"
-            );
-        }
-        assert!(reader.topic(TRIAL_EVENTS_TOPIC).is_some());
     }
+    assert!(reader.topic(TRIAL_EVENTS_TOPIC).is_some());
+}
+
+/// Each V1 log as the script made it; the taken-back mark and the note's text.
+fn assert_v1_logs(dir: &Path) {
+    assert_v1_log(
+        dir,
+        "V1-p01.mcap",
+        "true",
+        "1",
+        &["start", "progress", "stop"],
+    );
+    assert_v1_log(
+        dir,
+        "V1-t01.mcap",
+        "false",
+        "1",
+        &["start", "progress", "progress", "progress", "stop"],
+    );
+    assert_v1_log(
+        dir,
+        "V1-t02.mcap.redone",
+        "false",
+        "2",
+        &["start", "progress", "stop"],
+    );
+    assert_v1_log(
+        dir,
+        "V1-t02-a2.mcap",
+        "false",
+        "2",
+        &[
+            "start", "progress", "progress", "progress", "progress", "progress", "progress",
+            "progress", "progress", "stop",
+        ],
+    );
+    assert_v1_log(
+        dir,
+        "V1-t03.mcap",
+        "false",
+        "3",
+        &["start", "progress", "drop", "progress", "note", "stop"],
+    );
     assert_eq!(events(&dir.join("V1-t02-a2.mcap"))[8]["value"], -1.0);
     assert_eq!(events(&dir.join("V1-t03.mcap"))[4]["text"], "glove slipped");
+}
 
-    // The manifest: every trial, its status and score; the session note.
+/// The manifest: every trial, its status and score; the session note. Returns its trials.
+fn assert_v1_manifest(dir: &Path) -> Vec<serde_json::Value> {
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("session.json")).unwrap()).unwrap();
     assert_eq!(manifest["format"], "pomdar-session/1");
@@ -264,8 +278,12 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
         assert!((t["score"].as_f64().unwrap() - want).abs() < 1e-9, "{t}");
         assert_eq!(t["outcome"], "completed");
     }
+    trials.clone()
+}
 
-    // The session report: the three counted trials, practice not averaged.
+/// The session report: the three counted trials (of the manifest's `trials`), practice not
+/// averaged, their mean in the Markdown; the console's last words (`stdout`).
+fn assert_v1_report(dir: &Path, trials: &[serde_json::Value], stdout: &str) {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("report/scores.json")).unwrap())
             .unwrap();
@@ -282,7 +300,6 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
         text.contains("V1-t03.mcap") && !text.contains("redone"),
         "{text}"
     );
-    let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.contains("1 of 1 practice and 3 of 3 recorded trials done"),
         "{stdout}"
@@ -292,12 +309,14 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
         md.contains(&format!("{mean:.2}")),
         "mean {mean:.2} not in the report:\n{md}"
     );
+}
 
-    // A grasp trial: levels are checked (0.7 refused), the last level counts, a drop is 0.5.
+/// A grasp trial: levels are checked (0.7 refused), the last level counts, a drop is 0.5.
+fn run_grasp_session(root: &Path, baseline: &Path) {
     let mut g2 = String::from("engage\nwait ready 60\n");
     g2.push_str(&trial_lines(&["progress 0.7", "progress 1", "drop"]));
     g2.push_str("wait complete 60\n");
-    let out = session(&root, "G2", 0, 1, &g2, &baseline, test_domain(1));
+    let out = session(root, "G2", 0, 1, &g2, baseline, test_domain(1));
     assert!(out.status.success(), "G2 session failed");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("grasp level 0.7: allowed 0"), "{stderr}");
@@ -309,13 +328,15 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(gdir.join("session.json")).unwrap()).unwrap();
     assert_eq!(manifest["trials"][0]["correctness"], 0.5);
+}
 
-    // `pomdar score` over both sessions agrees with the console.
+/// `pomdar score` over both sessions agrees with the console.
+fn assert_score_agrees(root: &Path, baseline: &Path) {
     let scored = run_pomdar(&[
         "score",
         s(&root.join("sessions")),
         "--baseline",
-        s(&baseline),
+        s(baseline),
         "--json",
     ]);
     assert!(
@@ -332,5 +353,22 @@ fn a_scripted_session_logs_scores_and_reports_every_trial() {
     );
     let g = trials.iter().find(|t| t["task"] == "G2").unwrap();
     assert_eq!(g["correctness"], 0.5);
+}
+
+#[test]
+fn a_scripted_session_logs_scores_and_reports_every_trial() {
+    let root = scratch_dir("console-session");
+    let baseline = write_baseline(&root);
+
+    let out = session(&root, "V1", 1, 3, &v1_script(), &baseline, test_domain(0));
+    assert!(out.status.success(), "V1 session failed: {:?}", out.status);
+    let dir = root.join("sessions/sim/orca_full/V1");
+    assert_v1_files(&dir);
+    assert_v1_logs(&dir);
+    let trials = assert_v1_manifest(&dir);
+    assert_v1_report(&dir, &trials, &String::from_utf8_lossy(&out.stdout));
+
+    run_grasp_session(&root, &baseline);
+    assert_score_agrees(&root, &baseline);
     std::fs::remove_dir_all(&root).ok();
 }

@@ -4,39 +4,24 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+use std::path::Path;
+
 use pomdar_tests::interop::{assert_readers_agree, independent_readers};
 use pomdar_tests::station_harness::{check_arm_targets, test_domain};
 use station::StationConfig;
-use station::arm::Constraint;
-use teleop::demo::{DemoOptions, run_demo};
+use station::arm::{ArmConfig, Constraint};
+use teleop::demo::{DemoOptions, DemoOutcome, DemoSummary, run_demo};
 use teleop::mcap_log::TrialReader;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn sim_glove_station_mock_hand_and_arm() {
-    let mut station = StationConfig::default();
-    station.arm.constraint = Constraint::HorizontalAxis;
-    let arm = station.arm.clone();
-    // The configuration the demo runs (it engages on the first fresh frame).
-    let mut station_config = station.clone();
-    station_config.control.auto_engage = true;
-    let out_dir = std::env::temp_dir().join(format!("pomdar-demo-{}", std::process::id()));
-    std::fs::remove_dir_all(&out_dir).ok();
-    let outcome = run_demo(DemoOptions {
-        duration_s: 3.0,
-        domain_id: test_domain(6),
-        station,
-        glove: SimGloveConfig::default(),
-        live: false,
-        out: Some(out_dir.clone()),
-    })
-    .await
-    .unwrap();
+/// The run's summary: glove above 80 Hz, one joint target per new glove frame (commands on
+/// frame arrival, the default, plus the held command repeated at the 25 Hz tick after the
+/// glove stops), nothing rejected; the mock arm's targets on the horizontal axis line through
+/// the first, inside the box, within the step caps.
+fn assert_run(outcome: &DemoOutcome, arm: &ArmConfig) {
     let s = &outcome.summary;
     println!("{}", serde_json::to_string(s).unwrap());
     assert!(s.input_rate_hz > 80.0, "glove at {} Hz", s.input_rate_hz);
-    // Commands on frame arrival (the default): one joint target per new glove frame, plus the
-    // held command repeated at the 25 Hz tick after the glove stops.
     assert!(
         s.output_rate_hz >= 0.9 * s.input_rate_hz && s.output_rate_hz <= 1.15 * s.input_rate_hz,
         "joint targets at {} Hz for glove frames at {} Hz",
@@ -47,36 +32,23 @@ async fn sim_glove_station_mock_hand_and_arm() {
     assert_eq!(outcome.hand.rejected, 0);
     assert!(outcome.hand.last_target.is_some());
 
-    // The mock arm's targets: on the horizontal axis line through the first, inside the box,
-    // within the step caps.
     assert!(
         outcome.arm.targets.len() > 40,
         "{} arm targets",
         outcome.arm.targets.len()
     );
-    check_arm_targets(&outcome.arm.targets, &arm, Some(arm.horizontal_axis));
+    check_arm_targets(&outcome.arm.targets, arm, Some(arm.horizontal_axis));
+}
 
-    // The run's log: the same topics and counts as the run, with schemas, QoS and statistics;
-    // the independent readers decode every message.
-    let path = outcome.recorded.clone().expect("the demo recorded its run");
-    assert!(
-        !teleop::mcap_log::part_path_for(&path).exists(),
-        ".part left behind"
-    );
-    let log = TrialReader::open(&path).unwrap();
+/// The run's log: the same topics and counts as the run, with schemas, QoS, statistics and
+/// the trial metadata.
+fn assert_log_matches_run(log: &TrialReader, summary: &DemoSummary) {
     let count = |topic: &str| log.topic(topic).map_or(0, |t| t.message_count);
-    assert_eq!(
-        count("/pomdar/hand/joint_targets"),
-        outcome.summary.hand_targets
-    );
-    assert_eq!(
-        count("/franka/end_effector_pose_cmd"),
-        outcome.summary.arm_targets
-    );
-    let s = &outcome.summary;
+    assert_eq!(count("/pomdar/hand/joint_targets"), summary.hand_targets);
+    assert_eq!(count("/franka/end_effector_pose_cmd"), summary.arm_targets);
     assert_eq!(
         count("/ingress/mano"),
-        s.frames_new + s.frames_repeated + s.rejected_frames,
+        summary.frames_new + summary.frames_repeated + summary.rejected_frames,
         "every received frame"
     );
     assert!(
@@ -98,13 +70,16 @@ async fn sim_glove_station_mock_hand_and_arm() {
     let trial = log.metadata_named("pomdar_trial").expect("trial metadata");
     assert_eq!(trial["embodiment"], "orca_full");
     assert!(trial["config_digest"].starts_with("fnv1a64:"));
-    // Re-simulating the recorded run with the same configuration reproduces its joint targets
-    // exactly.
+}
+
+/// Re-simulating the recorded run with the same configuration reproduces its joint targets
+/// exactly (positions and stamps).
+fn assert_resim_reproduces_the_run(log: &TrialReader, config: &StationConfig, out_dir: &Path) {
     let resim_out = out_dir.join("resim.mcap");
     let mut writer = teleop::mcap_log::TrialWriter::create(&resim_out, Default::default()).unwrap();
     let stats = teleop::resim::resim(
-        &log,
-        &station_config,
+        log,
+        config,
         retarget::HandModel::orca_v1_right(),
         &mut writer,
     )
@@ -123,6 +98,39 @@ async fn sim_glove_station_mock_hand_and_arm() {
         assert_eq!(a.position, b.position, "joint target {i}");
         assert_eq!(a.header.stamp, b.header.stamp, "stamp of joint target {i}");
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sim_glove_station_mock_hand_and_arm() {
+    let mut station = StationConfig::default();
+    station.arm.constraint = Constraint::HorizontalAxis;
+    let arm = station.arm.clone();
+    // The configuration the demo runs (it engages on the first fresh frame).
+    let mut station_config = station.clone();
+    station_config.control.auto_engage = true;
+    let out_dir = std::env::temp_dir().join(format!("pomdar-demo-{}", std::process::id()));
+    std::fs::remove_dir_all(&out_dir).ok();
+    let outcome = run_demo(DemoOptions {
+        duration_s: 3.0,
+        domain_id: test_domain(6),
+        station,
+        glove: SimGloveConfig::default(),
+        live: false,
+        out: Some(out_dir.clone()),
+    })
+    .await
+    .unwrap();
+    assert_run(&outcome, &arm);
+
+    // The run's log, then the independent readers decode every message.
+    let path = outcome.recorded.clone().expect("the demo recorded its run");
+    assert!(
+        !teleop::mcap_log::part_path_for(&path).exists(),
+        ".part left behind"
+    );
+    let log = TrialReader::open(&path).unwrap();
+    assert_log_matches_run(&log, &outcome.summary);
+    assert_resim_reproduces_the_run(&log, &station_config, &out_dir);
     if let Some(report) = independent_readers(&path) {
         assert_readers_agree(&report, &log);
     }

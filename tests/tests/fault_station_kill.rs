@@ -7,16 +7,18 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use futures::StreamExt;
-use msgs::{JointState, PoseStamped};
+use msgs::{Float32MultiArray, JointState, PoseStamped};
 use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use retarget::KeypointLayout;
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use ros2_client::{Publisher, Subscription};
 use station::convert::{header, isometry_to_pose};
 use teleop::clock::StationClock;
 use teleop::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
@@ -43,40 +45,71 @@ impl Drop for KilledOnDrop {
     }
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_second() {
-    let binary = pomdar_binary().unwrap();
-    let dir = std::env::temp_dir().join(format!("pomdar-fault-kill-{}", std::process::id()));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).unwrap();
+/// The robot and the glove, in this process: the glove's publishers and the robot's command
+/// subscriptions, on one node.
+struct RobotAndGlove {
+    node: RosNode,
+    keypoints: Publisher<Float32MultiArray>,
+    wrist: Publisher<PoseStamped>,
+    hand_sub: Subscription<JointState>,
+    arm_sub: Subscription<PoseStamped>,
+}
+
+impl RobotAndGlove {
+    fn new(domain: u16) -> RobotAndGlove {
+        let network = loopback(domain);
+        let context = network.context().unwrap();
+        let mut node = RosNode::new(&context, "/", "robot_and_glove").unwrap();
+        let keypoints = node
+            .publisher::<Float32MultiArray>("/ingress/mano", QosConfig::reliable(1000))
+            .unwrap();
+        let wrist = node
+            .publisher::<PoseStamped>("/ingress/wrist", QosConfig::reliable(1000))
+            .unwrap();
+        let hand_sub = node
+            .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(1000))
+            .unwrap();
+        let arm_sub = node
+            .subscription::<PoseStamped>("/franka/end_effector_pose_cmd", QosConfig::reliable(1000))
+            .unwrap();
+        RobotAndGlove {
+            node,
+            keypoints,
+            wrist,
+            hand_sub,
+            arm_sub,
+        }
+    }
+
+    /// Matched both ways before the first frame, so the robot hears every command.
+    async fn wait_until_matched(&self) {
+        let node = self.node.node();
+        let started = Instant::now();
+        while self.keypoints.get_subscription_count(node) == 0
+            || self.wrist.get_subscription_count(node) == 0
+            || self.hand_sub.get_publisher_count(node) == 0
+            || self.arm_sub.get_publisher_count(node) == 0
+        {
+            assert!(
+                started.elapsed() < Duration::from_secs(20),
+                "the station and the test did not match"
+            );
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+    }
+}
+
+/// `pomdar station --engage --record TRIAL` as its own process on loopback `domain`, with
+/// reliable glove input and a free arm (its configuration written to `dir`).
+fn start_station(binary: &Path, dir: &Path, domain: u16, trial: &Path) -> KilledOnDrop {
     let config_path = dir.join("station.toml");
     std::fs::write(
         &config_path,
         "[input]\nqos = { reliability = \"reliable\", depth = 1000 }\n\n[arm]\nconstraint = \"free\"\n",
     )
     .unwrap();
-    let trial = dir.join("trial.mcap");
-    let domain = test_domain(7);
-
-    // The robot and the glove, in this process.
-    let clock = StationClock::new();
-    let network = loopback(domain);
-    let context = network.context().unwrap();
-    let mut node = RosNode::new(&context, "/", "robot_and_glove").unwrap();
-    let keypoints = node
-        .publisher::<msgs::Float32MultiArray>("/ingress/mano", QosConfig::reliable(1000))
-        .unwrap();
-    let wrist = node
-        .publisher::<PoseStamped>("/ingress/wrist", QosConfig::reliable(1000))
-        .unwrap();
-    let hand_sub = node
-        .subscription::<JointState>("/pomdar/hand/joint_targets", QosConfig::reliable(1000))
-        .unwrap();
-    let arm_sub = node
-        .subscription::<PoseStamped>("/franka/end_effector_pose_cmd", QosConfig::reliable(1000))
-        .unwrap();
-    let mut station = KilledOnDrop(
-        Command::new(&binary)
+    KilledOnDrop(
+        Command::new(binary)
             .args([
                 "station",
                 "--engage",
@@ -88,42 +121,45 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
             .arg("--config")
             .arg(&config_path)
             .arg("--record")
-            .arg(&trial)
+            .arg(trial)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
             .unwrap(),
-    );
-    let started = Instant::now();
-    // Matched both ways before the first frame, so the robot hears every command.
-    while keypoints.get_subscription_count(node.node()) == 0
-        || wrist.get_subscription_count(node.node()) == 0
-        || hand_sub.get_publisher_count(node.node()) == 0
-        || arm_sub.get_publisher_count(node.node()) == 0
-    {
-        assert!(
-            started.elapsed() < Duration::from_secs(20),
-            "the station and the test did not match"
-        );
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
-    let robot = Arc::new(Mutex::new(Robot::default()));
-    let listener = {
-        let robot = robot.clone();
-        tokio::spawn(async move {
-            let mut hand = Box::pin(hand_sub.async_stream());
-            let mut arm = Box::pin(arm_sub.async_stream());
-            loop {
-                tokio::select! {
-                    Some(Ok((m, _))) = hand.next() => robot.lock().unwrap().hand.push((clock.now_ns(), m)),
-                    Some(Ok((m, _))) = arm.next() => robot.lock().unwrap().arm.push((clock.now_ns(), m)),
-                    else => break,
-                }
-            }
-        })
-    };
+    )
+}
 
-    // The trial: 3 s of glove at 50 Hz, killed 2.5 s in; the glove carries on after the kill.
+/// Records every hand and arm command the robot hears, with its receive time.
+fn listen(
+    hand_sub: Subscription<JointState>,
+    arm_sub: Subscription<PoseStamped>,
+    clock: StationClock,
+) -> (Arc<Mutex<Robot>>, tokio::task::JoinHandle<()>) {
+    let robot = Arc::new(Mutex::new(Robot::default()));
+    let heard = robot.clone();
+    let listener = tokio::spawn(async move {
+        let mut hand = Box::pin(hand_sub.async_stream());
+        let mut arm = Box::pin(arm_sub.async_stream());
+        loop {
+            tokio::select! {
+                Some(Ok((m, _))) = hand.next() => heard.lock().unwrap().hand.push((clock.now_ns(), m)),
+                Some(Ok((m, _))) = arm.next() => heard.lock().unwrap().arm.push((clock.now_ns(), m)),
+                else => break,
+            }
+        }
+    });
+    (robot, listener)
+}
+
+/// The trial: 3 s of glove at 50 Hz, the station killed (SIGKILL) 2.5 s in once it is
+/// driving the hand; the glove carries on after the kill. Returns when it was killed.
+async fn play_glove_and_kill_the_station(
+    keypoints: &Publisher<Float32MultiArray>,
+    wrist: &Publisher<PoseStamped>,
+    clock: StationClock,
+    robot: &Mutex<Robot>,
+    station: &mut KilledOnDrop,
+) -> i64 {
     let shape = HumanHandShape::average();
     let motion = Motion::new(MotionKind::OpenClose, 3.0, &shape).unwrap();
     let glove = SimGlove::new(shape, motion, KeypointLayout::Lab22).unwrap();
@@ -136,7 +172,7 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
             .map(|p| [p.x as f32, p.y as f32, p.z as f32])
             .collect();
         keypoints
-            .async_publish(msgs::Float32MultiArray::from_points(&rows).unwrap())
+            .async_publish(Float32MultiArray::from_points(&rows).unwrap())
             .await
             .unwrap();
         wrist
@@ -157,12 +193,12 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
             station.0.wait().unwrap();
         }
     }
-    let killed_ns = killed_ns.unwrap();
-    listener.abort();
-    let robot = std::mem::take(&mut *robot.lock().unwrap());
+    killed_ns.unwrap()
+}
 
-    // The robot holds: nothing arrives once the commands in flight at the kill are delivered,
-    // and nothing was sent after the kill (stamps: frame source times or the station clock).
+/// The robot holds: nothing arrives once the commands in flight at the kill are delivered,
+/// and nothing was sent after the kill (stamps: frame source times or the station clock).
+fn assert_robot_holds(robot: &Robot, killed_ns: i64) {
     for (what, times) in [
         (
             "hand",
@@ -190,11 +226,14 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
             .collect();
         assert!(late.is_empty(), "{what} commands after the kill: {late:?}");
     }
+}
 
-    // The interrupted trial recovers with the operator's command.
+/// The interrupted trial recovers with the operator's command, losing at most about a second;
+/// what the log kept of the joint targets is exactly what the hand got first.
+fn assert_trial_recovers(binary: &Path, dir: &Path, trial: &Path, robot: &Robot, killed_ns: i64) {
     let part = dir.join("trial.mcap.part");
     assert!(part.exists(), "no .part left by the killed recording");
-    let recovered = Command::new(&binary)
+    let recovered = Command::new(binary)
         .arg("recover")
         .arg(&part)
         .output()
@@ -204,7 +243,7 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
         "pomdar recover failed: {}",
         String::from_utf8_lossy(&recovered.stderr)
     );
-    let log = TrialReader::open(&trial).unwrap();
+    let log = TrialReader::open(trial).unwrap();
     assert_eq!(
         log.metadata_named("pomdar_trial").unwrap()["source"],
         "pomdar station"
@@ -221,7 +260,6 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
         log.message_count()
     );
     assert!(lost_ms <= 1300, "lost {lost_ms} ms");
-    // What the log kept of the joint targets is exactly what the hand got first.
     let logged: Vec<JointState> = log.decode_topic("/pomdar/hand/joint_targets").unwrap();
     assert!(
         logged.len() + 35 >= robot.hand.len(),
@@ -232,5 +270,35 @@ async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_se
     for (i, (m, (_, heard))) in logged.iter().zip(&robot.hand).enumerate() {
         assert_eq!(m, heard, "joint target {i}: logged and received differ");
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_killed_station_goes_silent_and_its_trial_recovers_losing_at_most_a_second() {
+    let binary = pomdar_binary().unwrap();
+    let dir = std::env::temp_dir().join(format!("pomdar-fault-kill-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let trial = dir.join("trial.mcap");
+    let domain = test_domain(7);
+
+    let clock = StationClock::new();
+    let robot_and_glove = RobotAndGlove::new(domain);
+    let mut station = start_station(&binary, &dir, domain, &trial);
+    robot_and_glove.wait_until_matched().await;
+    let RobotAndGlove {
+        node: _node,
+        keypoints,
+        wrist,
+        hand_sub,
+        arm_sub,
+    } = robot_and_glove;
+    let (robot, listener) = listen(hand_sub, arm_sub, clock);
+    let killed_ns =
+        play_glove_and_kill_the_station(&keypoints, &wrist, clock, &robot, &mut station).await;
+    listener.abort();
+    let robot = std::mem::take(&mut *robot.lock().unwrap());
+
+    assert_robot_holds(&robot, killed_ns);
+    assert_trial_recovers(&binary, &dir, &trial, &robot, killed_ns);
     std::fs::remove_dir_all(&dir).ok();
 }

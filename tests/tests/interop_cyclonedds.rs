@@ -18,7 +18,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use std::io::{BufRead as _, BufReader, Write as _};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::time::Duration;
 
@@ -135,7 +135,7 @@ struct Peer {
 }
 
 impl Peer {
-    fn start(python: &std::path::Path, plan_path: &std::path::Path) -> Peer {
+    fn start(python: &Path, plan_path: &Path) -> Peer {
         let mut child = Command::new(python)
             .arg(interop_script("cyclone_peer.py"))
             .arg(plan_path)
@@ -221,21 +221,15 @@ fn nanos(t: &Time) -> i64 {
     i64::from(t.sec) * 1_000_000_000 + i64::from(t.nanosec)
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
-    let Some(python) = interop_python() else {
-        return;
-    };
-    let config = config(test_domain(7));
-    let (rows, wrists) = frames();
-    let dir = std::env::temp_dir().join(format!("pomdar-interop-cyclone-{}", std::process::id()));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).unwrap();
-    let plan_path = dir.join("plan.json");
-    std::fs::write(&plan_path, plan(&config, &rows, &wrists).to_string()).unwrap();
-    let log_path: PathBuf = dir.join("station.mcap");
-
-    // The station, recording its run, then the peer.
+/// Runs the station, recording to `log_path`, then the peer, until the peer has sent every
+/// frame; stops the station and collects the peer's report. Checks the station recorded that
+/// one log and found every frame new.
+async fn run_station_with_peer(
+    python: &Path,
+    config: &StationConfig,
+    plan_path: &Path,
+    log_path: &Path,
+) -> Value {
     let (shutdown, shutdown_rx) = watch::channel(false);
     let (_operator, operator_rx) = mpsc::unbounded_channel();
     let station = tokio::spawn(run_station(
@@ -245,11 +239,11 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
         shutdown_rx,
         operator_rx,
         Some(RecordingOptions {
-            path: log_path.clone(),
+            path: log_path.to_path_buf(),
             metadata: Default::default(),
         }),
     ));
-    let mut peer = Peer::start(&python, &plan_path);
+    let mut peer = Peer::start(python, plan_path);
     let done = peer.next("done", Duration::from_secs(40)).await;
     println!("Cyclone peer: {done}");
     shutdown.send(true).unwrap();
@@ -257,20 +251,28 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
     peer.close_stdin();
     let report = peer.next("report", Duration::from_secs(10)).await;
     assert!(peer.child.wait().unwrap().success());
-    assert_eq!(summary.recorded, vec![log_path.clone()]);
-    let log = TrialReader::open(&log_path).unwrap();
+    assert_eq!(summary.recorded, vec![log_path.to_path_buf()]);
     assert_eq!(
         summary.counters.frames_new, FRAMES as u64,
         "every frame new (no repeats in this motion, none rejected): {:?}",
         summary.counters
     );
+    report
+}
 
-    // Inputs: the station decoded exactly what Cyclone sent.
-    let sent_keypoints: Vec<Float32MultiArray> = decode(&report, "/sent/keypoints");
-    let sent_wrists: Vec<PoseStamped> = decode(&report, "/sent/wrist");
-    let source_ns: Vec<i64> = decode(&report, "/sent/source_ns");
+/// Inputs: the station decoded (its log) exactly what Cyclone sent, keypoints frame for frame
+/// with their DDS source timestamps, and every wrist pose. Returns the source timestamps.
+fn assert_station_decoded_what_cyclone_sent(
+    report: &Value,
+    log: &TrialReader,
+    config: &StationConfig,
+    rows: &[Vec<[f32; 3]>],
+) -> Vec<i64> {
+    let sent_keypoints: Vec<Float32MultiArray> = decode(report, "/sent/keypoints");
+    let sent_wrists: Vec<PoseStamped> = decode(report, "/sent/wrist");
+    let source_ns: Vec<i64> = decode(report, "/sent/source_ns");
     assert_eq!(sent_keypoints.len(), FRAMES);
-    for (i, (message, frame)) in sent_keypoints.iter().zip(&rows).enumerate() {
+    for (i, (message, frame)) in sent_keypoints.iter().zip(rows).enumerate() {
         assert_eq!(
             &message.points().unwrap(),
             frame,
@@ -308,33 +310,61 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
             "wrist pose {i}: as the station decoded it vs as sent"
         );
     }
+    source_ns
+}
 
-    // Outputs: Cyclone decoded exactly what the station sent.
+/// What Cyclone received from the station.
+struct Received {
+    targets: Vec<JointState>,
+    arm: Vec<PoseStamped>,
+    policy: Vec<Float32MultiArray>,
+}
+
+/// Outputs: Cyclone decoded exactly what the station sent (its log), joint and arm targets
+/// and policy outputs, and there were joint and arm targets.
+fn assert_cyclone_decoded_what_the_station_sent(
+    report: &Value,
+    log: &TrialReader,
+    config: &StationConfig,
+) -> Received {
     let logged_targets = log
         .decode_topic::<JointState>(&config.output.joint_targets_topic)
         .unwrap();
-    let received_targets: Vec<JointState> = decode(&report, "/received/joint_targets");
-    assert_same_messages("joint target", &received_targets, &logged_targets);
+    let targets: Vec<JointState> = decode(report, "/received/joint_targets");
+    assert_same_messages("joint target", &targets, &logged_targets);
     let logged_arm = log
         .decode_topic::<PoseStamped>(&config.output.arm_target_topic)
         .unwrap();
-    let received_arm: Vec<PoseStamped> = decode(&report, "/received/arm_target");
-    assert_same_messages("arm target", &received_arm, &logged_arm);
+    let arm: Vec<PoseStamped> = decode(report, "/received/arm_target");
+    assert_same_messages("arm target", &arm, &logged_arm);
     let logged_policy = log
         .decode_topic::<Float32MultiArray>(&config.policy_output.topic)
         .unwrap();
-    let received_policy: Vec<Float32MultiArray> = decode(&report, "/received/policy_output");
-    assert_same_messages("policy output", &received_policy, &logged_policy);
-    assert!(!received_targets.is_empty() && !received_arm.is_empty());
+    let policy: Vec<Float32MultiArray> = decode(report, "/received/policy_output");
+    assert_same_messages("policy output", &policy, &logged_policy);
+    assert!(!targets.is_empty() && !arm.is_empty());
+    Received {
+        targets,
+        arm,
+        policy,
+    }
+}
 
-    // The joint targets are what the station's control step computes in process from the
-    // frames as it received them (teleop::resim on its log: its receive times and its tick
-    // times), bit for bit; each is stamped with the source time of a frame Cyclone sent, the
-    // last with the last frame's. (Frames arriving together are solved once, for the newest,
-    // so a loaded machine may give fewer targets than frames.)
+/// The joint targets are what the station's control step computes in process from the
+/// frames as it received them (teleop::resim on its log: its receive times and its tick
+/// times), bit for bit; each is stamped with the source time of a frame Cyclone sent, the
+/// last with the last frame's. (Frames arriving together are solved once, for the newest,
+/// so a loaded machine may give fewer targets than frames.)
+fn assert_targets_as_computed_in_process(
+    dir: &Path,
+    log: &TrialReader,
+    config: &StationConfig,
+    received_targets: &[JointState],
+    source_ns: &[i64],
+) {
     let resim_path = dir.join("resim.mcap");
     let mut writer = TrialWriter::create(&resim_path, TrialWriterOptions::default()).unwrap();
-    let stats = resim(&log, &config, HandModel::orca_v1_right(), &mut writer).unwrap();
+    let stats = resim(log, config, HandModel::orca_v1_right(), &mut writer).unwrap();
     writer.finish().unwrap();
     assert_eq!(stats.ticks, "recorded");
     let computed = TrialReader::open(&resim_path)
@@ -342,7 +372,7 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
         .decode_topic::<JointState>(&config.output.joint_targets_topic)
         .unwrap();
     assert_eq!(computed.len(), received_targets.len(), "joint targets");
-    for (i, (c, r)) in computed.iter().zip(&received_targets).enumerate() {
+    for (i, (c, r)) in computed.iter().zip(received_targets).enumerate() {
         assert_eq!(
             r, c,
             "joint target {i}: as Cyclone received it vs as computed in process"
@@ -363,8 +393,10 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
         "one target per frame solved"
     );
     assert_eq!(stamps.last(), source_ns.last(), "the last frame's target");
+}
 
-    // The arm follows the wrist along the vertical axis only.
+/// The arm follows the wrist along the vertical axis only.
+fn assert_arm_follows_the_vertical_bob(received_arm: &[PoseStamped], config: &StationConfig) {
     let arm_poses: Vec<_> = received_arm
         .iter()
         .map(|m| station::convert::pose_to_isometry(&m.pose).unwrap())
@@ -379,11 +411,33 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
         moved > 0.005,
         "the arm should follow the vertical bob ({moved} m)"
     );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
+    let Some(python) = interop_python() else {
+        return;
+    };
+    let config = config(test_domain(7));
+    let (rows, wrists) = frames();
+    let dir = std::env::temp_dir().join(format!("pomdar-interop-cyclone-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let plan_path = dir.join("plan.json");
+    std::fs::write(&plan_path, plan(&config, &rows, &wrists).to_string()).unwrap();
+    let log_path: PathBuf = dir.join("station.mcap");
+
+    let report = run_station_with_peer(&python, &config, &plan_path, &log_path).await;
+    let log = TrialReader::open(&log_path).unwrap();
+    let source_ns = assert_station_decoded_what_cyclone_sent(&report, &log, &config, &rows);
+    let received = assert_cyclone_decoded_what_the_station_sent(&report, &log, &config);
+    assert_targets_as_computed_in_process(&dir, &log, &config, &received.targets, &source_ns);
+    assert_arm_follows_the_vertical_bob(&received.arm, &config);
     println!(
         "Cyclone → station: {FRAMES} frames; station → Cyclone: {} joint targets, {} arm targets, {} policy outputs (matched in {:.2} s)",
-        received_targets.len(),
-        received_arm.len(),
-        received_policy.len(),
+        received.targets.len(),
+        received.arm.len(),
+        received.policy.len(),
         report["matched_s"].as_f64().unwrap_or(f64::NAN)
     );
 

@@ -268,29 +268,11 @@ fn outputs(log: &TrialReader) -> Vec<(String, i64, Value)> {
         .collect()
 }
 
-#[test]
-fn the_station_reads_mcap_written_by_rosbags_and_by_the_mcap_writer() {
-    let Some(python) = interop_python() else {
-        return;
-    };
-    let dir: PathBuf =
-        std::env::temp_dir().join(format!("pomdar-interop-mcap-{}", std::process::id()));
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::create_dir_all(&dir).unwrap();
-    let r = recording();
-    let plan_path = dir.join("plan.json");
-    std::fs::write(&plan_path, plan(&r).to_string()).unwrap();
-    let written = run_interop_script(
-        &python,
-        "write_mcap.py",
-        &[plan_path.as_os_str(), dir.as_os_str()],
-    );
-    let rosbags_path = PathBuf::from(written["rosbags"].as_str().unwrap());
-    let mcap_path = PathBuf::from(written["mcap_ros2"].as_str().unwrap());
-
-    // TrialReader: every value, time and type as written.
-    let rosbags = TrialReader::open(&rosbags_path).unwrap();
-    assert_reads_the_recording(&rosbags, &r);
+/// The `rosbags` file: every value, time and type as written; publish time = log time,
+/// sequence 0; each topic's offered QoS as written.
+fn assert_reads_the_rosbags_file(path: &Path, r: &Recording) {
+    let rosbags = TrialReader::open(path).unwrap();
+    assert_reads_the_recording(&rosbags, r);
     assert!(
         rosbags.library().starts_with("rosbags"),
         "{}",
@@ -313,8 +295,13 @@ fn the_station_reads_mcap_written_by_rosbags_and_by_the_mcap_writer() {
             topic.topic
         );
     }
-    let mcap = TrialReader::open(&mcap_path).unwrap();
-    assert_reads_the_recording(&mcap, &r);
+}
+
+/// The `mcap` writer's file: every value, time and type as written; published 1 ms before
+/// logged, sequence numbers from 1.
+fn assert_reads_the_mcap_writer_file(path: &Path, r: &Recording) {
+    let mcap = TrialReader::open(path).unwrap();
+    assert_reads_the_recording(&mcap, r);
     assert!(
         mcap.library().contains("mcap-ros2-support"),
         "{}",
@@ -324,6 +311,104 @@ fn the_station_reads_mcap_written_by_rosbags_and_by_the_mcap_writer() {
         assert_eq!(m.publish_time_ns, m.log_time_ns - 1_000_000, "{}", m.topic);
         assert_eq!(m.sequence as usize, i + 1, "{}", m.topic);
     }
+}
+
+/// `pomdar resim` of the station's own file of the recording (publish times `publish_lead_ns`
+/// before log times, like the `name` writer's): at least 20 joint and arm targets, every
+/// frame read and new. Returns the re-simulation and its outputs.
+fn resim_station_reference(
+    dir: &Path,
+    config: &Path,
+    r: &Recording,
+    name: &str,
+    publish_lead_ns: i64,
+) -> (Resimulated, Vec<(String, i64, Value)>) {
+    let reference_path = dir.join(format!("station-as-{name}.mcap"));
+    write_reference(r, &reference_path, publish_lead_ns);
+    let reference = resim(
+        &reference_path,
+        config,
+        &dir.join(format!("resim-station-as-{name}.mcap")),
+    );
+    let expected = outputs(&reference.log);
+    let count = |topic: &str| expected.iter().filter(|(t, _, _)| t == topic).count();
+    assert!(
+        count("/pomdar/hand/joint_targets") >= 20 && count("/franka/end_effector_pose_cmd") >= 20,
+        "reference resim outputs: {}",
+        reference.stats
+    );
+    assert_eq!(reference.stats["frames_read"], FRAMES);
+    assert_eq!(reference.stats["frames_new"], FRAMES);
+    (reference, expected)
+}
+
+/// `pomdar resim` of the `name` writer's file gives the same statistics and outputs as the
+/// station's own file of the same recording; the independent readers decode its log as the
+/// station does.
+fn assert_resim_matches_the_station_file(
+    dir: &Path,
+    config: &Path,
+    r: &Recording,
+    name: &str,
+    input: &Path,
+    publish_lead_ns: i64,
+) {
+    let (reference, expected) = resim_station_reference(dir, config, r, name, publish_lead_ns);
+    let out = dir.join(format!("resim-{name}.mcap"));
+    let resimulated = resim(input, config, &out);
+    for key in [
+        "frames_read",
+        "frames_new",
+        "frames_repeated",
+        "rejected",
+        "joint_targets",
+        "arm_targets",
+        "layout",
+        "ticks",
+    ] {
+        assert_eq!(
+            resimulated.stats[key], reference.stats[key],
+            "resim of the {name} file: {key}"
+        );
+    }
+    let got = outputs(&resimulated.log);
+    assert_eq!(
+        got.len(),
+        expected.len(),
+        "resim of the {name} file: outputs"
+    );
+    for (i, (g, e)) in got.iter().zip(&expected).enumerate() {
+        assert_eq!(g, e, "resim of the {name} file: output {i}");
+    }
+    // The station's own log of this re-simulation, through the independent readers.
+    if let Some(report) = independent_readers_with_values(&out) {
+        assert_readers_decode_as_we_do(&report, &resimulated.log);
+    }
+}
+
+#[test]
+fn the_station_reads_mcap_written_by_rosbags_and_by_the_mcap_writer() {
+    let Some(python) = interop_python() else {
+        return;
+    };
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("pomdar-interop-mcap-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let r = recording();
+    let plan_path = dir.join("plan.json");
+    std::fs::write(&plan_path, plan(&r).to_string()).unwrap();
+    let written = run_interop_script(
+        &python,
+        "write_mcap.py",
+        &[plan_path.as_os_str(), dir.as_os_str()],
+    );
+    let rosbags_path = PathBuf::from(written["rosbags"].as_str().unwrap());
+    let mcap_path = PathBuf::from(written["mcap_ros2"].as_str().unwrap());
+
+    // TrialReader: every value, time and type as written.
+    assert_reads_the_rosbags_file(&rosbags_path, &r);
+    assert_reads_the_mcap_writer_file(&mcap_path, &r);
 
     // pomdar resim: the same outputs from each writer's file as from the station's own file
     // of the same recording.
@@ -333,53 +418,7 @@ fn the_station_reads_mcap_written_by_rosbags_and_by_the_mcap_writer() {
         ("rosbags", &rosbags_path, 0),
         ("mcap_ros2", &mcap_path, 1_000_000),
     ] {
-        let reference_path = dir.join(format!("station-as-{name}.mcap"));
-        write_reference(&r, &reference_path, publish_lead_ns);
-        let reference = resim(
-            &reference_path,
-            &config,
-            &dir.join(format!("resim-station-as-{name}.mcap")),
-        );
-        let expected = outputs(&reference.log);
-        let count = |topic: &str| expected.iter().filter(|(t, _, _)| t == topic).count();
-        assert!(
-            count("/pomdar/hand/joint_targets") >= 20
-                && count("/franka/end_effector_pose_cmd") >= 20,
-            "reference resim outputs: {}",
-            reference.stats
-        );
-        assert_eq!(reference.stats["frames_read"], FRAMES);
-        assert_eq!(reference.stats["frames_new"], FRAMES);
-        let out = dir.join(format!("resim-{name}.mcap"));
-        let resimulated = resim(input, &config, &out);
-        for key in [
-            "frames_read",
-            "frames_new",
-            "frames_repeated",
-            "rejected",
-            "joint_targets",
-            "arm_targets",
-            "layout",
-            "ticks",
-        ] {
-            assert_eq!(
-                resimulated.stats[key], reference.stats[key],
-                "resim of the {name} file: {key}"
-            );
-        }
-        let got = outputs(&resimulated.log);
-        assert_eq!(
-            got.len(),
-            expected.len(),
-            "resim of the {name} file: outputs"
-        );
-        for (i, (g, e)) in got.iter().zip(&expected).enumerate() {
-            assert_eq!(g, e, "resim of the {name} file: output {i}");
-        }
-        // The station's own log of this re-simulation, through the independent readers.
-        if let Some(report) = independent_readers_with_values(&out) {
-            assert_readers_decode_as_we_do(&report, &resimulated.log);
-        }
+        assert_resim_matches_the_station_file(&dir, &config, &r, name, input, publish_lead_ns);
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -230,13 +230,22 @@ fn status_state(message: &LoggedMessage) -> (i64, String) {
     )
 }
 
-/// What the trial log on host B shows about the cut.
-fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns: i64) {
-    let log = TrialReader::open(path).unwrap();
+/// Where the glove frames stop and resume in the trial log.
+struct Gap {
+    /// Log times of every glove frame.
+    frames: Vec<i64>,
+    /// The first frame after the gap.
+    back_ns: i64,
+    /// The last *new* frame before the gap (keypoints changed from the one before).
+    last_new_ns: i64,
+}
+
+/// The gap: the longest silence between glove frames is where the cable was pulled, as long
+/// as the cut, with enough frames recorded after the cable was back.
+fn check_gap(log: &TrialReader, cut_ns: i64, restored_ns: i64) -> Gap {
     let frames: Vec<i64> = log.messages_on(KEYPOINTS).map(|m| m.log_time_ns).collect();
     assert!(frames.len() > 100, "{} glove frames recorded", frames.len());
 
-    // The gap: the longest silence between frames, where the cable was pulled.
     let (gap_index, gap_ns) = frames
         .windows(2)
         .enumerate()
@@ -278,9 +287,33 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
         after >= 100,
         "only {after} glove frames recorded after the cable was back"
     );
+    Gap {
+        frames,
+        back_ns,
+        last_new_ns,
+    }
+}
 
-    // Held hand commands carry the station clock (stamp = log time); commands computed from a
-    // frame carry the frame's source stamp.
+/// The hand commands in the trial log, and how they held through the gap.
+struct HandCommands {
+    /// Every hand command: (log time, held).
+    all: Vec<(i64, bool)>,
+    /// The first held command, after the last new frame.
+    hold_after_ms: i64,
+    /// Held commands after the first, in the gap.
+    held_in_gap: usize,
+    /// Held commands after the cable was back.
+    held_after: usize,
+}
+
+/// Held hand commands carry the station clock (stamp = log time); commands computed from a
+/// frame carry the frame's source stamp. Once the hand holds, every command in the gap is held
+/// and they keep flowing at the control rate (≥ 80 %); commands flow again after the gap.
+fn check_hand_held_through_gap(
+    log: &TrialReader,
+    config: &StationConfig,
+    gap: &Gap,
+) -> HandCommands {
     let hand: Vec<(i64, bool)> = log
         .messages_on(JOINT_TARGETS)
         .map(|m| {
@@ -288,38 +321,48 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
             (m.log_time_ns, stamp == m.log_time_ns)
         })
         .collect();
-    let hold_ms = config.watchdog.hold_timeout_ms as i64;
-    let disengage_ms = config.watchdog.disengage_timeout_ms as i64;
-    let tick_ms = (1000.0 / config.control.rate_hz).ceil() as i64;
     let first_held = hand
         .iter()
-        .find(|(t, held)| *t > last_new_ns && *held)
+        .find(|(t, held)| *t > gap.last_new_ns && *held)
         .map(|(t, _)| *t)
         .expect("no held hand command after the last frame before the gap");
-    let hold_after_ms = (first_held - last_new_ns) / MS;
     assert!(
         hand.iter()
-            .filter(|(t, _)| *t > first_held && *t < back_ns)
+            .filter(|(t, _)| *t > first_held && *t < gap.back_ns)
             .all(|(_, held)| *held),
         "a command during the gap was not held"
     );
     let held_in_gap = hand
         .iter()
-        .filter(|(t, _)| *t > first_held && *t < back_ns)
+        .filter(|(t, _)| *t > first_held && *t < gap.back_ns)
         .count();
     let held_after = hand
         .iter()
-        .filter(|(t, held)| *t > back_ns && *held)
+        .filter(|(t, held)| *t > gap.back_ns && *held)
         .count();
-    // Held commands keep flowing at the control rate through the gap (≥ 80 %).
-    let gap_s = (back_ns - first_held) as f64 * 1e-9;
+    let gap_s = (gap.back_ns - first_held) as f64 * 1e-9;
     assert!(
         held_in_gap as f64 >= 0.8 * config.control.rate_hz * gap_s,
         "{held_in_gap} held commands over {gap_s:.2} s of gap"
     );
     assert!(held_after > 0, "no hand command after the cable was back");
+    HandCommands {
+        hold_after_ms: (first_held - gap.last_new_ns) / MS,
+        all: hand,
+        held_in_gap,
+        held_after,
+    }
+}
 
-    // The arm: targets until the disengage timeout, none after (disengaged until engage).
+/// The arm targets in the trial log: their log times, when the last before the gap came
+/// (after the last new frame) and how many came after it.
+struct ArmTargets {
+    all: Vec<i64>,
+    stop_ms: i64,
+    after: usize,
+}
+
+fn arm_targets(log: &TrialReader, gap: &Gap) -> ArmTargets {
     let arm: Vec<i64> = log
         .messages_on(ARM_TARGETS)
         .map(|m| m.log_time_ns)
@@ -327,20 +370,35 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
     let last_arm = arm
         .iter()
         .copied()
-        .filter(|t| *t < back_ns)
+        .filter(|t| *t < gap.back_ns)
         .max()
         .expect("no arm target before the gap");
-    let arm_stop_ms = (last_arm - last_new_ns) / MS;
-    let arm_after = arm.iter().filter(|t| **t > last_arm).count();
+    ArmTargets {
+        stop_ms: (last_arm - gap.last_new_ns) / MS,
+        after: arm.iter().filter(|t| **t > last_arm).count(),
+        all: arm,
+    }
+}
 
-    // The status: held, then disengaged during the gap, still disengaged after; and it kept
-    // being recorded through the gap.
+/// The hand holds after the hold timeout; the arm gets targets until the disengage timeout,
+/// none after (disengaged until engage). The status: held, then disengaged during the gap,
+/// still disengaged after; and it kept being recorded through the gap.
+fn check_hold_then_disengage(
+    log: &TrialReader,
+    config: &StationConfig,
+    gap: &Gap,
+    hand: &HandCommands,
+    arm: &ArmTargets,
+) {
+    let hold_ms = config.watchdog.hold_timeout_ms as i64;
+    let disengage_ms = config.watchdog.disengage_timeout_ms as i64;
+    let tick_ms = (1000.0 / config.control.rate_hz).ceil() as i64;
     let statuses: Vec<(i64, String)> = log.messages_on(STATUS).map(status_state).collect();
     let first_state = |state: &str| {
         statuses
             .iter()
-            .find(|(t, s)| *t > last_new_ns && s == state)
-            .map(|(t, _)| (*t - last_new_ns) / MS)
+            .find(|(t, s)| *t > gap.last_new_ns && s == state)
+            .map(|(t, _)| (*t - gap.last_new_ns) / MS)
     };
     let held_status_ms = first_state("held").expect("no `held` status after the gap began");
     let disengaged_status_ms =
@@ -350,8 +408,10 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
         .map(|w| (w[1].0 - w[0].0) / MS)
         .max()
         .unwrap();
+    let (hold_after_ms, arm_stop_ms) = (hand.hold_after_ms, arm.stop_ms);
     println!(
-        "hold: first held command {hold_after_ms} ms after the last new frame ({held_in_gap} held commands in the gap, {held_after} after), status `held` at {held_status_ms} ms; last arm target at {arm_stop_ms} ms, `disengaged` status at {disengaged_status_ms} ms; longest status interval {status_gap_ms} ms"
+        "hold: first held command {hold_after_ms} ms after the last new frame ({} held commands in the gap, {} after), status `held` at {held_status_ms} ms; last arm target at {arm_stop_ms} ms, `disengaged` status at {disengaged_status_ms} ms; longest status interval {status_gap_ms} ms",
+        hand.held_in_gap, hand.held_after
     );
     assert!(
         (hold_ms..=hold_ms + tick_ms + 150).contains(&hold_after_ms),
@@ -362,14 +422,15 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
         "the last arm target came {arm_stop_ms} ms after the last new frame; disengage at {disengage_ms} ms"
     );
     assert_eq!(
-        arm_after, 0,
-        "{arm_after} arm targets after the disengage (the station must stay disengaged until engage)"
+        arm.after, 0,
+        "{} arm targets after the disengage (the station must stay disengaged until engage)",
+        arm.after
     );
     assert!(held_status_ms < disengaged_status_ms);
     assert!(
         statuses
             .iter()
-            .filter(|(t, _)| *t > back_ns + 500 * MS)
+            .filter(|(t, _)| *t > gap.back_ns + 500 * MS)
             .all(|(_, s)| s == "disengaged"),
         "the station re-engaged by itself after the cable was back"
     );
@@ -378,9 +439,11 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
         status_gap_ms <= 2 * status_period_ms,
         "the status was not recorded for {status_gap_ms} ms"
     );
+}
 
-    // Nothing the station received or sent is missing from the log: every frame up to the last
-    // status is counted in it, and the stop event's totals match the commands logged.
+/// Nothing the station received or sent is missing from the log: every frame up to the last
+/// status is counted in it, and the stop event's totals match the commands logged.
+fn check_nothing_missing(log: &TrialReader, frames: &[i64], hand_commands: usize, arm: usize) {
     let (last_status_ns, last_status) = log
         .messages_on(STATUS)
         .map(|m| {
@@ -409,31 +472,25 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
     assert_eq!(stop["event"], "stop", "{stop}");
     assert_eq!(
         stop["summary"]["hand_commands"].as_u64().unwrap(),
-        hand.len() as u64
+        hand_commands as u64
     );
-    assert_eq!(
-        stop["summary"]["arm_targets"].as_u64().unwrap(),
-        arm.len() as u64
-    );
+    assert_eq!(stop["summary"]["arm_targets"].as_u64().unwrap(), arm as u64);
 }
 
-#[test]
-fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glove_link_is_cut() {
-    let Some(_reference) = reference_file("rokoko_orca_2024-11-20.mcap") else {
-        return;
-    };
-    let tag = format!("{}", std::process::id() % 100_000);
-    if let Err(why) = namespaces_available(&tag) {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must be able to create network namespaces (root and iproute2; .ci/run installs iproute2): {why}"
-        );
-        eprintln!("SKIPPED: cannot create network namespaces here ({why})");
-        return;
-    }
-    let root = workspace_root();
+/// What the trial log on host B shows about the cut.
+fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns: i64) {
+    let log = TrialReader::open(path).unwrap();
+    let gap = check_gap(&log, cut_ns, restored_ns);
+    let hand = check_hand_held_through_gap(&log, config, &gap);
+    let arm = arm_targets(&log, &gap);
+    check_hold_then_disengage(&log, config, &gap, &hand, &arm);
+    check_nothing_missing(&log, &gap.frames, hand.all.len(), arm.all.len());
+}
+
+/// The guide's host blocks, checked to be robot, station, glove, then the check; and the
+/// station configuration its station command names.
+fn guide_blocks_and_station_config(root: &Path) -> (Vec<HostBlock>, StationConfig) {
     let blocks = read_host_blocks(&root.join("docs/DEPLOYMENT.md")).unwrap();
-    // The station's configuration is the one the guide's station command names.
     let station_line = blocks
         .iter()
         .flat_map(|b| &b.steps)
@@ -454,30 +511,11 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
         ["C", "B", "A", "C"],
         "the guide's host blocks: robot, station, glove, then the check"
     );
+    (blocks, config)
+}
 
-    let binary = pomdar_binary().unwrap();
-    let dir = std::env::temp_dir().join(format!("pomdar-multi-host-{tag}"));
-    std::fs::remove_dir_all(&dir).ok();
-    let bin = dir.join("bin");
-    std::fs::create_dir_all(&bin).unwrap();
-    std::os::unix::fs::symlink(&binary, bin.join("pomdar")).unwrap();
-
-    let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
-    let mut session = Session {
-        lab: &lab,
-        dir: dir.clone(),
-        bin,
-        env: BTreeMap::new(),
-        nodes: Vec::new(),
-    };
-    let mut reports = Vec::new();
-    for block in &blocks {
-        println!("== {}", block.title);
-        reports.extend(session.run(block));
-    }
-
-    // The check on C: commands at the station's rate.
-    let report = reports.last().expect("the check block printed nothing");
+/// The check on C (the last block's output): commands at the station's rate (±20 %).
+fn check_probe_rates(report: &str, config: &StationConfig) {
     let joint_hz = probe_rate(report, JOINT_TARGETS);
     let arm_hz = probe_rate(report, ARM_TARGETS);
     let rate = config.control.rate_hz;
@@ -490,16 +528,11 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
             "{topic} arrives on host C at {hz:.1} Hz, the station runs at {rate} Hz"
         );
     }
+}
 
-    // Pull the glove PC's cable, plug it back.
-    let cut_ns = wall_ns();
-    lab.cut("A").unwrap();
-    std::thread::sleep(CUT);
-    let restored_ns = wall_ns();
-    lab.restore("A").unwrap();
-    std::thread::sleep(AFTER_RESTORE);
-
-    // Ctrl-C: the station first (it finishes its log), then the glove and the robot.
+/// Ctrl-C: the station first (it finishes its log, and must exit cleanly), then the glove and
+/// the robot.
+fn stop_nodes(session: &mut Session<'_>) {
     let station = session.node("B", "pomdar station");
     let status = station.interrupt();
     assert!(
@@ -515,8 +548,10 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
         node.interrupt();
         println!("host C: {}", node.output().trim_end());
     }
+}
 
-    // Host C heard every command the station sent (reliable QoS, and the B–C link stayed up).
+/// Host C heard every command the station sent (reliable QoS, and the B–C link stayed up).
+fn check_c_heard_every_command(session: &Session<'_>) {
     // `stopped: 216 new frames, 301 hand commands, 151 arm targets, ...`
     let sent = |what: &str| -> u64 {
         let text = session.output_of("B", "pomdar station");
@@ -545,6 +580,59 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
         sent("arm targets"),
         "arm targets: received on C vs sent by the station"
     );
+}
+
+#[test]
+fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glove_link_is_cut() {
+    let Some(_reference) = reference_file("rokoko_orca_2024-11-20.mcap") else {
+        return;
+    };
+    let tag = format!("{}", std::process::id() % 100_000);
+    if let Err(why) = namespaces_available(&tag) {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must be able to create network namespaces (root and iproute2; .ci/run installs iproute2): {why}"
+        );
+        eprintln!("SKIPPED: cannot create network namespaces here ({why})");
+        return;
+    }
+    let (blocks, config) = guide_blocks_and_station_config(&workspace_root());
+
+    let binary = pomdar_binary().unwrap();
+    let dir = std::env::temp_dir().join(format!("pomdar-multi-host-{tag}"));
+    std::fs::remove_dir_all(&dir).ok();
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    std::os::unix::fs::symlink(&binary, bin.join("pomdar")).unwrap();
+
+    let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
+    let mut session = Session {
+        lab: &lab,
+        dir: dir.clone(),
+        bin,
+        env: BTreeMap::new(),
+        nodes: Vec::new(),
+    };
+    let mut reports = Vec::new();
+    for block in &blocks {
+        println!("== {}", block.title);
+        reports.extend(session.run(block));
+    }
+    check_probe_rates(
+        reports.last().expect("the check block printed nothing"),
+        &config,
+    );
+
+    // Pull the glove PC's cable, plug it back.
+    let cut_ns = wall_ns();
+    lab.cut("A").unwrap();
+    std::thread::sleep(CUT);
+    let restored_ns = wall_ns();
+    lab.restore("A").unwrap();
+    std::thread::sleep(AFTER_RESTORE);
+
+    stop_nodes(&mut session);
+    check_c_heard_every_command(&session);
 
     let trial = session.home("B").join("pomdar-trials/deploy_check.mcap");
     assert!(

@@ -24,6 +24,7 @@ use pomdar_tests::station_harness::{Harness, loopback, test_domain, timing_indep
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{HandModel, KeypointLayout, Retargeter};
 use serde_json::{Value, json};
+use station::StationConfig;
 use station::convert::{array_to_points, pose_to_isometry};
 use teleop::clock::StationClock;
 use teleop::ingress::ingress_config::Hand;
@@ -172,25 +173,34 @@ fn hand_written_packet(timestamp_s: f64) -> Vec<u8> {
     .into_bytes()
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
-    let domain = test_domain(0);
-    let (_node, heard, listeners) = listen(domain);
-    let ingress = start_ingress(domain, 30_000).await;
-    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
-    let glove = glove();
+/// Sends `glove`'s frame at `t` as a Studio packet from `socket` to `addr`; returns its
+/// keypoints.
+fn send_glove_frame(
+    socket: &UdpSocket,
+    addr: SocketAddr,
+    glove: &SimGlove,
+    t: f64,
+) -> Vec<Point3<f64>> {
+    let (points, wrist) = glove.frame(t);
+    socket
+        .send_to(
+            &right_hand_packet(t, KeypointLayout::Lab22, &points, &wrist),
+            addr,
+        )
+        .unwrap();
+    points
+}
 
-    // Until discovery completes, send frames of the glove's start (timestamps rising).
+/// Until discovery completes, sends frames of the glove's start (timestamps rising from
+/// `t`); then checks every keypoint frame heard came with its wrist. Returns the frames heard
+/// and the last timestamp sent.
+async fn warm_up(
+    heard: &Arc<Mutex<Heard>>,
+    socket: &UdpSocket,
+    addr: SocketAddr,
+    glove: &SimGlove,
+) -> (usize, f64) {
     let mut t = 0.0;
-    let send_frame = |t: f64| {
-        let (points, wrist) = glove.frame(t);
-        socket
-            .send_to(
-                &right_hand_packet(t, KeypointLayout::Lab22, &points, &wrist),
-                ingress.addr,
-            )
-            .unwrap();
-    };
     let start = Instant::now();
     while heard.lock().unwrap().keypoints.is_empty() {
         assert!(
@@ -198,61 +208,57 @@ async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
             "nothing published in 15 s"
         );
         t += 0.01;
-        send_frame(t);
+        send_glove_frame(socket, addr, glove, t);
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
     tokio::time::sleep(Duration::from_millis(100)).await;
     let warm = heard.lock().unwrap().keypoints.len();
     assert_eq!(heard.lock().unwrap().wrists.len(), warm);
+    (warm, t)
+}
 
-    // The hand-written packet, and its values worked out by hand: Studio (x, y, z) → ROS
-    // (z, −x, y), so bone k → (−0.2, −0.1 k, 1.5); the hand bone's turn about Studio's up
-    // turns ROS forward (+x) to ROS right (−y).
-    t += 0.01;
+/// The hand-written packet, and its values worked out by hand: Studio (x, y, z) → ROS
+/// (z, −x, y), so bone k → (−0.2, −0.1 k, 1.5); the hand bone's turn about Studio's up
+/// turns ROS forward (+x) to ROS right (−y). Stamped at receipt, on the ingress's clock.
+async fn check_hand_written_packet(
+    heard: &Arc<Mutex<Heard>>,
+    ingress: &Ingress,
+    socket: &UdpSocket,
+    warm: usize,
+    t: f64,
+) {
     let before_ns = ingress.clock.now_ns();
-    let socket2 = UdpSocket::bind("127.0.0.1:0").unwrap();
-    socket2
+    socket
         .send_to(&hand_written_packet(t), ingress.addr)
         .unwrap();
-    wait_for(&heard, "the hand-written frame", |h| {
+    wait_for(heard, "the hand-written frame", |h| {
         h.keypoints.len() > warm && h.wrists.len() > warm
     })
     .await;
-    {
-        let h = heard.lock().unwrap();
-        let points = &h.keypoints[warm];
-        assert_eq!(points.len(), 22);
-        for (k, p) in points.iter().enumerate() {
-            let expected = Point3::new(-0.2, -0.1 * k as f64, 1.5);
-            assert!((p - expected).norm() < 1e-6, "point {k}: {p} vs {expected}");
-        }
-        let (stamp, wrist, frame_id) = &h.wrists[warm];
-        assert_eq!(frame_id, "rokoko_world");
-        assert!((wrist.translation.vector - Vector3::new(-0.2, -0.1, 1.5)).norm() < 1e-6);
-        let forward = wrist.rotation * Vector3::x();
-        assert!(
-            (forward - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-6,
-            "{forward}"
-        );
-        // Stamped at receipt, on the ingress's clock.
-        assert!(
-            *stamp >= before_ns && *stamp <= ingress.clock.now_ns(),
-            "stamp {stamp}"
-        );
+    let h = heard.lock().unwrap();
+    let points = &h.keypoints[warm];
+    assert_eq!(points.len(), 22);
+    for (k, p) in points.iter().enumerate() {
+        let expected = Point3::new(-0.2, -0.1 * k as f64, 1.5);
+        assert!((p - expected).norm() < 1e-6, "point {k}: {p} vs {expected}");
     }
+    let (stamp, wrist, frame_id) = &h.wrists[warm];
+    assert_eq!(frame_id, "rokoko_world");
+    assert!((wrist.translation.vector - Vector3::new(-0.2, -0.1, 1.5)).norm() < 1e-6);
+    let forward = wrist.rotation * Vector3::x();
+    assert!(
+        (forward - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-6,
+        "{forward}"
+    );
+    assert!(
+        *stamp >= before_ns && *stamp <= ingress.clock.now_ns(),
+        "stamp {stamp}"
+    );
+}
 
-    // A stream with every kind of bad packet mixed in; only the good new frames go out.
-    let mut expected: Vec<Vec<Point3<f64>>> = Vec::new();
-    let sent_good = |t: f64, expected: &mut Vec<Vec<Point3<f64>>>| {
-        let (points, wrist) = glove.frame(t);
-        socket2
-            .send_to(
-                &right_hand_packet(t, KeypointLayout::Lab22, &points, &wrist),
-                ingress.addr,
-            )
-            .unwrap();
-        expected.push(points);
-    };
+/// One packet of each refused kind: malformed, truncated, oversized (over 30,000 bytes) and
+/// missing a bone (the last two with a timestamp far ahead, so only the fault refuses them).
+fn bad_packets(glove: &SimGlove) -> Vec<Vec<u8>> {
     let (p, w) = glove.frame(1.0);
     let good = right_hand_packet(0.0, KeypointLayout::Lab22, &p, &w);
     let mut missing: Value = serde_json::from_slice(&good).unwrap();
@@ -264,44 +270,89 @@ async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
     let mut oversized: Value = serde_json::from_slice(&good).unwrap();
     oversized["scene"]["timestamp"] = json!(1e6);
     oversized["padding"] = json!("x".repeat(40_000));
-    let bad: Vec<Vec<u8>> = vec![
+    vec![
         b"not json at all".to_vec(),
         good[..good.len() / 3].to_vec(),
         oversized.to_string().into_bytes(),
         missing.to_string().into_bytes(),
-    ];
-    let socket3 = UdpSocket::bind("127.0.0.1:0").unwrap();
+    ]
+}
+
+/// A stream of 40 good frames from `good` (timestamps rising after `t`), with every kind of
+/// bad packet mixed in from another socket: a duplicate, a late older frame, then the four
+/// refused kinds. Returns the good frames' keypoints, in order.
+async fn send_stream_with_bad_packets(
+    good: &UdpSocket,
+    addr: SocketAddr,
+    glove: &SimGlove,
+    mut t: f64,
+) -> Vec<Vec<Point3<f64>>> {
+    let mut expected: Vec<Vec<Point3<f64>>> = Vec::new();
+    let bad = bad_packets(glove);
+    let other = UdpSocket::bind("127.0.0.1:0").unwrap();
     for k in 0..40 {
         t += 0.01;
-        sent_good(t, &mut expected);
+        expected.push(send_glove_frame(good, addr, glove, t));
         match k {
+            // The same frame again (Studio or the network repeated it).
             10 => {
-                // The same frame again (Studio or the network repeated it).
-                let (points, wrist) = glove.frame(t);
-                socket3
-                    .send_to(
-                        &right_hand_packet(t, KeypointLayout::Lab22, &points, &wrist),
-                        ingress.addr,
-                    )
-                    .unwrap();
+                send_glove_frame(&other, addr, glove, t);
             }
+            // An older frame arriving late.
             20 => {
-                // An older frame arriving late.
-                let (points, wrist) = glove.frame(t - 0.05);
-                socket3
-                    .send_to(
-                        &right_hand_packet(t - 0.05, KeypointLayout::Lab22, &points, &wrist),
-                        ingress.addr,
-                    )
-                    .unwrap();
+                send_glove_frame(&other, addr, glove, t - 0.05);
             }
             30..=33 => {
-                socket3.send_to(&bad[k - 30], ingress.addr).unwrap();
+                other.send_to(&bad[k - 30], addr).unwrap();
             }
             _ => {}
         }
         tokio::time::sleep(Duration::from_millis(3)).await;
     }
+    expected
+}
+
+/// Only the new, good frames are published (after the warm-up and the hand-written one), with
+/// the keypoints sent; the status counts each drop by kind.
+fn check_only_good_frames_published(
+    heard: &Arc<Mutex<Heard>>,
+    warm: usize,
+    expected: &[Vec<Point3<f64>>],
+) {
+    let h = heard.lock().unwrap();
+    assert_eq!(
+        h.keypoints.len(),
+        warm + 1 + expected.len(),
+        "only new, good frames are published"
+    );
+    for (k, (got, want)) in h.keypoints[warm + 1..].iter().zip(expected).enumerate() {
+        for (a, b) in got.iter().zip(want) {
+            assert!((a - b).norm() < 1e-6, "frame {k}: {a} vs {b}");
+        }
+    }
+    let s = h.status.last().unwrap();
+    assert_eq!(s["duplicates"], 1, "{s}");
+    assert_eq!(s["out_of_order"], 1, "{s}");
+    for kind in ["malformed", "truncated", "oversized", "missing_bone"] {
+        assert_eq!(s["refused"][kind], 1, "{kind}: {s}");
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
+    let domain = test_domain(0);
+    let (_node, heard, listeners) = listen(domain);
+    let ingress = start_ingress(domain, 30_000).await;
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let glove = glove();
+    let (warm, t) = warm_up(&heard, &socket, ingress.addr, &glove).await;
+
+    let socket2 = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let t = t + 0.01;
+    check_hand_written_packet(&heard, &ingress, &socket2, warm, t).await;
+
+    // A stream with every kind of bad packet mixed in; only the good new frames go out.
+    let expected = send_stream_with_bad_packets(&socket2, ingress.addr, &glove, t).await;
     let total = warm + 1 + expected.len();
     wait_for(&heard, "every good frame", |h| h.keypoints.len() >= total).await;
     wait_for(&heard, "the status to count every drop", |h| {
@@ -309,25 +360,7 @@ async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
     })
     .await;
     tokio::time::sleep(Duration::from_millis(200)).await;
-    {
-        let h = heard.lock().unwrap();
-        assert_eq!(
-            h.keypoints.len(),
-            total,
-            "only new, good frames are published"
-        );
-        for (k, (got, want)) in h.keypoints[warm + 1..].iter().zip(&expected).enumerate() {
-            for (a, b) in got.iter().zip(want) {
-                assert!((a - b).norm() < 1e-6, "frame {k}: {a} vs {b}");
-            }
-        }
-        let s = h.status.last().unwrap();
-        assert_eq!(s["duplicates"], 1, "{s}");
-        assert_eq!(s["out_of_order"], 1, "{s}");
-        for kind in ["malformed", "truncated", "oversized", "missing_bone"] {
-            assert_eq!(s["refused"][kind], 1, "{kind}: {s}");
-        }
-    }
+    check_only_good_frames_published(&heard, warm, &expected);
     ingress.shutdown.send(true).unwrap();
     let counters = ingress.task.await.unwrap().unwrap();
     // Everything received was published or dropped (frames sent before the listener matched
@@ -339,19 +372,15 @@ async fn packets_become_the_lab_topics_and_bad_ones_are_counted() {
     }
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
-    let domain = test_domain(1);
-    // The targets do not depend on when frames arrive: the in-process retargeter fed the
-    // same frames agrees. The ingress publishes best effort.
-    let mut config = timing_independent_config();
-    config.input.qos = QosConfig::best_effort(2000);
-    let h = Harness::start(config.clone(), domain).await.unwrap();
-    let ingress = start_ingress(domain, 65_507).await;
-    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
-    let glove = glove();
-
-    // Discovery: send the first frame until the station answers, then the motion.
+/// Discovery: sends the glove's first frame (a new packet each time, same hand: the station
+/// sees repeats) until the station answers; then the motion, 60 frames drifting 0.1 mm a
+/// frame so each is new. Returns every distinct frame sent, the first first.
+async fn drive_station(
+    h: &Harness,
+    socket: &UdpSocket,
+    addr: SocketAddr,
+    glove: &SimGlove,
+) -> Vec<Vec<Point3<f64>>> {
     let start = Instant::now();
     let (first, first_wrist) = glove.frame(0.0);
     let mut frames = vec![first.clone()];
@@ -361,11 +390,11 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
             start.elapsed() < Duration::from_secs(15),
             "no joint target in 15 s"
         );
-        t += 1e-3; // a new packet each time (same hand): the station sees repeats
+        t += 1e-3;
         socket
             .send_to(
                 &right_hand_packet(t, KeypointLayout::Lab22, &first, &first_wrist),
-                ingress.addr,
+                addr,
             )
             .unwrap();
         tokio::time::sleep(Duration::from_millis(50)).await;
@@ -381,33 +410,33 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
         socket
             .send_to(
                 &right_hand_packet(t + ts, KeypointLayout::Lab22, &points, &wrist),
-                ingress.addr,
+                addr,
             )
             .unwrap();
         frames.push(points);
         tokio::time::sleep(Duration::from_millis(30)).await;
     }
-    h.wait_until(Duration::from_secs(10), |heard| {
-        heard.targets.len() >= frames.len()
-    })
-    .await
-    .unwrap();
-    let live = h.target_positions();
-    let summary = h.stop().await.unwrap();
-    ingress.shutdown.send(true).unwrap();
-    ingress.task.await.unwrap().unwrap();
-    assert!(
-        summary.counters.rejected.values().all(|&n| n == 0),
-        "{:?}",
-        summary.counters
-    );
-    assert_eq!(summary.counters.frames_new as usize, frames.len());
+    frames
+}
 
-    // The frames as the station received them (f32). The station solves the newest frame of
-    // whatever arrived since its last step (on a loaded machine several packets can land
-    // together), from its previous command: so each target must be the retargeter's answer
-    // for one of the frames, solved from the target before it, the frames in order, the last
-    // target the last frame's.
+/// Largest absolute difference between two joint vectors.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The frames as the station received them (f32). The station solves the newest frame of
+/// whatever arrived since its last step (on a loaded machine several packets can land
+/// together), from its previous command: so each target must be the retargeter's answer
+/// for one of the frames, solved from the target before it, the frames in order, the last
+/// target the last frame's.
+fn assert_each_target_answers_a_frame(
+    live: &[Vec<f64>],
+    frames: &[Vec<Point3<f64>>],
+    config: &StationConfig,
+) {
     let received: Vec<Vec<Point3<f64>>> = frames
         .iter()
         .map(|points| {
@@ -423,12 +452,6 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
         &retarget::EmbodimentCatalog::builtin(),
     )
     .unwrap();
-    let distance = |a: &[f64], b: &[f64]| {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max)
-    };
     // The frames solved so far, in order; a target equal to the one before it is the command
     // held (published again without a new frame).
     let mut path: Vec<usize> = Vec::new();
@@ -471,4 +494,35 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
         path.len(),
         received.len()
     );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
+    let domain = test_domain(1);
+    // The targets do not depend on when frames arrive: the in-process retargeter fed the
+    // same frames agrees. The ingress publishes best effort.
+    let mut config = timing_independent_config();
+    config.input.qos = QosConfig::best_effort(2000);
+    let h = Harness::start(config.clone(), domain).await.unwrap();
+    let ingress = start_ingress(domain, 65_507).await;
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let glove = glove();
+
+    let frames = drive_station(&h, &socket, ingress.addr, &glove).await;
+    h.wait_until(Duration::from_secs(10), |heard| {
+        heard.targets.len() >= frames.len()
+    })
+    .await
+    .unwrap();
+    let live = h.target_positions();
+    let summary = h.stop().await.unwrap();
+    ingress.shutdown.send(true).unwrap();
+    ingress.task.await.unwrap().unwrap();
+    assert!(
+        summary.counters.rejected.values().all(|&n| n == 0),
+        "{:?}",
+        summary.counters
+    );
+    assert_eq!(summary.counters.frames_new as usize, frames.len());
+    assert_each_target_answers_a_frame(&live, &frames, &config);
 }

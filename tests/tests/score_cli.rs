@@ -74,6 +74,185 @@ struct Set {
     baseline_run: Output,
 }
 
+/// Human: V1 in 10 s and 12 s, C1 in 20 s, G2 in 8 s; one practice trial (left out).
+fn write_human_trials(h: &Path) {
+    write(
+        &h.join("v1_a.mcap"),
+        "V1",
+        "human",
+        false,
+        "ann",
+        &[start(0.5), progress(5.0, 6.0), stop(10.5)],
+    );
+    write(
+        &h.join("v1_b.mcap"),
+        "V1",
+        "human",
+        false,
+        "bob",
+        &[start(0.5), progress(5.0, 6.0), stop(12.5)],
+    );
+    write(
+        &h.join("v1_p.mcap"),
+        "V1",
+        "human",
+        true,
+        "bob",
+        &[start(0.5), stop(30.5)],
+    );
+    write(
+        &h.join("c1.mcap"),
+        "C1",
+        "human",
+        false,
+        "ann",
+        &[start(1.0), progress(9.0, 360.0), stop(21.0)],
+    );
+    write(
+        &h.join("g2.mcap"),
+        "G2",
+        "human",
+        false,
+        "bob",
+        &[
+            start(1.0),
+            progress(3.0, 0.5),
+            progress(6.0, 1.0),
+            stop(9.0),
+        ],
+    );
+}
+
+/// Good: V1 4/6 notches in 22 s; C1 270° in 40 s; G2 relocated in 16 s; H2 (no baseline)
+/// 2/3 curves; a practice V1.
+fn write_good_robot_trials(t: &Path) {
+    write(
+        &t.join("orca_full/v1.mcap"),
+        "V1",
+        "orca_full",
+        false,
+        "ann",
+        &[
+            start(1.0),
+            progress(4.0, 1.0),
+            progress(8.0, 1.0),
+            progress(12.0, 1.0),
+            progress(16.0, 1.0),
+            (18.0, json!({"event": "note", "text": "glove re-seated"})),
+            stop(23.0),
+        ],
+    );
+    write(
+        &t.join("orca_full/c1.mcap"),
+        "C1",
+        "orca_full",
+        false,
+        "ann",
+        &[
+            start(2.0),
+            progress(10.0, 180.0),
+            progress(30.0, 90.0),
+            stop(42.0),
+        ],
+    );
+    write(
+        &t.join("orca_5/g2.mcap"),
+        "G2",
+        "orca_5",
+        false,
+        "ann",
+        &[
+            start(1.0),
+            progress(5.0, 0.5),
+            (7.0, json!({"event": "drop"})),
+            progress(10.0, 0.5),
+            progress(14.0, 1.0),
+            stop(17.0),
+        ],
+    );
+    write(
+        &t.join("orca_5/h2.mcap"),
+        "H2",
+        "orca_5",
+        false,
+        "ann",
+        &[
+            start(1.0),
+            progress(3.0, 1.0),
+            progress(6.0, 1.0),
+            stop(9.0),
+        ],
+    );
+    write(
+        &t.join("orca_full/v1_practice.mcap"),
+        "V1",
+        "orca_full",
+        true,
+        "ann",
+        &[start(1.0), stop(4.0)],
+    );
+}
+
+/// Bad: no start; no stop; out of order; unknown task; a finished file cut short; an
+/// unfinished recording (.part).
+fn write_bad_robot_trials(t: &Path) {
+    let bad = t.join("bad");
+    write(
+        &bad.join("missing_start.mcap"),
+        "V2",
+        "orca_full",
+        false,
+        "ann",
+        &[progress(1.0, 1.0), stop(5.0)],
+    );
+    write(
+        &bad.join("missing_stop.mcap"),
+        "V2",
+        "orca_full",
+        false,
+        "ann",
+        &[start(1.0), progress(2.0, 1.0)],
+    );
+    write(
+        &bad.join("out_of_order.mcap"),
+        "V2",
+        "orca_full",
+        false,
+        "ann",
+        &[
+            start(1.0),
+            progress(5.0, 1.0),
+            progress(3.0, 1.0),
+            stop(9.0),
+        ],
+    );
+    write(
+        &bad.join("unknown_task.mcap"),
+        "Z9",
+        "orca_full",
+        false,
+        "ann",
+        &[start(1.0), stop(5.0)],
+    );
+    let whole = bad.join("whole.mcap");
+    write(
+        &whole,
+        "V3",
+        "orca_full",
+        false,
+        "ann",
+        &[start(1.0), stop(5.0)],
+    );
+    let bytes = std::fs::read(&whole).unwrap();
+    std::fs::write(bad.join("truncated.mcap"), &bytes[..bytes.len() * 3 / 5]).unwrap();
+    std::fs::remove_file(&whole).unwrap();
+    std::fs::write(
+        t.join("orca_5/interrupted.mcap.part"),
+        &bytes[..bytes.len() / 2],
+    )
+    .unwrap();
+}
+
 /// The human trials, the baseline computed from them, and the robot trials (once per test
 /// process).
 fn set() -> &'static Set {
@@ -82,53 +261,8 @@ fn set() -> &'static Set {
         let dir = scratch();
         let _ = std::fs::remove_dir_all(dir.join("human"));
         let _ = std::fs::remove_dir_all(dir.join("trials"));
-        // Human: V1 in 10 s and 12 s, C1 in 20 s, G2 in 8 s; one practice trial (left out).
         let h = dir.join("human");
-        write(
-            &h.join("v1_a.mcap"),
-            "V1",
-            "human",
-            false,
-            "ann",
-            &[start(0.5), progress(5.0, 6.0), stop(10.5)],
-        );
-        write(
-            &h.join("v1_b.mcap"),
-            "V1",
-            "human",
-            false,
-            "bob",
-            &[start(0.5), progress(5.0, 6.0), stop(12.5)],
-        );
-        write(
-            &h.join("v1_p.mcap"),
-            "V1",
-            "human",
-            true,
-            "bob",
-            &[start(0.5), stop(30.5)],
-        );
-        write(
-            &h.join("c1.mcap"),
-            "C1",
-            "human",
-            false,
-            "ann",
-            &[start(1.0), progress(9.0, 360.0), stop(21.0)],
-        );
-        write(
-            &h.join("g2.mcap"),
-            "G2",
-            "human",
-            false,
-            "bob",
-            &[
-                start(1.0),
-                progress(3.0, 0.5),
-                progress(6.0, 1.0),
-                stop(9.0),
-            ],
-        );
+        write_human_trials(&h);
         let baseline = dir.join("baseline.toml");
         let _ = std::fs::remove_file(&baseline);
         let baseline_run = pomdar(&[
@@ -141,130 +275,8 @@ fn set() -> &'static Set {
         ]);
 
         let t = dir.join("trials");
-        // Good: V1 4/6 notches in 22 s; C1 270° in 40 s; G2 relocated in 16 s; H2 (no
-        // baseline) 2/3 curves; a practice V1.
-        write(
-            &t.join("orca_full/v1.mcap"),
-            "V1",
-            "orca_full",
-            false,
-            "ann",
-            &[
-                start(1.0),
-                progress(4.0, 1.0),
-                progress(8.0, 1.0),
-                progress(12.0, 1.0),
-                progress(16.0, 1.0),
-                (18.0, json!({"event": "note", "text": "glove re-seated"})),
-                stop(23.0),
-            ],
-        );
-        write(
-            &t.join("orca_full/c1.mcap"),
-            "C1",
-            "orca_full",
-            false,
-            "ann",
-            &[
-                start(2.0),
-                progress(10.0, 180.0),
-                progress(30.0, 90.0),
-                stop(42.0),
-            ],
-        );
-        write(
-            &t.join("orca_5/g2.mcap"),
-            "G2",
-            "orca_5",
-            false,
-            "ann",
-            &[
-                start(1.0),
-                progress(5.0, 0.5),
-                (7.0, json!({"event": "drop"})),
-                progress(10.0, 0.5),
-                progress(14.0, 1.0),
-                stop(17.0),
-            ],
-        );
-        write(
-            &t.join("orca_5/h2.mcap"),
-            "H2",
-            "orca_5",
-            false,
-            "ann",
-            &[
-                start(1.0),
-                progress(3.0, 1.0),
-                progress(6.0, 1.0),
-                stop(9.0),
-            ],
-        );
-        write(
-            &t.join("orca_full/v1_practice.mcap"),
-            "V1",
-            "orca_full",
-            true,
-            "ann",
-            &[start(1.0), stop(4.0)],
-        );
-        // Bad: no start; no stop; out of order; unknown task; a finished file cut short; an
-        // unfinished recording (.part).
-        let bad = t.join("bad");
-        write(
-            &bad.join("missing_start.mcap"),
-            "V2",
-            "orca_full",
-            false,
-            "ann",
-            &[progress(1.0, 1.0), stop(5.0)],
-        );
-        write(
-            &bad.join("missing_stop.mcap"),
-            "V2",
-            "orca_full",
-            false,
-            "ann",
-            &[start(1.0), progress(2.0, 1.0)],
-        );
-        write(
-            &bad.join("out_of_order.mcap"),
-            "V2",
-            "orca_full",
-            false,
-            "ann",
-            &[
-                start(1.0),
-                progress(5.0, 1.0),
-                progress(3.0, 1.0),
-                stop(9.0),
-            ],
-        );
-        write(
-            &bad.join("unknown_task.mcap"),
-            "Z9",
-            "orca_full",
-            false,
-            "ann",
-            &[start(1.0), stop(5.0)],
-        );
-        let whole = bad.join("whole.mcap");
-        write(
-            &whole,
-            "V3",
-            "orca_full",
-            false,
-            "ann",
-            &[start(1.0), stop(5.0)],
-        );
-        let bytes = std::fs::read(&whole).unwrap();
-        std::fs::write(bad.join("truncated.mcap"), &bytes[..bytes.len() * 3 / 5]).unwrap();
-        std::fs::remove_file(&whole).unwrap();
-        std::fs::write(
-            t.join("orca_5/interrupted.mcap.part"),
-            &bytes[..bytes.len() / 2],
-        )
-        .unwrap();
+        write_good_robot_trials(&t);
+        write_bad_robot_trials(&t);
         Set {
             dir,
             baseline,
@@ -370,27 +382,9 @@ fn png_is_sane(path: &Path) {
     );
 }
 
-#[test]
-fn score_names_every_bad_file_and_scores_the_good_ones() {
-    let set = set();
-    assert!(set.baseline_run.status.success());
-    let out = set.dir.join("report");
-    let _ = std::fs::remove_dir_all(&out);
-    let trials = set.dir.join("trials");
-    let output = pomdar(&[
-        "score",
-        s(&trials),
-        "--baseline",
-        s(&set.baseline),
-        "--out",
-        s(&out),
-    ]);
-    assert_eq!(
-        output.status.code(),
-        Some(3),
-        "some files are rejected: exit 3"
-    );
-    let stderr = String::from_utf8_lossy(&output.stderr);
+/// Each bad file is named on stderr with its reason; the interrupted recording is skipped
+/// with a note; the totals line counts them.
+fn assert_bad_files_named(stderr: &str, trials: &Path) {
     let bad = trials.join("bad");
     for (file, reason) in [
         ("missing_start.mcap", "missing start event"),
@@ -415,25 +409,23 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
         stderr.contains("scored 5 of 10 trial files (5 rejected, 1 skipped)"),
         "{stderr}"
     );
+}
 
-    // The table on stdout.
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(stdout.contains("WARNING: NO BASELINE for H2"), "{stdout}");
-    assert!(stdout.contains("Rejected files (5)"));
+/// The trial in `scores.json` whose file name ends with `name`.
+fn scored_trial(json: &Value, name: &str) -> Value {
+    json["trials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["file"].as_str().unwrap().ends_with(name))
+        .unwrap_or_else(|| panic!("{name} not scored"))
+        .clone()
+}
 
-    // The values, from scores.json.
-    let json: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("scores.json")).unwrap()).unwrap();
-    let trial = |name: &str| {
-        json["trials"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|t| t["file"].as_str().unwrap().ends_with(name))
-            .unwrap_or_else(|| panic!("{name} not scored"))
-            .clone()
-    };
-    let v1 = trial("orca_full/v1.mcap");
+/// Each good trial's time, correctness and score in `scores.json`, as worked out by hand
+/// from its events and the human baseline.
+fn assert_trial_scores(json: &Value) {
+    let v1 = scored_trial(json, "orca_full/v1.mcap");
     close(v1["time_s"].as_f64().unwrap(), 22.0, "V1 time");
     close(
         v1["correctness"].as_f64().unwrap(),
@@ -445,14 +437,14 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
         0.8 * 4.0 / 6.0 + 0.2 * 11.0 / 22.0,
         "V1 score",
     );
-    let c1 = trial("orca_full/c1.mcap");
+    let c1 = scored_trial(json, "orca_full/c1.mcap");
     close(c1["correctness"].as_f64().unwrap(), 0.75, "C1 correctness");
     close(
         c1["score"].as_f64().unwrap(),
         0.8 * 0.75 + 0.2 * 20.0 / 40.0,
         "C1 score",
     );
-    let g2 = trial("orca_5/g2.mcap");
+    let g2 = scored_trial(json, "orca_5/g2.mcap");
     close(
         g2["correctness"].as_f64().unwrap(),
         1.0,
@@ -463,7 +455,7 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
         0.8 + 0.2 * 8.0 / 16.0,
         "G2 score",
     );
-    let h2 = trial("orca_5/h2.mcap");
+    let h2 = scored_trial(json, "orca_5/h2.mcap");
     assert!(
         h2["score"].is_null(),
         "H2 has no baseline: correctness only"
@@ -473,8 +465,14 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
         2.0 / 3.0,
         "H2 correctness",
     );
-    let practice = trial("v1_practice.mcap");
+    let practice = scored_trial(json, "v1_practice.mcap");
     assert_eq!(practice["counted"].as_bool(), Some(false));
+}
+
+/// The per-task and per-embodiment aggregates in `scores.json`: the practice trial counted
+/// apart, orca_full's overall scores over the attempted tasks and over all 18; and the five
+/// rejected files.
+fn assert_aggregates(json: &Value) {
     let v1_task = json["tasks"]
         .as_array()
         .unwrap()
@@ -504,8 +502,10 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
         "overall all 18",
     );
     assert_eq!(json["rejected"].as_array().unwrap().len(), 5);
+}
 
-    // Every report file, with the warning where a reader will see it.
+/// Every report file, with the warning where a reader will see it.
+fn assert_report_files(out: &Path) {
     for name in [
         "report.md",
         "scores.csv",
@@ -525,8 +525,10 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
             .any(|l| l.starts_with("H2,") && l.ends_with("no baseline: correctness only")),
         "{csv}"
     );
+}
 
-    // The figures: both formats, sane sizes, not blank.
+/// The figures: both formats, sane sizes, not blank; no `.part` file left behind.
+fn assert_figures(out: &Path) {
     for (stem, series) in [
         ("radar_manipulation", "orca_full"),
         ("radar_grasp", "orca_5"),
@@ -543,6 +545,43 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
             .unwrap()
             .any(|e| e.unwrap().path().to_string_lossy().ends_with(".part"))
     );
+}
+
+#[test]
+fn score_names_every_bad_file_and_scores_the_good_ones() {
+    let set = set();
+    assert!(set.baseline_run.status.success());
+    let out = set.dir.join("report");
+    let _ = std::fs::remove_dir_all(&out);
+    let trials = set.dir.join("trials");
+    let output = pomdar(&[
+        "score",
+        s(&trials),
+        "--baseline",
+        s(&set.baseline),
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(
+        output.status.code(),
+        Some(3),
+        "some files are rejected: exit 3"
+    );
+    assert_bad_files_named(&String::from_utf8_lossy(&output.stderr), &trials);
+
+    // The table on stdout.
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("WARNING: NO BASELINE for H2"), "{stdout}");
+    assert!(stdout.contains("Rejected files (5)"));
+
+    // The values, from scores.json.
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("scores.json")).unwrap()).unwrap();
+    assert_trial_scores(&json);
+    assert_aggregates(&json);
+
+    assert_report_files(&out);
+    assert_figures(&out);
 }
 
 #[test]
