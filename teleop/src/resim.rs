@@ -14,7 +14,6 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use anyhow::Context as _;
 use msgs::{PoseStamped, StringMsg};
 use retarget::{HandModel, KeypointLayout};
 use serde::Serialize;
@@ -24,10 +23,41 @@ use station::{
     StationOutputs,
 };
 
-use crate::mcap_log::{LoggedMessage, TrialReader, TrialWriter};
+use crate::mcap_log::{LogError, LoggedMessage, TrialReader, TrialWriter};
 use crate::samples::Samples;
 use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
-use crate::station_setup::build_station;
+use crate::station_setup::{SetupError, build_station};
+
+/// A log that cannot be re-simulated.
+#[derive(Debug, thiserror::Error)]
+pub enum ResimError {
+    /// Reading the log, decoding one of its messages or writing the outputs failed.
+    #[error(transparent)]
+    Log(#[from] LogError),
+    /// The station cannot be set up (configuration, calibration profile).
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// A keypoint message does not decode as the configured keypoint format.
+    #[error("keypoints at log time {log_time_ns} ns: {source}")]
+    Keypoints {
+        /// The message's log time, ns.
+        log_time_ns: i64,
+        /// The decoding error (names the topic).
+        #[source]
+        source: LogError,
+    },
+    /// A recorded control input that is not one the station knows.
+    #[error("{topic} at log time {log_time_ns} ns: {source}")]
+    Control {
+        /// The control topic.
+        topic: &'static str,
+        /// The message's log time, ns.
+        log_time_ns: i64,
+        /// The JSON error (quotes the input).
+        #[source]
+        source: serde_json::Error,
+    },
+}
 
 /// What a re-simulation did.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -105,7 +135,7 @@ pub(crate) fn layout_for(
 pub(crate) fn keypoints(
     message: &LoggedMessage,
     format: KeypointFormat,
-) -> anyhow::Result<KeypointMessage> {
+) -> Result<KeypointMessage, LogError> {
     Ok(match format {
         KeypointFormat::Float32MultiArray => KeypointMessage::Array(message.decode()?),
         KeypointFormat::PoseArray => KeypointMessage::Poses(message.decode()?),
@@ -117,13 +147,16 @@ pub(crate) fn keypoints(
 fn logged_input(
     message: &LoggedMessage,
     config: &StationConfig,
-) -> anyhow::Result<Option<StationInput>> {
+) -> Result<Option<StationInput>, ResimError> {
     let input = &config.input;
     let topic = message.topic.as_str();
     let now = message.log_time_ns;
     Ok(Some(if topic == input.keypoints_topic {
         let points = keypoints(message, input.keypoints_format)
-            .with_context(|| format!("keypoints at log time {now} ns"))?
+            .map_err(|source| ResimError::Keypoints {
+                log_time_ns: now,
+                source,
+            })?
             .points();
         // A log without sender stamps has publish time 0: the receive time stands in, as live.
         let source_ns = if message.publish_time_ns > 0 {
@@ -137,8 +170,13 @@ fn logged_input(
     } else if topic == input.arm_feedback_topic {
         StationInput::ArmFeedback(message.decode::<PoseStamped>()?.pose)
     } else if topic == STATION_CONTROL_TOPIC {
-        let control = control_input(&message.decode::<StringMsg>()?)
-            .with_context(|| format!("{STATION_CONTROL_TOPIC} at log time {now} ns"))?;
+        let control = control_input(&message.decode::<StringMsg>()?).map_err(|source| {
+            ResimError::Control {
+                topic: STATION_CONTROL_TOPIC,
+                log_time_ns: now,
+                source,
+            }
+        })?;
         StationInput::Control(control)
     } else {
         return Ok(None);
@@ -146,7 +184,7 @@ fn logged_input(
 }
 
 /// The inputs of `reader`'s log for a station configured by `config`.
-pub fn log_inputs(reader: &TrialReader, config: &StationConfig) -> anyhow::Result<LogInputs> {
+pub fn log_inputs(reader: &TrialReader, config: &StationConfig) -> Result<LogInputs, ResimError> {
     let mut messages: Vec<&LoggedMessage> = reader.messages().collect();
     messages.sort_by_key(|m| m.log_time_ns); // stable: file order within equal times
     let input = &config.input;
@@ -209,7 +247,7 @@ pub fn resim(
     config: &StationConfig,
     model: HandModel,
     writer: &mut TrialWriter,
-) -> anyhow::Result<ResimStats> {
+) -> Result<ResimStats, ResimError> {
     let log = log_inputs(reader, config)?;
     let (mut station, profile) = build_station(&log.config, model)?;
     let mut stats = ResimStats {
@@ -247,7 +285,7 @@ fn write_outputs(
     outputs: &StationOutputs,
     now_ns: i64,
     stats: &mut ResimStats,
-) -> anyhow::Result<()> {
+) -> Result<(), LogError> {
     for notice in &outputs.notices {
         eprintln!("{notice}");
     }

@@ -1,22 +1,70 @@
 //! The one place a station is set up from files: the configuration (`--config FILE`, else the
 //! built-in ETH lab preset), the user's calibration profile over it (`--profile FILE`, else the
-//! configuration's `calibration_profile`), and the [`Station`] built from both. Errors name the
-//! file and the key.
+//! configuration's `calibration_profile`), and the [`Station`] built from both. Errors
+//! ([`SetupError`]) name the file and the key.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
 use calibration::CalibrationProfile;
 use retarget::{HandModel, KeypointLayout};
-use station::{Station, StationConfig};
+use station::{ConfigError, Station, StationConfig, StationError};
+
+/// A station that cannot be set up from its files.
+#[derive(Debug, thiserror::Error)]
+pub enum SetupError {
+    /// The configuration file cannot be read.
+    #[error("cannot read {path}: {source}")]
+    ReadConfig {
+        /// The configuration file.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The configuration file does not parse or validate.
+    #[error("{path}: {source}")]
+    Config {
+        /// The configuration file.
+        path: PathBuf,
+        /// What is wrong with it (names the key).
+        #[source]
+        source: ConfigError,
+    },
+    /// The calibration profile cannot be read.
+    #[error("cannot read calibration profile {path}: {source}")]
+    ReadProfile {
+        /// The profile.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The calibration profile does not parse or validate, or was not made for this hand
+    /// model and keypoint layout.
+    #[error("calibration profile {path}: {source}")]
+    Profile {
+        /// The profile.
+        path: PathBuf,
+        /// What is wrong with it (names the key).
+        #[source]
+        source: calibration::Error,
+    },
+    /// The station refuses the configuration (or the hand model, or the calibration).
+    #[error(transparent)]
+    Station(#[from] StationError),
+}
 
 /// Read, parse and validate a station configuration file; errors name it. A relative
 /// `calibration_profile` is resolved against the file's directory.
-pub fn read_station_config(path: &Path) -> anyhow::Result<StationConfig> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut config =
-        StationConfig::from_toml_str(&text).with_context(|| format!("{}", path.display()))?;
+pub fn read_station_config(path: &Path) -> Result<StationConfig, SetupError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SetupError::ReadConfig {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut config = StationConfig::from_toml_str(&text).map_err(|source| SetupError::Config {
+        path: path.to_path_buf(),
+        source,
+    })?;
     if let Some(profile) = &config.calibration_profile
         && profile.is_relative()
     {
@@ -31,7 +79,7 @@ pub fn read_station_config(path: &Path) -> anyhow::Result<StationConfig> {
 pub fn load_station_config(
     config: Option<&Path>,
     profile: Option<&Path>,
-) -> anyhow::Result<StationConfig> {
+) -> Result<StationConfig, SetupError> {
     let mut loaded = match config {
         Some(path) => read_station_config(path)?,
         None => StationConfig::default(),
@@ -47,7 +95,7 @@ pub fn load_station_config(
 pub fn build_station(
     config: &StationConfig,
     model: HandModel,
-) -> anyhow::Result<(Station, Option<String>)> {
+) -> Result<(Station, Option<String>), SetupError> {
     let profile = match &config.calibration_profile {
         Some(path) => Some(load_profile(path, &model, config.retarget.layout)?),
         None => None,
@@ -63,14 +111,17 @@ pub fn load_profile(
     path: &Path,
     model: &HandModel,
     layout: KeypointLayout,
-) -> anyhow::Result<CalibrationProfile> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read calibration profile {}", path.display()))?;
-    let profile = CalibrationProfile::from_toml_str(&text)
-        .map_err(|e| anyhow::anyhow!("calibration profile {}: {e}", path.display()))?;
-    profile
-        .check_fits(model, layout)
-        .map_err(|e| anyhow::anyhow!("calibration profile {}: {e}", path.display()))?;
+) -> Result<CalibrationProfile, SetupError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SetupError::ReadProfile {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let invalid = |source| SetupError::Profile {
+        path: path.to_path_buf(),
+        source,
+    };
+    let profile = CalibrationProfile::from_toml_str(&text).map_err(invalid)?;
+    profile.check_fits(model, layout).map_err(invalid)?;
     Ok(profile)
 }
 

@@ -65,7 +65,7 @@ pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
             Ok(s) => scores.push(s),
             Err(reason) => rejected.push(FileProblem {
                 file: path.display().to_string(),
-                reason,
+                reason: reason.to_string(),
             }),
         }
     }

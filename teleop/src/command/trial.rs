@@ -661,7 +661,7 @@ impl TrialConsole {
                 effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
             }
             StationEvent::TrialFinished(path) => {
-                effects.extend(flow.trial_logged(inputs.score_file(&path)));
+                effects.extend(flow.trial_logged(inputs.score_file(&path).map_err(String::from)));
             }
             StationEvent::TrialFinishFailed { path, error } => {
                 effects.extend(flow.trial_logged(Err(format!(
@@ -877,7 +877,7 @@ fn write_session_report(
             Ok(score) => scores.push(score),
             Err(reason) => rejected.push(scoring::FileProblem {
                 file: path.display().to_string(),
-                reason,
+                reason: reason.to_string(),
             }),
         }
     }

@@ -11,6 +11,7 @@ use retarget::{HandModel, QualityRecorder, QualityReport};
 use serde::Serialize;
 use station::{StationConfig, StationInput};
 
+use super::EvalError;
 use crate::mcap_log::TrialReader;
 use crate::resim::{LogInputs, drive_station, log_inputs};
 use crate::samples::Samples;
@@ -24,6 +25,10 @@ pub struct LivePathReport {
     pub quality: QualityReport,
     /// Distinct glove frames that had no command in force (before the station engaged).
     pub frames_without_command: usize,
+    /// Distinct glove frames with a command in force that the metrics cannot measure (malformed
+    /// keypoints, as the retargeter-alone figures' rejected frames; the station's gate rejects
+    /// them too): left out of the metrics.
+    pub frames_not_measured: usize,
     /// Hand commands computed from a new frame.
     pub fresh_commands: u64,
     /// Wall time of a station step that retargeted a new frame, microseconds: p50.
@@ -37,6 +42,7 @@ struct LivePathScore {
     recorder: QualityRecorder,
     previous: Option<Vec<Point3<f64>>>,
     without_command: usize,
+    not_measured: usize,
     fresh: u64,
     step_us: Samples,
 }
@@ -54,8 +60,10 @@ impl LivePathScore {
         match station.command_in_force() {
             Some(command) => {
                 // A frame the recorder cannot measure (collapsed palm) is left out, as the
-                // retargeter-alone figures leave it out.
-                self.recorder.push(&frame.points, &command.q).ok();
+                // retargeter-alone figures leave it out, and counted.
+                if self.recorder.push(&frame.points, &command.q).is_err() {
+                    self.not_measured += 1;
+                }
             }
             None => self.without_command += 1,
         }
@@ -67,13 +75,14 @@ pub fn live_path(
     reader: &TrialReader,
     config: &StationConfig,
     model: HandModel,
-) -> anyhow::Result<LivePathReport> {
+) -> Result<LivePathReport, EvalError> {
     let log: LogInputs = log_inputs(reader, config)?;
     let (mut station, _) = build_station(&log.config, model.clone())?;
     let mut score = LivePathScore {
         recorder: QualityRecorder::new(model, log.config.retarget.layout),
         previous: None,
         without_command: 0,
+        not_measured: 0,
         fresh: 0,
         step_us: Samples::default(),
     };
@@ -89,6 +98,7 @@ pub fn live_path(
     Ok(LivePathReport {
         quality: score.recorder.report(),
         frames_without_command: score.without_command,
+        frames_not_measured: score.not_measured,
         fresh_commands: score.fresh,
         step_us_p50: score.step_us.percentile(0.5),
         step_us_p99: score.step_us.percentile(0.99),

@@ -10,13 +10,14 @@
 
 use std::time::Instant;
 
-use anyhow::Context as _;
 use nalgebra::Point3;
 use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter};
 use serde::Serialize;
 
 use crate::station_setup::{describe, load_profile};
+pub use error::EvalError;
 use live_path::{LivePathReport, live_path};
+mod error;
 pub mod live_path;
 
 use crate::mcap_log::{LoggedMessage, TrialReader};
@@ -57,7 +58,7 @@ pub fn evaluate(
     reader: &TrialReader,
     config: &StationConfig,
     model: HandModel,
-) -> anyhow::Result<EvalOutput> {
+) -> Result<EvalOutput, EvalError> {
     let input = &config.input;
     let mut messages: Vec<&LoggedMessage> = reader
         .messages()
@@ -67,18 +68,20 @@ pub fn evaluate(
     let mut frames: Vec<(i64, Vec<Point3<f64>>)> = Vec::new();
     for message in &messages {
         let points = keypoints(message, input.keypoints_format)
-            .with_context(|| format!("keypoints at log time {} ns", message.log_time_ns))?
+            .map_err(|source| EvalError::Keypoints {
+                log_time_ns: message.log_time_ns,
+                source,
+            })?
             .points();
         if frames.last().is_none_or(|(_, last)| *last != points) {
             frames.push((message.log_time_ns, points));
         }
     }
     if frames.is_empty() {
-        anyhow::bail!(
-            "{}: no keypoint messages on {}",
-            reader.path().display(),
-            input.keypoints_topic
-        );
+        return Err(EvalError::NoKeypoints {
+            path: reader.path().to_path_buf(),
+            topic: input.keypoints_topic.clone(),
+        });
     }
     let mut retarget_config = config.retarget.clone();
     retarget_config.layout = layout_for(config, frames.first().map(|(_, p)| p.len()));
@@ -93,11 +96,11 @@ pub fn evaluate(
         retarget_config,
         &EmbodimentCatalog::builtin(),
     )
-    .context("retargeter")?;
+    .map_err(|source| EvalError::Retargeter { source })?;
     if let Some((_, profile)) = &profile {
         retargeter
             .set_calibration(profile.parameters)
-            .context("calibration profile")?;
+            .map_err(|source| EvalError::Calibration { source })?;
         eprintln!("{}", describe(profile));
     }
     let first_dt_s = 1.0 / config.control.rate_hz;
@@ -198,7 +201,7 @@ fn live_path_lines(o: &EvalOutput) -> String {
     format!(
         "\n  live path (the station re-simulated, command in force at each distinct frame):\n  \
          tip mean {:.1} mm ({:+.2} mm), jerk {:.4} rad ({:+.1} %), max step {:.3} rad, pinches closed {}, \
-         {} frames before engage; station step p50 {} µs, p99 {} µs\n",
+         {} frames before engage, {} not measured; station step p50 {} µs, p99 {} µs\n",
         live.tip_error_mean_mm,
         live.tip_error_mean_mm - alone.tip_error_mean_mm,
         live.jerk_rad,
@@ -207,6 +210,7 @@ fn live_path_lines(o: &EvalOutput) -> String {
         live.pinches_closed_pct
             .map_or("-".into(), |v| format!("{v:.0} %")),
         o.live_path.frames_without_command,
+        o.live_path.frames_not_measured,
         opt(o.live_path.step_us_p50, 1),
         opt(o.live_path.step_us_p99, 1),
     )

@@ -12,10 +12,14 @@
 //! | `parallel_files.rs` | files on every core, in input order, with progress |
 //! | `report_files.rs` | `--out DIR`: reports and figures, atomic writes |
 //! | `synthetic_trial.rs` | trial logs written as the station writes them, for the benchmark and tests |
+//! | `error.rs` | `ScoreFileError` (the run's own files), `TrialFileError` (a trial not scored) |
 
+mod error;
 pub mod load_trial;
 pub mod parallel_files;
 pub mod report_files;
 pub mod score_inputs;
 pub mod synthetic_trial;
 pub mod trial_files;
+
+pub use error::{ScoreFileError, TrialFileError};

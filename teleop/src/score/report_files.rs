@@ -16,6 +16,7 @@ use scoring::{
     render_trials_csv,
 };
 
+use super::ScoreFileError;
 use crate::atomic_file::write_atomically;
 
 /// What [`write_report_files`] did.
@@ -29,7 +30,10 @@ pub struct WrittenReport {
 
 /// Draws the figures (their file names and remarks go into `report`), then writes every file
 /// into `dir` (created if needed).
-pub fn write_report_files(dir: &Path, report: &mut ScoreReport) -> anyhow::Result<WrittenReport> {
+pub fn write_report_files(
+    dir: &Path,
+    report: &mut ScoreReport,
+) -> Result<WrittenReport, ScoreFileError> {
     let mut written = WrittenReport::default();
     let (figures, notes, errors) = render_figures(report);
     report.notes.extend(notes);
@@ -39,7 +43,7 @@ pub fn write_report_files(dir: &Path, report: &mut ScoreReport) -> anyhow::Resul
             .push(format!("a figure could not be drawn: {e}"));
         written.figure_errors.push(e.to_string());
     }
-    let mut write = |name: &str, bytes: &[u8]| -> anyhow::Result<()> {
+    let mut write = |name: &str, bytes: &[u8]| -> Result<(), ScoreFileError> {
         let path = dir.join(name);
         write_atomically(&path, bytes)?;
         written.files.push(path);

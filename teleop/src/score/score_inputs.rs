@@ -5,13 +5,13 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use anyhow::Context as _;
 use scoring::{
     BaselineTable, DEFAULT_RULES_ORIGIN, FileProblem, ReportInputs, ScoreReport, ScoringError,
     ScoringRules, TaskCatalog, TrialScore, score_trial,
 };
 
 use super::load_trial::load_trial_log;
+use super::{ScoreFileError, TrialFileError};
 
 /// The scoring files a command takes (`pomdar score`, `pomdar trial`).
 #[derive(Debug, Clone, clap::Args)]
@@ -32,7 +32,7 @@ pub struct ScoringFileArgs {
 
 impl ScoringFileArgs {
     /// Loads the files given (see [`ScoringInputs::load`]).
-    pub fn load(&self) -> anyhow::Result<ScoringInputs> {
+    pub fn load(&self) -> Result<ScoringInputs, ScoreFileError> {
         ScoringInputs::load(
             self.catalog.as_deref(),
             self.rules.as_deref(),
@@ -56,16 +56,25 @@ pub struct ScoringInputs {
     pub dof: BTreeMap<String, u32>,
 }
 
-fn read(path: &Path, what: &str) -> anyhow::Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))
+fn read(path: &Path, what: &'static str) -> Result<String, ScoreFileError> {
+    std::fs::read_to_string(path).map_err(|source| ScoreFileError::Read {
+        what,
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 impl ScoringInputs {
     /// Reads a trial log and scores it; the error is the reason alone (the report shows the
     /// file beside it).
-    pub fn score_file(&self, path: &Path) -> Result<TrialScore, String> {
+    pub fn score_file(&self, path: &Path) -> Result<TrialScore, TrialFileError> {
         let log = load_trial_log(path)?;
-        score_trial(&log, &self.catalog, self.baseline.as_ref(), &self.rules).map_err(reason)
+        Ok(score_trial(
+            &log,
+            &self.catalog,
+            self.baseline.as_ref(),
+            &self.rules,
+        )?)
     }
 
     /// The report of these scores with these files' problems.
@@ -93,7 +102,7 @@ impl ScoringInputs {
         catalog: Option<&Path>,
         rules: Option<&Path>,
         baseline: Option<&Path>,
-    ) -> anyhow::Result<ScoringInputs> {
+    ) -> Result<ScoringInputs, ScoreFileError> {
         let catalog = match catalog {
             Some(path) => TaskCatalog::from_toml_str(
                 &read(path, "task catalog")?,
@@ -117,7 +126,7 @@ impl ScoringInputs {
                     &path.display().to_string(),
                     &catalog,
                 )
-                .map_err(anyhow::Error::from)
+                .map_err(ScoreFileError::from)
             })
             .transpose()?;
         let dof = retarget::EmbodimentCatalog::builtin()
@@ -137,8 +146,5 @@ impl ScoringInputs {
 
 /// The reason of a scoring error, without the file name the report shows beside it.
 pub(crate) fn reason(error: ScoringError) -> String {
-    match error {
-        ScoringError::Trial { reason, .. } => reason,
-        other => other.to_string(),
-    }
+    TrialFileError::from(error).to_string()
 }

@@ -90,10 +90,27 @@ fn walk(dir: &Path, found: &mut Vec<PathBuf>, out: &mut TrialFiles) {
     };
     let mut parts = Vec::new();
     let mut dirs = Vec::new();
-    for entry in entries.flatten() {
+    for entry in entries {
+        let entry = match entry {
+            Ok(entry) => entry,
+            Err(e) => {
+                out.problems.push(FileProblem {
+                    file: dir.display().to_string(),
+                    reason: format!("cannot list the directory: {e}"),
+                });
+                continue;
+            }
+        };
         let path = entry.path();
-        let Ok(kind) = entry.file_type() else {
-            continue;
+        let kind = match entry.file_type() {
+            Ok(kind) => kind,
+            Err(e) => {
+                out.problems.push(FileProblem {
+                    file: path.display().to_string(),
+                    reason: format!("cannot read: {e}"),
+                });
+                continue;
+            }
         };
         if kind.is_dir() {
             dirs.push(path);

@@ -1,0 +1,49 @@
+//! `pomdar eval`'s one error type.
+
+use std::path::PathBuf;
+
+use crate::mcap_log::LogError;
+use crate::resim::ResimError;
+use crate::station_setup::SetupError;
+
+/// A recording that cannot be evaluated.
+#[derive(Debug, thiserror::Error)]
+pub enum EvalError {
+    /// A keypoint message does not decode as the configured keypoint format.
+    #[error("keypoints at log time {log_time_ns} ns: {source}")]
+    Keypoints {
+        /// The message's log time, ns.
+        log_time_ns: i64,
+        /// The decoding error (names the topic).
+        #[source]
+        source: LogError,
+    },
+    /// The recording has no message on the keypoint topic.
+    #[error("{path}: no keypoint messages on {topic}")]
+    NoKeypoints {
+        /// The recording.
+        path: PathBuf,
+        /// The configured keypoint topic.
+        topic: String,
+    },
+    /// The calibration profile cannot be loaded.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// The retargeter refuses the model or the configuration.
+    #[error("retargeter: {source}")]
+    Retargeter {
+        /// The retargeter's error.
+        #[source]
+        source: retarget::Error,
+    },
+    /// The retargeter refuses the calibration profile's transform.
+    #[error("calibration profile: {source}")]
+    Calibration {
+        /// The retargeter's error.
+        #[source]
+        source: retarget::Error,
+    },
+    /// The live path: the recording cannot be re-simulated.
+    #[error(transparent)]
+    LivePath(#[from] ResimError),
+}
