@@ -12,6 +12,7 @@ use std::time::Instant;
 use calibration::FitProgress;
 use tokio::sync::mpsc;
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_screen::draw_calibration;
 use crate::calibrate::calibration_script::{CalScriptLine, CalScriptPlayer};
 use crate::calibrate::calibration_view::{CalState, CalibrationView, PlainCalibrationOutput};
@@ -19,6 +20,7 @@ use crate::calibrate::pose_session::{
     AUTOMATIC_MAX_ATTEMPTS, CalibrationAction, Policy, PoseSession,
 };
 use crate::calibrate::progress_bar::ProgressBar;
+use crate::tui::script::ScriptError;
 use crate::tui::terminal::{FullScreen, Input, full_screen_wanted};
 
 /// What the operator's side asks of the session.
@@ -63,7 +65,7 @@ impl ConsoleFront {
         plain: bool,
         script: Option<Vec<CalScriptLine>>,
         setup: Vec<(String, String)>,
-    ) -> anyhow::Result<ConsoleFront> {
+    ) -> Result<ConsoleFront, CalibrateError> {
         let (tx, inputs) = mpsc::unbounded_channel();
         let full = full_screen_wanted(plain);
         let display = if full {
@@ -124,7 +126,10 @@ impl ConsoleFront {
     }
 
     /// The script's due action in `state`; an error when a wait timed out.
-    pub fn script_action(&mut self, state: CalState) -> Result<Option<CalibrationAction>, String> {
+    pub fn script_action(
+        &mut self,
+        state: CalState,
+    ) -> Result<Option<CalibrationAction>, ScriptError> {
         match self.player.as_mut() {
             Some(p) => p.next(state, Instant::now()),
             None => Ok(None),
@@ -137,7 +142,7 @@ impl ConsoleFront {
     }
 
     /// Shows the session at `now_ns`.
-    pub fn show(&mut self, session: &PoseSession, now_ns: i64) -> anyhow::Result<()> {
+    pub fn show(&mut self, session: &PoseSession, now_ns: i64) -> Result<(), CalibrateError> {
         let view = CalibrationView::build(session, &self.setup, &self.results, now_ns);
         match &mut self.display {
             Display::Full(screen) => screen.draw(|frame| draw_calibration(frame, &view))?,

@@ -20,9 +20,12 @@
 
 use std::path::Path;
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::pose_session::CalibrationAction;
-use crate::tui::script::{ScriptLine, ScriptState, load_script_with, parse_script_with};
+use crate::tui::script::{
+    ScriptError, ScriptLine, ScriptState, load_script_with, parse_script_with,
+};
 use crate::tui::script_player::ScriptPlayer;
 
 /// One line of a calibration script.
@@ -53,7 +56,7 @@ pub const CALIBRATION_WORDS: &[(&str, &str)] = &[
 ];
 
 /// Parses a calibration action word.
-pub fn parse_calibration_action(text: &str) -> Result<CalibrationAction, String> {
+pub fn parse_calibration_action(text: &str) -> Result<CalibrationAction, CalibrateError> {
     let text = text.trim();
     let (word, rest) = text
         .split_once(char::is_whitespace)
@@ -63,30 +66,33 @@ pub fn parse_calibration_action(text: &str) -> Result<CalibrationAction, String>
         "retry" => CalibrationAction::Retry,
         "quit" => CalibrationAction::Quit,
         other => {
-            return Err(format!(
-                "unknown command '{other}' (known: {}, wait STATE [TIMEOUT_S])",
-                CALIBRATION_WORDS
+            return Err(CalibrateError::UnknownCommand {
+                word: other.to_string(),
+                known: CALIBRATION_WORDS
                     .iter()
                     .map(|(w, _)| *w)
                     .collect::<Vec<_>>()
-                    .join(", ")
-            ));
+                    .join(", "),
+            });
         }
     };
     if rest.is_empty() {
         Ok(action)
     } else {
-        Err(format!("'{word}' takes no argument (got '{rest}')"))
+        Err(CalibrateError::TakesNoArgument {
+            word: word.to_string(),
+            rest: rest.to_string(),
+        })
     }
 }
 
 /// Reads and parses a script; errors name the file and the line.
-pub fn load_calibration_script(path: &Path) -> anyhow::Result<Vec<CalScriptLine>> {
+pub fn load_calibration_script(path: &Path) -> Result<Vec<CalScriptLine>, CalibrateError> {
     Ok(load_script_with(path, parse_calibration_action)?)
 }
 
-/// Parses a script's text; an error is `LINE: reason`.
-pub fn parse_calibration_script(text: &str) -> Result<Vec<CalScriptLine>, String> {
+/// Parses a script's text; an error's text is `LINE: reason`.
+pub fn parse_calibration_script(text: &str) -> Result<Vec<CalScriptLine>, ScriptError> {
     parse_script_with(text, parse_calibration_action)
 }
 
@@ -115,19 +121,28 @@ mod tests {
         assert_eq!(s[2].at, At::After(0.5));
         assert_eq!(s[3].line, 5);
         assert_eq!(s[4].at, At::Absolute(2.0));
-        let e = parse_calibration_script("retry\nengage\n").unwrap_err();
-        assert!(
-            e.starts_with("2: ") && e.contains("unknown command 'engage'"),
-            "{e}"
+        let e = parse_calibration_script("retry\nengage\n")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "2: unknown command 'engage' (known: accept, retry, quit, wait STATE [TIMEOUT_S]) (line: \"engage\")"
         );
-        let e = parse_calibration_script("wait running").unwrap_err();
+        let e = parse_calibration_script("wait running")
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("unknown state 'running'") && e.contains("review"),
             "{e}"
         );
         assert!(parse_calibration_script("1.5").is_err());
-        let e = parse_calibration_script("retry now").unwrap_err();
-        assert!(e.contains("takes no argument"), "{e}");
+        let e = parse_calibration_script("retry now")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "1: 'retry' takes no argument (got 'now') (line: \"retry now\")"
+        );
     }
 
     #[test]
@@ -146,7 +161,7 @@ mod tests {
         let lines = parse_calibration_script("wait complete 1\n").unwrap();
         let mut p = CalScriptPlayer::new(lines, t0);
         assert_eq!(p.next(CalState::Fitting, at(0.0)), Ok(None));
-        let e = p.next(CalState::Fitting, at(2.0)).unwrap_err();
+        let e = p.next(CalState::Fitting, at(2.0)).unwrap_err().to_string();
         assert!(e.contains("line 1") && e.contains("'complete'"), "{e}");
     }
 }

@@ -6,13 +6,13 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::bail;
 use calibration::{
     CalibrationProfile, CalibrationSettings, FitInputs, FitProgress, PoseSet, ProfileHeader,
     calibrate, capture_pose,
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::profile_file::write_atomically;
 use crate::calibrate::progress_bar::ProgressBar;
 use crate::calibrate::session_frames::read_session;
@@ -52,7 +52,7 @@ pub struct FitOutcome {
 
 /// Read the session, fit, report, write the profile; returns the profile written. With
 /// `verbose`, a progress bar on stderr and the table on stdout.
-pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
+pub fn fit_session(options: &FitOptions) -> Result<CalibrationProfile, CalibrateError> {
     let mut bar = options.verbose.then(ProgressBar::new);
     let outcome = fit_session_with(options, &mut |p| {
         if let Some(bar) = bar.as_mut() {
@@ -76,25 +76,25 @@ pub fn fit_session(options: &FitOptions) -> anyhow::Result<CalibrationProfile> {
 pub fn fit_session_with(
     options: &FitOptions,
     progress: &mut dyn FnMut(FitProgress),
-) -> anyhow::Result<FitOutcome> {
+) -> Result<FitOutcome, CalibrateError> {
     let model = HandModel::orca_v1_right();
     let layout = options.station.retarget.layout;
     let reader = TrialReader::open(&options.session)?;
-    let file = options.session.display();
+    let file = || options.session.clone();
     let (info, poses) = read_session(&reader)?;
     if info.layout != layout {
-        bail!(
-            "{file}: recorded with keypoint layout '{}', but the station configuration uses '{}': pass the station's --config",
-            info.layout.name(),
-            layout.name()
-        );
+        return Err(CalibrateError::LayoutMismatch {
+            file: file(),
+            recorded: info.layout.name(),
+            station: layout.name(),
+        });
     }
     if info.model != model.name() {
-        bail!(
-            "{file}: recorded for model '{}', the station runs '{}'",
-            info.model,
-            model.name()
-        );
+        return Err(CalibrateError::ModelMismatch {
+            file: file(),
+            recorded: info.model,
+            station: model.name().to_string(),
+        });
     }
     let mut captures = Vec::with_capacity(poses.len());
     for pose in &poses {
@@ -104,7 +104,10 @@ pub fn fit_session_with(
             pose.frames.iter().map(Vec::as_slice),
             &options.settings.capture,
         )
-        .map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
+        .map_err(|source| CalibrateError::CaptureRefused {
+            file: file(),
+            source,
+        })?;
         captures.push(capture);
     }
     let pose_set = PoseSet::orca_v1();
@@ -117,7 +120,10 @@ pub fn fit_session_with(
         settings: &options.settings,
     };
     let fitted = calibrate(inputs, &captures, &mut |p| progress(p));
-    let fitted = fitted.map_err(|e| anyhow::anyhow!("{file}: calibration failed: {e}"))?;
+    let fitted = fitted.map_err(|source| CalibrateError::Fit {
+        file: file(),
+        source,
+    })?;
     let header = ProfileHeader {
         user: options.user.clone(),
         date: iso8601_utc(now_unix_s()),
@@ -130,10 +136,10 @@ pub fn fit_session_with(
     let profile = CalibrationProfile::new(header, &model, layout, &fitted);
     profile
         .validate()
-        .map_err(|e| anyhow::anyhow!("the fitted profile is invalid: {e}"))?;
+        .map_err(|source| CalibrateError::InvalidProfile { source })?;
     let text = profile
         .to_toml_string()
-        .map_err(|e| anyhow::anyhow!("cannot write the profile as TOML: {e}"))?;
+        .map_err(|source| CalibrateError::ProfileToml { source })?;
     write_atomically(&options.out, &text)?;
     let table = table_lines(&profile, &captures);
     Ok(FitOutcome { profile, table })
@@ -174,16 +180,16 @@ fn table_lines(
 }
 
 /// `profiles/<user>.toml`, refusing user names that are not a plain file name.
-pub fn default_profile_path(user: &str) -> anyhow::Result<PathBuf> {
+pub fn default_profile_path(user: &str) -> Result<PathBuf, CalibrateError> {
     let plain = !user.is_empty()
         && !user.starts_with('.')
         && user
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
     if !plain {
-        bail!(
-            "--user '{user}' cannot name a file (use letters, digits, '_', '-', '.'): give --out"
-        );
+        return Err(CalibrateError::UserNotAFileName {
+            user: user.to_string(),
+        });
     }
     Ok(Path::new("profiles").join(format!("{user}.toml")))
 }

@@ -17,12 +17,14 @@
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
 //! | `profile_file.rs` | loading a profile for the station, its one-line description, atomic writes |
 //! | `progress_bar.rs` | the fit's progress on stderr |
+//! | `error.rs` | the one error type, [`CalibrateError`] |
 
 pub mod calibration_console;
 pub mod calibration_screen;
 pub mod calibration_script;
 pub mod calibration_view;
 pub mod capture_quality;
+pub mod error;
 pub mod fit_session;
 pub mod pose_session;
 pub mod profile_file;
@@ -31,3 +33,5 @@ pub mod session_events;
 pub mod session_frames;
 pub mod session_node;
 pub mod simulated_user;
+
+pub use error::CalibrateError;

@@ -9,6 +9,7 @@
 //! | `{"event":"calibration_capture","pose":P,"phase":"end","attempt":N}` | … and closes |
 //! | `{"event":"calibration_capture_quality","pose":P,"attempt":N,"quality":"good"\|"poor"\|"bad",…}` | the capture's measures ([`super::capture_quality`]) |
 //! | `{"event":"calibration_capture_decision","pose":P,"attempt":N,"decision":"accepted"\|"retry","by":"auto"\|"operator"}` | what became of it |
+//! | `{"event":"calibration_pose_not_sent","topic":T,"count":N}` | N sends of the pose to the hand could not be published (written before the log is finished, only if N > 0) |
 //! | `{"event":"abort","reason":…}` | the session was abandoned |
 //! | `{"event":"stop","summary":{…}}` | every pose has an accepted capture |
 //!
@@ -18,10 +19,10 @@
 
 use std::collections::BTreeMap;
 
-use anyhow::bail;
 use msgs::StringMsg;
 use serde_json::{Value, json};
 
+use crate::calibrate::CalibrateError;
 use crate::mcap_log::{TRIAL_EVENTS_TOPIC, TrialReader};
 
 /// Name of the session's metadata record.
@@ -38,6 +39,9 @@ pub const QUALITY_EVENT: &str = "calibration_capture_quality";
 
 /// Event name of the decision about a capture (accepted, or retried).
 pub const DECISION_EVENT: &str = "calibration_capture_decision";
+
+/// Event name of the count of pose sends that could not be published.
+pub const POSE_NOT_SENT_EVENT: &str = "calibration_pose_not_sent";
 
 /// The event opening (`start = true`) or closing a pose's capture window.
 pub fn capture_event(pose: &str, start: bool) -> Value {
@@ -70,7 +74,7 @@ pub struct CaptureAttempt {
 
 /// Every closed capture window of a session log, in log order, with its quality and
 /// decision. A window that never closed (an interrupted session) is left out.
-pub fn capture_attempts(reader: &TrialReader) -> anyhow::Result<Vec<CaptureAttempt>> {
+pub fn capture_attempts(reader: &TrialReader) -> Result<Vec<CaptureAttempt>, CalibrateError> {
     let mut open: BTreeMap<(String, u64), i64> = BTreeMap::new();
     let mut attempts: Vec<CaptureAttempt> = Vec::new();
     for message in reader.messages_on(TRIAL_EVENTS_TOPIC) {
@@ -90,11 +94,11 @@ pub fn capture_attempts(reader: &TrialReader) -> anyhow::Result<Vec<CaptureAttem
                 }
                 Some("end") => {
                     let Some(start) = open.remove(&key) else {
-                        bail!(
-                            "{}: capture of pose '{pose}' ends at {} ns without a start",
-                            reader.path().display(),
-                            message.log_time_ns
-                        );
+                        return Err(CalibrateError::CaptureWithoutStart {
+                            file: reader.path().to_path_buf(),
+                            pose: pose.to_string(),
+                            at_ns: message.log_time_ns,
+                        });
                     };
                     attempts.push(CaptureAttempt {
                         pose: pose.to_string(),
@@ -136,7 +140,9 @@ fn last_attempt<'a>(
 /// The capture window the fit uses for each pose, log-time nanoseconds `[start, end)`: the
 /// accepted capture's, or in a log without decisions (written before captures were judged)
 /// the pose's last. A pose without one (an interrupted session) has no entry.
-pub fn capture_windows(reader: &TrialReader) -> anyhow::Result<BTreeMap<String, (i64, i64)>> {
+pub fn capture_windows(
+    reader: &TrialReader,
+) -> Result<BTreeMap<String, (i64, i64)>, CalibrateError> {
     let attempts = capture_attempts(reader)?;
     let judged = attempts.iter().any(|a| a.decision.is_some());
     Ok(attempts

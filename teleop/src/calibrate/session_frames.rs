@@ -3,12 +3,12 @@
 //! A message that does not decode is kept as an empty frame, so the capture check counts it
 //! as invalid rather than silently dropping it.
 
-use anyhow::Context as _;
 use calibration::POSE_NAMES;
 use msgs::{Float32MultiArray, PoseArray};
 use nalgebra::Point3;
 use retarget::KeypointLayout;
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::session_events::{SESSION_METADATA, capture_windows};
 use crate::mcap_log::{LoggedMessage, TrialReader};
 use station::convert::KeypointMessage;
@@ -45,20 +45,35 @@ fn points(message: &LoggedMessage) -> Vec<Point3<f64>> {
 
 /// The session's description and the frames of each pose, in capture order. Errors name the
 /// file, and the pose when a capture window is missing.
-pub fn read_session(reader: &TrialReader) -> anyhow::Result<(SessionInfo, Vec<PoseFrames>)> {
-    let file = reader.path().display().to_string();
-    let meta = reader.metadata_named(SESSION_METADATA).with_context(|| {
-        format!("{file}: no '{SESSION_METADATA}' metadata record: not a calibration session log")
-    })?;
+pub fn read_session(
+    reader: &TrialReader,
+) -> Result<(SessionInfo, Vec<PoseFrames>), CalibrateError> {
+    let file = reader.path();
+    let meta =
+        reader
+            .metadata_named(SESSION_METADATA)
+            .ok_or_else(|| CalibrateError::NotASession {
+                file: file.to_path_buf(),
+                record: SESSION_METADATA,
+            })?;
     let get = |key: &str| {
         meta.get(key)
             .cloned()
-            .with_context(|| format!("{file}: metadata '{SESSION_METADATA}' has no '{key}'"))
+            .ok_or_else(|| CalibrateError::MissingMetadata {
+                file: file.to_path_buf(),
+                record: SESSION_METADATA,
+                key: key.to_string(),
+            })
     };
     let layout_name = get("layout")?;
-    let layout: KeypointLayout =
-        serde_json::from_value(serde_json::Value::String(layout_name.clone()))
-            .with_context(|| format!("{file}: unknown keypoint layout '{layout_name}'"))?;
+    let layout: KeypointLayout = serde_json::from_value(serde_json::Value::String(
+        layout_name.clone(),
+    ))
+    .map_err(|source| CalibrateError::UnknownLayout {
+        file: file.to_path_buf(),
+        layout: layout_name,
+        source,
+    })?;
     let info = SessionInfo {
         layout,
         keypoints_topic: get("keypoints_topic")?,
@@ -68,9 +83,10 @@ pub fn read_session(reader: &TrialReader) -> anyhow::Result<(SessionInfo, Vec<Po
     let mut out = Vec::with_capacity(POSE_NAMES.len());
     for pose in POSE_NAMES {
         let Some(&(start, end)) = windows.get(pose) else {
-            anyhow::bail!(
-                "{file}: no accepted capture window for pose '{pose}' (was the session interrupted?): record the session again"
-            );
+            return Err(CalibrateError::NoCaptureWindow {
+                file: file.to_path_buf(),
+                pose,
+            });
         };
         let frames = reader
             .messages_on(&info.keypoints_topic)

@@ -15,7 +15,6 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use anyhow::{Context as _, bail};
 use calibration::{CaptureSchedule, CaptureThresholds, FitProgress, PoseSet};
 use futures::StreamExt;
 use msgs::{Float32MultiArray, JointState, PoseArray};
@@ -24,17 +23,19 @@ use serde_json::json;
 use tokio::sync::{mpsc, watch};
 use tokio::time::Instant;
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_console::{ConsoleFront, FrontAction};
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::fit_session::{FitOptions, FitOutcome, fit_session_with};
 use crate::calibrate::pose_session::{
     CalibrationAction, Effect, Phase, PoseSession, PoseStep, SessionTiming,
 };
-use crate::calibrate::session_events::SESSION_METADATA;
+use crate::calibrate::session_events::{POSE_NOT_SENT_EVENT, SESSION_METADATA};
 use crate::clock::StationClock;
-use crate::mcap_log::{OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::mcap_log::{FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions};
 use crate::ros::NetworkContext as _;
 use crate::ros::RosNode;
+use crate::tui::script::ScriptError;
 use crate::tui::terminal::Input;
 use station::convert::{KeypointMessage, header};
 use station::{KeypointFormat, StationConfig};
@@ -80,6 +81,9 @@ pub struct SessionReport {
     pub captures_per_pose: Vec<usize>,
     /// Keypoint messages logged in all.
     pub frames: u64,
+    /// Poses the hand was to be sent that could not be published (also in the log, as a
+    /// `calibration_pose_not_sent` event).
+    pub poses_not_sent: u64,
     /// The fit.
     pub fit: FitOutcome,
 }
@@ -108,8 +112,11 @@ pub async fn run_session(
     front: &mut ConsoleFront,
     fit: FitOptions,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<SessionReport> {
-    options.schedule.validate()?;
+) -> Result<SessionReport, CalibrateError> {
+    options
+        .schedule
+        .validate()
+        .map_err(|source| CalibrateError::Schedule { source })?;
     let timing = SessionTiming {
         settle_s: options.schedule.slot_s - options.schedule.capture_s,
         capture_s: options.schedule.capture_s,
@@ -188,7 +195,7 @@ pub async fn run_session(
             }
             _ = run.hand.resend.tick() => {
                 if let Some(message) = run.pose_to_resend()? {
-                    joint_pub.async_publish(message).await.ok();
+                    run.pose_sent(joint_pub.async_publish(message).await);
                 }
             }
             _ = tick.tick() => {}
@@ -206,13 +213,14 @@ pub async fn run_session(
 }
 
 /// Each pose's joint targets, in capture order.
-fn pose_targets(model: &HandModel) -> anyhow::Result<Vec<Vec<f64>>> {
+fn pose_targets(model: &HandModel) -> Result<Vec<Vec<f64>>, CalibrateError> {
     let pose_set = PoseSet::orca_v1();
-    Ok(pose_set
+    pose_set
         .poses
         .iter()
         .map(|p| p.joint_vector(model))
-        .collect::<Result<_, _>>()?)
+        .collect::<Result<_, _>>()
+        .map_err(|source| CalibrateError::PoseTargets { source })
 }
 
 /// Creates the session log (`.part` while recording): the keypoint and joint-target
@@ -221,7 +229,7 @@ fn open_session_log(
     options: &SessionOptions,
     model: &HandModel,
     timing: SessionTiming,
-) -> anyhow::Result<TrialWriter> {
+) -> Result<TrialWriter, LogError> {
     let config = &options.station;
     let topic = config.input.keypoints_topic.clone();
     let mut writer = TrialWriter::create(&options.out, TrialWriterOptions::default())?;
@@ -306,6 +314,8 @@ struct HandCommand {
     names: Vec<String>,
     /// The pose being commanded.
     current: Option<usize>,
+    /// Sends of a pose that could not be published.
+    not_sent: u64,
     /// When to re-send it.
     resend: tokio::time::Interval,
 }
@@ -318,7 +328,7 @@ struct FitRun {
     progress_tx: mpsc::UnboundedSender<FitProgress>,
     progress_rx: mpsc::UnboundedReceiver<FitProgress>,
     /// The running fit.
-    task: Option<tokio::task::JoinHandle<anyhow::Result<FitOutcome>>>,
+    task: Option<tokio::task::JoinHandle<Result<FitOutcome, CalibrateError>>>,
     /// Its result.
     outcome: Option<FitOutcome>,
 }
@@ -329,9 +339,37 @@ struct SessionEnd {
     /// Ctrl-C or the shutdown signal.
     interrupted: bool,
     /// A script that timed out or ended at a review.
-    failure: Option<String>,
+    failure: Option<ScriptFailure>,
     /// The session quit complete.
     completed: bool,
+}
+
+/// Why a script ended the session.
+enum ScriptFailure {
+    /// A wait timed out.
+    TimedOut(ScriptError),
+    /// The script ended with a capture under review.
+    EndedInReview,
+}
+
+impl ScriptFailure {
+    /// What the console and the log's abort event say.
+    fn reason(&self) -> String {
+        match self {
+            ScriptFailure::TimedOut(e) => e.to_string(),
+            ScriptFailure::EndedInReview => {
+                "the script ended with a capture under review: add 'retry' or 'accept'".to_string()
+            }
+        }
+    }
+
+    /// The session's error, naming its log.
+    fn error(self, log: PathBuf) -> CalibrateError {
+        match self {
+            ScriptFailure::TimedOut(source) => CalibrateError::ScriptTimedOut { source, log },
+            ScriptFailure::EndedInReview => CalibrateError::ScriptEndedInReview { log },
+        }
+    }
 }
 
 /// A running session: the pose session, its log, the hand, the fit and the console.
@@ -359,6 +397,7 @@ impl HandCommand {
             targets,
             names,
             current: None,
+            not_sent: 0,
             resend: tokio::time::interval(Duration::from_secs_f64(RESEND_S)),
         }
     }
@@ -384,7 +423,7 @@ impl SessionRun<'_> {
         message: &KeypointMessage,
         now: i64,
         source_ns: i64,
-    ) -> anyhow::Result<Vec<Effect>> {
+    ) -> Result<Vec<Effect>, LogError> {
         let topic = &self.options.station.input.keypoints_topic;
         if let Some(w) = self.log.writer.as_mut() {
             match message {
@@ -397,7 +436,7 @@ impl SessionRun<'_> {
     }
 
     /// The commanded pose to send again (logged), if the hand is being sent to one.
-    fn pose_to_resend(&mut self) -> anyhow::Result<Option<JointState>> {
+    fn pose_to_resend(&mut self) -> Result<Option<JointState>, LogError> {
         let Some(k) = self.hand.current else {
             return Ok(None);
         };
@@ -416,6 +455,33 @@ impl SessionRun<'_> {
         Ok(Some(message))
     }
 
+    /// A pose sent to the hand, or why it could not be: a failure is counted, said in the
+    /// console the first time, and logged when the log is finished.
+    fn pose_sent<E: std::fmt::Display>(&mut self, sent: Result<(), E>) {
+        if let Err(e) = sent {
+            self.hand.not_sent += 1;
+            if self.hand.not_sent == 1 {
+                self.session.say(format!(
+                    "cannot send the pose to the hand on {}: {e}",
+                    self.options.station.output.joint_targets_topic
+                ));
+            }
+        }
+    }
+
+    /// Finishes the log, after an event counting the poses that could not be sent (if any).
+    fn finish_log(&self, mut w: TrialWriter, now: i64) -> Result<FinishedTrial, LogError> {
+        if self.hand.not_sent > 0 {
+            let event = json!({
+                "event": POSE_NOT_SENT_EVENT,
+                "topic": self.options.station.output.joint_targets_topic,
+                "count": self.hand.not_sent,
+            });
+            w.write_event(now, &event)?;
+        }
+        w.finish()
+    }
+
     /// A key: an action on the session, or Ctrl-C.
     fn key_pressed(&mut self, input: &Input, actions: &mut Vec<CalibrationAction>) {
         match ConsoleFront::key_action(input) {
@@ -428,13 +494,13 @@ impl SessionRun<'_> {
     /// The fit task ended: its table in the console, its line and outcome to the session.
     fn fit_finished(
         &mut self,
-        result: Result<anyhow::Result<FitOutcome>, tokio::task::JoinError>,
+        result: Result<Result<FitOutcome, CalibrateError>, tokio::task::JoinError>,
     ) -> Vec<Effect> {
         let fit = &self.fit.options;
         self.fit.task = None;
         let outcome = match result {
             Ok(Ok(outcome)) => Ok(outcome),
-            Ok(Err(e)) => Err(format!("{e:#}")),
+            Ok(Err(e)) => Err(e.to_string()),
             Err(e) => Err(format!("the fit task failed: {e}")),
         };
         let line = outcome
@@ -459,7 +525,7 @@ impl SessionRun<'_> {
     /// The rest of a turn after a wake-up: an interruption or a glove that never came ends
     /// the session; the script's and the operator's actions and the clock go to the session,
     /// its effects are carried out, the simulated user cued, the console shown.
-    fn finish_turn(&mut self, mut turn: Turn) -> anyhow::Result<Next> {
+    fn finish_turn(&mut self, mut turn: Turn) -> Result<Next, CalibrateError> {
         let now = self.clock.now_ns();
         self.stop_if_interrupted(now)?;
         self.stop_if_no_glove()?;
@@ -479,30 +545,23 @@ impl SessionRun<'_> {
 
     /// Ctrl-C or the shutdown: the log is finished as aborted (or, during the fit, kept) and
     /// the session ends with an error.
-    fn stop_if_interrupted(&mut self, now: i64) -> anyhow::Result<()> {
+    fn stop_if_interrupted(&mut self, now: i64) -> Result<(), CalibrateError> {
         if !self.end.interrupted {
             return Ok(());
         }
         if let Some(mut w) = self.log.writer.take() {
             w.write_event(now, &json!({"event": "abort", "reason": "interrupted"}))?;
-            let finished = w.finish()?;
-            bail!(
-                "calibration session interrupted; partial log {}",
-                finished.path.display()
-            );
+            let finished = self.finish_log(w, now)?;
+            return Err(CalibrateError::Interrupted { log: finished.path });
         }
-        bail!(
-            "calibration interrupted during the fit; the session is kept in {}: fit it again with --from",
-            self.log
-                .path
-                .as_ref()
-                .map_or(String::new(), |p| p.display().to_string())
-        );
+        Err(CalibrateError::InterruptedFit {
+            log: self.log.path.clone().unwrap_or_default(),
+        })
     }
 
     /// No glove keypoints within the wait: the empty log is removed and the session ends
     /// with an error.
-    fn stop_if_no_glove(&mut self) -> anyhow::Result<()> {
+    fn stop_if_no_glove(&mut self) -> Result<(), CalibrateError> {
         let options = self.options;
         let config = &options.station;
         let topic = &config.input.keypoints_topic;
@@ -513,11 +572,11 @@ impl SessionRun<'_> {
                 drop(w.finish());
             }
             std::fs::remove_file(&options.out).ok();
-            bail!(
-                "no glove keypoints on {topic} within {:.0} s (domain {}): is the glove streaming?",
-                options.glove_wait.as_secs_f64(),
-                crate::ros::domain_id(config.network.domain_id)?
-            );
+            return Err(CalibrateError::NoGlove {
+                topic: topic.clone(),
+                wait_s: options.glove_wait.as_secs_f64(),
+                domain: crate::ros::domain_id(config.network.domain_id)?,
+            });
         }
         Ok(())
     }
@@ -528,15 +587,15 @@ impl SessionRun<'_> {
             Ok(Some(a)) => actions.push(a),
             Ok(None) => {}
             Err(e) => {
-                self.session.say(e.clone());
-                self.end.failure = Some(e);
+                self.session.say(e.to_string());
+                self.end.failure = Some(ScriptFailure::TimedOut(e));
                 actions.push(CalibrationAction::Quit);
             }
         }
     }
 
     /// Carries out the session's effects: the pose to command, log events, the fit, quitting.
-    fn carry_out(&mut self, effects: Vec<Effect>) -> anyhow::Result<Next> {
+    fn carry_out(&mut self, effects: Vec<Effect>) -> Result<Next, CalibrateError> {
         let mut next = Next::Continue;
         for effect in effects {
             match effect {
@@ -564,11 +623,13 @@ impl SessionRun<'_> {
 
     /// Every pose accepted: the log is finished and fitted in a blocking task, its progress
     /// sent back.
-    fn start_fit(&mut self) -> anyhow::Result<()> {
+    fn start_fit(&mut self) -> Result<(), CalibrateError> {
         let Some(w) = self.log.writer.take() else {
             return Ok(());
         };
-        let finished = w.finish().context("finishing the session log")?;
+        let finished = self
+            .finish_log(w, self.clock.now_ns())
+            .map_err(|source| CalibrateError::FinishLog { source })?;
         self.session
             .say(format!("session recorded: {}", finished.path.display()));
         self.fit.options.session = finished.path.clone();
@@ -609,10 +670,9 @@ impl SessionRun<'_> {
             }
             CalState::Failed => Next::Quit,
             CalState::Review => {
-                let e = "the script ended with a capture under review: add 'retry' or 'accept'"
-                    .to_string();
-                self.session.say(e.clone());
-                self.end.failure = Some(e);
+                let failure = ScriptFailure::EndedInReview;
+                self.session.say(failure.reason());
+                self.end.failure = Some(failure);
                 Next::Quit
             }
             _ => Next::Continue,
@@ -621,16 +681,14 @@ impl SessionRun<'_> {
 
     /// The session has quit: the log is finished (as aborted after a failure) and the
     /// session's outcome returned.
-    fn finish(mut self) -> anyhow::Result<SessionReport> {
+    fn finish(mut self) -> Result<SessionReport, CalibrateError> {
         let failure = self.end.failure.take();
         if let Some(mut w) = self.log.writer.take() {
-            if failure.is_some() {
-                w.write_event(
-                    self.clock.now_ns(),
-                    &json!({"event": "abort", "reason": failure.clone()}),
-                )?;
+            let now = self.clock.now_ns();
+            if let Some(f) = &failure {
+                w.write_event(now, &json!({"event": "abort", "reason": f.reason()}))?;
             }
-            let finished = w.finish()?;
+            let finished = self.finish_log(w, now)?;
             self.log.path = Some(finished.path);
         }
         let path = self
@@ -638,14 +696,14 @@ impl SessionRun<'_> {
             .path
             .take()
             .unwrap_or_else(|| self.options.out.clone());
-        if let Some(reason) = failure {
-            bail!("{reason}; the session log is kept in {}", path.display());
+        if let Some(failure) = failure {
+            return Err(failure.error(path));
         }
         self.report(path)
     }
 
     /// The report of a complete session with its fit; otherwise why there is none.
-    fn report(self, path: PathBuf) -> anyhow::Result<SessionReport> {
+    fn report(self, path: PathBuf) -> Result<SessionReport, CalibrateError> {
         let session = &self.session;
         match (self.end.completed, self.fit.outcome, session.phase()) {
             (true, Some(fit), _) => {
@@ -657,19 +715,15 @@ impl SessionRun<'_> {
                         .collect(),
                     captures_per_pose: session.attempts().iter().map(Vec::len).collect(),
                     frames: self.log.frames,
+                    poses_not_sent: self.hand.not_sent,
                     fit,
                 })
             }
-            (_, _, Phase::Failed(reason)) => {
-                bail!(
-                    "{reason}; the session log is kept in {} (once the problem is fixed, fit it again with --from if every pose was accepted)",
-                    path.display()
-                )
-            }
-            _ => bail!(
-                "calibration session abandoned; its log is kept in {}",
-                path.display()
-            ),
+            (_, _, Phase::Failed(reason)) => Err(CalibrateError::Failed {
+                reason: reason.clone(),
+                log: path,
+            }),
+            _ => Err(CalibrateError::Abandoned { log: path }),
         }
     }
 }

@@ -9,7 +9,6 @@
 
 use std::time::Duration;
 
-use anyhow::{Context as _, bail};
 use calibration::{
     CalibrationSettings, CaptureSchedule, FitInputs, PoseSet, Study, SyntheticUser, human_copies,
 };
@@ -17,6 +16,7 @@ use msgs::{Float32MultiArray, PoseStamped};
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel};
 use tokio::sync::watch;
 
+use crate::calibrate::CalibrateError;
 use crate::calibrate::session_node::PoseCue;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
@@ -34,15 +34,15 @@ pub fn synthetic_user(
     hand_scale: f64,
     glove_rpy_deg: [f64; 3],
     seed: u64,
-) -> anyhow::Result<SyntheticUser> {
+) -> Result<SyntheticUser, CalibrateError> {
     if !(hand_scale.is_finite() && (0.5..=2.0).contains(&hand_scale)) {
-        bail!("--hand-scale {hand_scale} must be in [0.5, 2]");
+        return Err(CalibrateError::HandScale { hand_scale });
     }
-    if let Some(a) = glove_rpy_deg
+    if let Some(&angle) = glove_rpy_deg
         .iter()
         .find(|a| !(a.is_finite() && a.abs() <= 45.0))
     {
-        bail!("--glove-rpy angle {a}° must be in [-45, 45] degrees");
+        return Err(CalibrateError::GloveAngle { angle });
     }
     Ok(SyntheticUser {
         hand_scale,
@@ -59,7 +59,7 @@ pub fn true_transform(
     user: &SyntheticUser,
     station: &StationConfig,
     settings: &CalibrationSettings,
-) -> anyhow::Result<CalibrationTransform> {
+) -> Result<CalibrationTransform, CalibrateError> {
     let model = HandModel::orca_v1_right();
     let catalog = EmbodimentCatalog::builtin();
     let poses = PoseSet::orca_v1();
@@ -70,7 +70,7 @@ pub fn true_transform(
         poses: &poses,
         settings,
     })
-    .context("calibrating the reference hand")?;
+    .map_err(|source| CalibrateError::ReferenceHand { source })?;
     Ok(user.true_transform(study.reference()))
 }
 
@@ -109,10 +109,19 @@ pub fn loopback(domain_id: u16) -> NetworkConfig {
     }
 }
 
+/// What the simulated glove published.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SimulatedGloveReport {
+    /// Frames (keypoints and wrist pose) made.
+    pub frames: u64,
+    /// Frames of which the keypoints or the wrist pose could not be published.
+    pub not_published: u64,
+}
+
 /// Publish `user`'s glove on the station's keypoint and wrist topics at 100 Hz, copying the
 /// pose the session is at (`cue`); the first capture of pose `bad_pose` (if any) is taken
 /// with a shaking hand. Until the session starts the hand holds the motion's first posture.
-/// Returns the frames published, after `stop`.
+/// Returns what was published, after `stop`.
 pub async fn publish_simulated_user(
     user: SyntheticUser,
     bad_pose: Option<usize>,
@@ -121,26 +130,24 @@ pub async fn publish_simulated_user(
     clock: StationClock,
     mut cue: watch::Receiver<Option<PoseCue>>,
     mut stop: watch::Receiver<bool>,
-) -> anyhow::Result<u64> {
+) -> Result<SimulatedGloveReport, CalibrateError> {
     if station.input.keypoints_format != KeypointFormat::Float32MultiArray {
-        bail!(
-            "--simulate publishes Float32MultiArray keypoints: the station configuration must use input.keypoints_format = \"float32_multi_array\""
-        );
+        return Err(CalibrateError::SimulateNeedsArray);
     }
     let model = HandModel::orca_v1_right();
     let schedule = CaptureSchedule::default();
     let layout = station.retarget.layout;
     let copies = human_copies(&model, &PoseSet::orca_v1())
-        .map_err(|e| anyhow::anyhow!("the human copies of the poses: {e}"))?;
+        .map_err(|source| CalibrateError::HumanCopies { source })?;
     let glove = user
         .glove(layout, &schedule, &copies)
-        .map_err(|e| anyhow::anyhow!("simulated glove: {e}"))?;
+        .map_err(|source| CalibrateError::SimulatedGlove { source })?;
     let shaking = SyntheticUser {
         noise_sd_m: SHAKING_NOISE_M,
         ..user
     }
     .glove(layout, &schedule, &copies)
-    .map_err(|e| anyhow::anyhow!("simulated glove: {e}"))?;
+    .map_err(|source| CalibrateError::SimulatedGlove { source })?;
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_simulated_user")?;
     let qos = QosConfig::best_effort(400);
@@ -150,7 +157,7 @@ pub async fn publish_simulated_user(
         tokio::time::interval(Duration::from_secs_f64(1.0 / SIMULATED_GLOVE_RATE_HZ));
     interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let mut since: Option<(PoseCue, i64)> = None;
-    let mut published = 0u64;
+    let mut report = SimulatedGloveReport::default();
     loop {
         tokio::select! {
             changed = stop.changed() => if changed.is_err() || *stop.borrow() { break },
@@ -169,18 +176,23 @@ pub async fn publish_simulated_user(
                         (if shakes { &shaking } else { &glove }, t)
                     }
                     // Before the session starts: the first posture, its noise varying.
-                    None => (&glove, (published % 100) as f64 * 1e-6),
+                    None => (&glove, (report.frames % 100) as f64 * 1e-6),
                 };
                 let (points, wrist) = glove.frame(t_s);
                 let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
-                keypoints_pub.async_publish(Float32MultiArray::from_points(&rows)?).await.ok();
+                let keypoints = Float32MultiArray::from_points(&rows)
+                    .map_err(|source| CalibrateError::KeypointMessage { source })?;
                 let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
-                wrist_pub.async_publish(pose).await.ok();
-                published += 1;
+                let sent = keypoints_pub.async_publish(keypoints).await.is_ok();
+                let sent = wrist_pub.async_publish(pose).await.is_ok() && sent;
+                report.frames += 1;
+                if !sent {
+                    report.not_published += 1;
+                }
             }
         }
     }
-    Ok(published)
+    Ok(report)
 }
 
 #[cfg(test)]

@@ -383,14 +383,14 @@ fn run_in_console(
                 .await;
                 stop_tx.send(true).ok();
                 glove.await.context("simulated glove task")??;
-                report
+                Ok(report?)
             }
             None => {
                 let mut session = session;
                 if args.domain_id.is_some() {
                     session.station.network.domain_id = args.domain_id;
                 }
-                run_session(
+                Ok(run_session(
                     session,
                     &model,
                     clock,
@@ -399,7 +399,7 @@ fn run_in_console(
                     fit_in_console,
                     shutdown,
                 )
-                .await
+                .await?)
             }
         }
     })
@@ -424,6 +424,12 @@ fn print_session_report(report: &SessionReport, out: &Path) {
             format!("captured again: {}", retried.join(", "))
         }
     );
+    if report.poses_not_sent > 0 {
+        eprintln!(
+            "warning: {} sends of a pose to the hand could not be published",
+            report.poses_not_sent
+        );
+    }
     for line in &report.fit.table {
         println!("{line}");
     }

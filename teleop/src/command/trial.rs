@@ -636,7 +636,7 @@ impl TrialConsole {
             Input::CtrlC => actions.push(Action::Interrupt),
             Input::Line(line) if !line.trim().is_empty() => match parse_action(&line) {
                 Ok(action) => actions.push(action),
-                Err(e) => flow.say(e),
+                Err(e) => flow.say(e.to_string()),
             },
             Input::Line(_) => {}
             Input::Closed => {
@@ -699,8 +699,8 @@ impl TrialConsole {
                 Ok(Some(action)) => actions.push(action),
                 Ok(None) => {}
                 Err(e) => {
-                    self.session.flow.say(e.clone());
-                    self.end.failure = Some(anyhow::anyhow!(e));
+                    self.session.flow.say(e.to_string());
+                    self.end.failure = Some(e.into());
                     actions.push(Action::Interrupt);
                 }
             }

@@ -1,6 +1,8 @@
 //! The operator's actions, and the words and keys that give them: the same actions come from
 //! the keyboard, a `--script` file or a line on stdin.
 
+use super::ConsoleError;
+
 /// One thing the operator asks of the console.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
@@ -77,7 +79,7 @@ pub const ACTION_WORDS: &[(&str, &str)] = &[
 pub const KEY_HELP: &str = "e engage/clutch · space start/stop · + mark · - unmark · p value · d drop · a abort · r redo · n note · q quit";
 
 /// Parses a command word with its argument (`progress 30`, `note glove slipped`).
-pub fn parse_action(text: &str) -> Result<Action, String> {
+pub fn parse_action(text: &str) -> Result<Action, ConsoleError> {
     let text = text.trim();
     let (word, rest) = match text.split_once(char::is_whitespace) {
         Some((w, r)) => (w, r.trim()),
@@ -87,7 +89,10 @@ pub fn parse_action(text: &str) -> Result<Action, String> {
         if rest.is_empty() {
             Ok(action)
         } else {
-            Err(format!("'{word}' takes no argument (got '{rest}')"))
+            Err(ConsoleError::TakesNoArgument {
+                word: word.to_string(),
+                rest: rest.to_string(),
+            })
         }
     };
     match word {
@@ -99,11 +104,13 @@ pub fn parse_action(text: &str) -> Result<Action, String> {
             if rest.is_empty() {
                 return Ok(Action::Progress(None));
             }
-            let value: f64 = rest
-                .parse()
-                .map_err(|_| format!("progress value '{rest}' is not a number"))?;
+            let value: f64 = rest.parse().map_err(|_| ConsoleError::ProgressNotANumber {
+                value: rest.to_string(),
+            })?;
             if !value.is_finite() {
-                return Err(format!("progress value '{rest}' is not finite"));
+                return Err(ConsoleError::ProgressNotFinite {
+                    value: rest.to_string(),
+                });
             }
             Ok(Action::Progress(Some(value)))
         }
@@ -113,20 +120,20 @@ pub fn parse_action(text: &str) -> Result<Action, String> {
         "redo" => no_argument(Action::Redo),
         "note" => {
             if rest.is_empty() {
-                Err("'note' needs a text: note TEXT".to_string())
+                Err(ConsoleError::NoteWithoutText)
             } else {
                 Ok(Action::Note(rest.to_string()))
             }
         }
         "quit" => no_argument(Action::Quit),
-        other => Err(format!(
-            "unknown command '{other}' (known: {})",
-            ACTION_WORDS
+        other => Err(ConsoleError::UnknownCommand {
+            word: other.to_string(),
+            known: ACTION_WORDS
                 .iter()
                 .map(|(w, _)| w.split(' ').next().unwrap_or(w))
                 .collect::<Vec<_>>()
-                .join(", ")
-        )),
+                .join(", "),
+        }),
     }
 }
 
@@ -153,20 +160,38 @@ mod tests {
 
     #[test]
     fn words_parse_with_their_arguments_and_errors_name_the_word() {
-        assert_eq!(parse_action("progress"), Ok(Action::Progress(None)));
+        assert_eq!(parse_action("progress").ok(), Some(Action::Progress(None)));
         assert_eq!(
-            parse_action(" progress 0.5 "),
-            Ok(Action::Progress(Some(0.5)))
+            parse_action(" progress 0.5 ").ok(),
+            Some(Action::Progress(Some(0.5)))
         );
         assert_eq!(
-            parse_action("note glove slipped"),
-            Ok(Action::Note("glove slipped".into()))
+            parse_action("note glove slipped").ok(),
+            Some(Action::Note("glove slipped".into()))
         );
-        assert!(parse_action("progress x").is_err_and(|e| e.contains("'x'")));
-        assert!(parse_action("progress inf").is_err());
-        assert!(parse_action("stop now").is_err_and(|e| e.contains("'stop'")));
-        assert!(parse_action("jump").is_err_and(|e| e.contains("unknown command 'jump'")));
-        assert!(parse_action("note").is_err());
+        let error = |text: &str| parse_action(text).map_err(|e| e.to_string()).err();
+        assert_eq!(
+            error("progress x").as_deref(),
+            Some("progress value 'x' is not a number")
+        );
+        assert_eq!(
+            error("progress inf").as_deref(),
+            Some("progress value 'inf' is not finite")
+        );
+        assert_eq!(
+            error("stop now").as_deref(),
+            Some("'stop' takes no argument (got 'now')")
+        );
+        assert_eq!(
+            error("jump").as_deref(),
+            Some(
+                "unknown command 'jump' (known: engage, disengage, start, stop, progress, unmark, drop, abort, redo, note, quit)"
+            )
+        );
+        assert_eq!(
+            error("note").as_deref(),
+            Some("'note' needs a text: note TEXT")
+        );
     }
 
     #[test]

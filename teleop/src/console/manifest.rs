@@ -6,6 +6,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::ConsoleError;
 use crate::atomic_file::write_atomically;
 
 /// The manifest's format name.
@@ -141,25 +142,33 @@ impl Manifest {
     }
 
     /// Reads a manifest; errors name the file.
-    pub fn load(path: &Path) -> anyhow::Result<Manifest> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            anyhow::anyhow!("cannot read the session manifest {}: {e}", path.display())
+    pub fn load(path: &Path) -> Result<Manifest, ConsoleError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConsoleError::ReadManifest {
+            path: path.to_path_buf(),
+            source,
         })?;
-        let manifest: Manifest = serde_json::from_str(&text)
-            .map_err(|e| anyhow::anyhow!("{}: not a session manifest: {e}", path.display()))?;
+        let manifest: Manifest =
+            serde_json::from_str(&text).map_err(|source| ConsoleError::NotAManifest {
+                path: path.to_path_buf(),
+                source,
+            })?;
         if manifest.format != MANIFEST_FORMAT {
-            anyhow::bail!(
-                "{}: format {:?}, expected {MANIFEST_FORMAT:?}",
-                path.display(),
-                manifest.format
-            );
+            return Err(ConsoleError::ManifestFormat {
+                path: path.to_path_buf(),
+                found: manifest.format,
+                expected: MANIFEST_FORMAT,
+            });
         }
         Ok(manifest)
     }
 
     /// Writes the manifest atomically.
-    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
-        let mut text = serde_json::to_string_pretty(self)?;
+    pub fn save(&self, path: &Path) -> Result<(), ConsoleError> {
+        let mut text =
+            serde_json::to_string_pretty(self).map_err(|source| ConsoleError::EncodeManifest {
+                path: path.to_path_buf(),
+                source,
+            })?;
         text.push('\n');
         Ok(write_atomically(path, text)?)
     }
@@ -240,7 +249,28 @@ mod tests {
         let mut other = m;
         other.format = "x".into();
         assert!(other.save(&path).is_ok());
-        assert!(Manifest::load(&path).is_err_and(|e| e.to_string().contains("format")));
+        assert_eq!(
+            Manifest::load(&path).map_err(|e| e.to_string()).err(),
+            Some(format!(
+                "{}: format \"x\", expected \"pomdar-session/1\"",
+                path.display()
+            ))
+        );
+        std::fs::write(&path, "{").unwrap();
+        let e = Manifest::load(&path).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("{}: not a session manifest: ", path.display())),
+            "{e}"
+        );
+        let missing = dir.join("missing.json");
+        let e = Manifest::load(&missing).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!(
+                "cannot read the session manifest {}: ",
+                missing.display()
+            )),
+            "{e}"
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -2,6 +2,7 @@
 //! health, the manifest and the script are plain data and state machines; the terminal, the
 //! station and the files are handled by the command.
 
+pub mod error;
 pub mod health;
 pub mod keys;
 pub mod manifest;
@@ -11,3 +12,5 @@ pub mod session_dir;
 pub mod trial_flow;
 pub mod trial_script;
 pub mod view;
+
+pub use error::ConsoleError;

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use crate::mcap_log::recover;
 use crate::utc_date::{compact_utc, now_unix_s};
 
+use super::ConsoleError;
 use super::manifest::{MANIFEST_FILE, MANIFEST_FORMAT, Manifest, ManifestTrial, TrialStatus};
 
 /// What identifies a session and what it plans.
@@ -32,7 +33,7 @@ pub struct SessionPlan {
 }
 
 /// Checks a name used in file names and metadata: letters, digits, `_`, `-`, `.`.
-pub fn check_name(flag: &str, value: &str) -> anyhow::Result<()> {
+pub fn check_name(flag: &str, value: &str) -> Result<(), ConsoleError> {
     let ok = !value.is_empty()
         && value.len() <= 64
         && !value.starts_with('.')
@@ -40,9 +41,10 @@ pub fn check_name(flag: &str, value: &str) -> anyhow::Result<()> {
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
     if !ok {
-        anyhow::bail!(
-            "{flag} {value:?}: use 1–64 letters, digits, '_', '-' or '.' (not starting with '.'); it names the session's files"
-        );
+        return Err(ConsoleError::Name {
+            flag: flag.to_string(),
+            value: value.to_string(),
+        });
     }
     Ok(())
 }
@@ -58,9 +60,13 @@ pub fn session_dir(root: &Path, plan: &SessionPlan) -> PathBuf {
 /// and user) or starts a new one. `.part` logs left by a crash are recovered to
 /// `NAME.mcap.interrupted` and entered as interrupted trials. Returns the manifest and what
 /// was done, for the operator.
-pub fn open_session(dir: &Path, plan: &SessionPlan) -> anyhow::Result<(Manifest, Vec<String>)> {
-    std::fs::create_dir_all(dir).map_err(|e| {
-        anyhow::anyhow!("cannot create the session directory {}: {e}", dir.display())
+pub fn open_session(
+    dir: &Path,
+    plan: &SessionPlan,
+) -> Result<(Manifest, Vec<String>), ConsoleError> {
+    std::fs::create_dir_all(dir).map_err(|source| ConsoleError::CreateSessionDir {
+        dir: dir.to_path_buf(),
+        source,
     })?;
     let path = dir.join(MANIFEST_FILE);
     let now = compact_utc(now_unix_s());
@@ -73,10 +79,12 @@ pub fn open_session(dir: &Path, plan: &SessionPlan) -> anyhow::Result<(Manifest,
             ("user", &m.user, &plan.user),
         ] {
             if found != asked {
-                anyhow::bail!(
-                    "{}: this session is {field} {found:?}, not {asked:?}; use another --out",
-                    path.display()
-                );
+                return Err(ConsoleError::OtherSession {
+                    manifest: path,
+                    field,
+                    found: found.clone(),
+                    asked: asked.clone(),
+                });
             }
         }
         if m.practice_planned != plan.practice || m.trials_planned != plan.trials {
@@ -144,8 +152,12 @@ fn slot_of(file: &str, task: &str) -> Option<(bool, u32)> {
     Some((practice, digits.parse().ok()?))
 }
 
-fn recover_parts(dir: &Path, manifest: &mut Manifest) -> anyhow::Result<Vec<String>> {
-    let mut parts: Vec<PathBuf> = std::fs::read_dir(dir)?
+fn recover_parts(dir: &Path, manifest: &mut Manifest) -> Result<Vec<String>, ConsoleError> {
+    let listed = std::fs::read_dir(dir).map_err(|source| ConsoleError::ListSessionDir {
+        dir: dir.to_path_buf(),
+        source,
+    })?;
+    let mut parts: Vec<PathBuf> = listed
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.to_string_lossy().ends_with(".mcap.part"))
@@ -178,7 +190,10 @@ fn recover_parts(dir: &Path, manifest: &mut Manifest) -> anyhow::Result<Vec<Stri
             }
             Err(e) => {
                 let kept = format!("{name}.interrupted");
-                std::fs::rename(&part, dir.join(&kept))?;
+                let to = dir.join(&kept);
+                if let Err(source) = std::fs::rename(&part, &to) {
+                    return Err(ConsoleError::SetAside { part, to, source });
+                }
                 (kept, format!("interrupted; could not be recovered: {e}"))
             }
         };
@@ -208,7 +223,15 @@ mod tests {
     #[test]
     fn names_are_checked_and_slots_parse() {
         assert!(check_name("--user", "alice_2").is_ok());
-        assert!(check_name("--user", "../x").is_err());
+        assert_eq!(
+            check_name("--user", "../x")
+                .map_err(|e| e.to_string())
+                .err()
+                .as_deref(),
+            Some(
+                "--user \"../x\": use 1–64 letters, digits, '_', '-' or '.' (not starting with '.'); it names the session's files"
+            )
+        );
         assert!(check_name("--user", "").is_err());
         assert_eq!(slot_of("V1-p03.mcap", "V1"), Some((true, 3)));
         assert_eq!(slot_of("V1-t12-a2.mcap", "V1"), Some((false, 12)));

@@ -3,9 +3,12 @@
 
 use std::path::Path;
 
+use super::ConsoleError;
 use super::keys::{Action, parse_action};
 use super::view::Screen;
-use crate::tui::script::{ScriptLine, ScriptState, load_script_with, parse_script_with};
+use crate::tui::script::{
+    ScriptError, ScriptLine, ScriptState, load_script_with, parse_script_with,
+};
 
 impl ScriptState for Screen {
     fn from_name(name: &str) -> Option<Screen> {
@@ -25,11 +28,11 @@ impl ScriptState for Screen {
 pub type TrialScriptLine = ScriptLine<Action, Screen>;
 
 /// Reads and parses a trial console script; errors name the file and the line.
-pub fn load_script(path: &Path) -> anyhow::Result<Vec<TrialScriptLine>> {
+pub fn load_script(path: &Path) -> Result<Vec<TrialScriptLine>, ConsoleError> {
     Ok(load_script_with(path, parse_action)?)
 }
 
-/// Parses a trial console script's text; an error is `LINE: reason`.
-pub fn parse_script(text: &str) -> Result<Vec<TrialScriptLine>, String> {
+/// Parses a trial console script's text; an error's text is `LINE: reason`.
+pub fn parse_script(text: &str) -> Result<Vec<TrialScriptLine>, ScriptError> {
     parse_script_with(text, parse_action)
 }

@@ -71,28 +71,120 @@ pub struct ScriptLine<A, S> {
 /// Default `wait` timeout, seconds.
 pub const DEFAULT_WAIT_S: f64 = 30.0;
 
+/// A script line that does not follow the grammar, or a `wait` that timed out while the
+/// script played; every variant names its 1-based line.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ScriptError {
+    /// A time with nothing after it.
+    #[error("{line}: a time without an action (line: {content:?})")]
+    TimeWithoutAction {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+    },
+    /// A time that is not seconds in range.
+    #[error(
+        "{line}: time '{word}' must be seconds in [0, 86400], optionally after '+' (line: {content:?})"
+    )]
+    Time {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+        /// The time as written.
+        word: String,
+    },
+    /// `wait` without a state.
+    #[error("{line}: 'wait' needs a state (line: {content:?})")]
+    WaitWithoutState {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+    },
+    /// A state the console does not have.
+    #[error("{line}: unknown state '{name}' (known: {known}) (line: {content:?})")]
+    UnknownState {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+        /// The state as written.
+        name: String,
+        /// The console's states.
+        known: String,
+    },
+    /// A wait timeout that is not seconds in range.
+    #[error(
+        "{line}: wait timeout '{timeout}' must be a number of seconds in (0, 3600] (line: {content:?})"
+    )]
+    WaitTimeout {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+        /// The timeout as written.
+        timeout: String,
+    },
+    /// Words after a wait's timeout.
+    #[error("{line}: unexpected '{extra}' after the wait timeout (line: {content:?})")]
+    AfterWait {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+        /// The first extra word.
+        extra: String,
+    },
+    /// An action the console's parser refused.
+    #[error("{line}: {reason} (line: {content:?})")]
+    Action {
+        /// 1-based line number.
+        line: usize,
+        /// The line without its comment.
+        content: String,
+        /// The console's parser's message.
+        reason: String,
+    },
+    /// A `wait` that timed out while the script played.
+    #[error(
+        "script line {line}: waited {waited_s:.1} s for '{wanted}', the console is still '{state}'"
+    )]
+    WaitTimedOut {
+        /// 1-based line number.
+        line: usize,
+        /// Seconds waited.
+        waited_s: f64,
+        /// The state waited for.
+        wanted: &'static str,
+        /// The console's state.
+        state: &'static str,
+    },
+}
+
 /// Reads and parses a script whose actions `parse_action` reads; errors name the file and the
 /// line.
-pub fn load_script_with<A, S: ScriptState>(
+pub fn load_script_with<A, S: ScriptState, E: std::fmt::Display>(
     path: &Path,
-    parse_action: impl Fn(&str) -> Result<A, String>,
+    parse_action: impl Fn(&str) -> Result<A, E>,
 ) -> Result<Vec<ScriptLine<A, S>>, TuiError> {
     let text = std::fs::read_to_string(path).map_err(|source| TuiError::ReadScript {
         path: path.to_path_buf(),
         source,
     })?;
-    parse_script_with(&text, parse_action).map_err(|reason| TuiError::Script {
+    parse_script_with(&text, parse_action).map_err(|e| TuiError::Script {
         path: path.to_path_buf(),
-        reason,
+        reason: e.to_string(),
     })
 }
 
-/// Parses a script's text (the grammar above) with the console's actions and states; an error
-/// is `LINE: reason`.
-pub fn parse_script_with<A, S: ScriptState>(
+/// Parses a script's text (the grammar above) with the console's actions and states; an
+/// error's text is `LINE: reason`.
+pub fn parse_script_with<A, S: ScriptState, E: std::fmt::Display>(
     text: &str,
-    parse_action: impl Fn(&str) -> Result<A, String>,
-) -> Result<Vec<ScriptLine<A, S>>, String> {
+    parse_action: impl Fn(&str) -> Result<A, E>,
+) -> Result<Vec<ScriptLine<A, S>>, ScriptError> {
     let mut out = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
@@ -100,52 +192,84 @@ pub fn parse_script_with<A, S: ScriptState>(
         if content.is_empty() {
             continue;
         }
-        let fail = |reason: String| format!("{line}: {reason} (line: {content:?})");
         let (at, rest) = match content.split_once(char::is_whitespace) {
             Some((first, rest)) if starts_like_time(first) => {
-                (parse_time(first).map_err(fail)?, rest.trim())
+                let at = parse_time(first).ok_or_else(|| ScriptError::Time {
+                    line,
+                    content: content.to_string(),
+                    word: first.to_string(),
+                })?;
+                (at, rest.trim())
             }
             _ if starts_like_time(content) => {
-                return Err(fail("a time without an action".into()));
+                return Err(ScriptError::TimeWithoutAction {
+                    line,
+                    content: content.to_string(),
+                });
             }
             _ => (At::After(0.0), content),
         };
-        let step = if let Some(args) = rest.strip_prefix("wait") {
-            let mut words = args.split_whitespace();
-            let name = words
-                .next()
-                .ok_or_else(|| fail("'wait' needs a state".into()))?;
-            let state = S::from_name(name)
-                .ok_or_else(|| fail(format!("unknown state '{name}' (known: {})", S::names())))?;
-            let timeout_s = match words.next() {
-                Some(t) => t
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|t| *t > 0.0 && *t <= 3600.0)
-                    .ok_or_else(|| {
-                        fail(format!(
-                            "wait timeout '{t}' must be a number of seconds in (0, 3600]"
-                        ))
-                    })?,
-                None => DEFAULT_WAIT_S,
-            };
-            if let Some(extra) = words.next() {
-                return Err(fail(format!("unexpected '{extra}' after the wait timeout")));
-            }
-            Step::Wait { state, timeout_s }
-        } else {
-            Step::Act(parse_action(rest).map_err(fail)?)
+        let step = match rest.strip_prefix("wait") {
+            Some(args) => parse_wait(line, content, args)?,
+            None => Step::Act(parse_action(rest).map_err(|e| ScriptError::Action {
+                line,
+                content: content.to_string(),
+                reason: e.to_string(),
+            })?),
         };
         out.push(ScriptLine { line, at, step });
     }
     Ok(out)
 }
 
+/// `wait STATE [TIMEOUT_S]`'s arguments on line `line` (`content`).
+fn parse_wait<A, S: ScriptState>(
+    line: usize,
+    content: &str,
+    args: &str,
+) -> Result<Step<A, S>, ScriptError> {
+    let content = content.to_string();
+    let mut words = args.split_whitespace();
+    let Some(name) = words.next() else {
+        return Err(ScriptError::WaitWithoutState { line, content });
+    };
+    let Some(state) = S::from_name(name) else {
+        return Err(ScriptError::UnknownState {
+            line,
+            content,
+            name: name.to_string(),
+            known: S::names(),
+        });
+    };
+    let timeout_s = match words.next() {
+        Some(t) => match t.parse::<f64>().ok().filter(|t| *t > 0.0 && *t <= 3600.0) {
+            Some(timeout_s) => timeout_s,
+            None => {
+                return Err(ScriptError::WaitTimeout {
+                    line,
+                    content,
+                    timeout: t.to_string(),
+                });
+            }
+        },
+        None => DEFAULT_WAIT_S,
+    };
+    if let Some(extra) = words.next() {
+        return Err(ScriptError::AfterWait {
+            line,
+            content,
+            extra: extra.to_string(),
+        });
+    }
+    Ok(Step::Wait { state, timeout_s })
+}
+
 fn starts_like_time(word: &str) -> bool {
     word.starts_with('+') || word.starts_with(|c: char| c.is_ascii_digit() || c == '.')
 }
 
-fn parse_time(word: &str) -> Result<At, String> {
+/// `S` or `+S`, seconds in [0, 86400].
+fn parse_time(word: &str) -> Option<At> {
     let (relative, number) = match word.strip_prefix('+') {
         Some(n) => (true, n),
         None => (false, word),
@@ -153,11 +277,8 @@ fn parse_time(word: &str) -> Result<At, String> {
     let seconds: f64 = number
         .parse()
         .ok()
-        .filter(|s: &f64| s.is_finite() && *s >= 0.0 && *s <= 86_400.0)
-        .ok_or_else(|| {
-            format!("time '{word}' must be seconds in [0, 86400], optionally after '+'")
-        })?;
-    Ok(if relative {
+        .filter(|s: &f64| s.is_finite() && *s >= 0.0 && *s <= 86_400.0)?;
+    Some(if relative {
         At::After(seconds)
     } else {
         At::Absolute(seconds)
@@ -202,21 +323,41 @@ mod tests {
 
     #[test]
     fn errors_name_the_line_and_what_is_allowed() {
-        let e = parse_script("engage\n\n-1 start\n").unwrap_err();
+        let error = |text: &str| parse_script(text).unwrap_err().to_string();
+        let e = error("engage\n\n-1 start\n");
         assert!(e.starts_with("3: "), "{e}");
-        let e = parse_script("+x stop").unwrap_err();
+        assert_eq!(
+            error("+x stop"),
+            "1: time '+x' must be seconds in [0, 86400], optionally after '+' (line: \"+x stop\")"
+        );
+        let e = error("+x stop");
         assert!(e.contains("time '+x'"), "{e}");
-        let e = parse_script("wait flying").unwrap_err();
+        let e = error("wait flying");
         assert!(
             e.contains("unknown state 'flying'") && e.contains("running"),
             "{e}"
         );
-        let e = parse_script("wait running 0").unwrap_err();
-        assert!(e.contains("(0, 3600]"), "{e}");
-        let e = parse_script("2.5").unwrap_err();
-        assert!(e.contains("without an action"), "{e}");
-        let e = parse_script("1 fly").unwrap_err();
-        assert!(e.contains("unknown command 'fly'"), "{e}");
+        assert!(e.starts_with("1: unknown state 'flying' (known: "), "{e}");
+        assert!(e.ends_with(") (line: \"wait flying\")"), "{e}");
+        let e = error("wait running 0");
+        assert_eq!(
+            e,
+            "1: wait timeout '0' must be a number of seconds in (0, 3600] (line: \"wait running 0\")"
+        );
+        assert_eq!(error("wait"), "1: 'wait' needs a state (line: \"wait\")");
+        assert_eq!(
+            error("wait running 2 x"),
+            "1: unexpected 'x' after the wait timeout (line: \"wait running 2 x\")"
+        );
+        let e = error("2.5");
+        assert_eq!(e, "1: a time without an action (line: \"2.5\")");
+        let e = error("1 fly");
+        assert!(e.starts_with("1: unknown command 'fly' (known: "), "{e}");
+        assert!(e.ends_with(") (line: \"1 fly\")"), "{e}");
+        assert!(matches!(
+            parse_script("1 fly"),
+            Err(ScriptError::Action { line: 1, .. })
+        ));
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use super::script::{At, ScriptLine, ScriptState, Step};
+use super::script::{At, ScriptError, ScriptLine, ScriptState, Step};
 
 /// A script being played: actions `A`, waits on states `S`.
 #[derive(Debug)]
@@ -33,7 +33,7 @@ impl<A: Clone, S: ScriptState> ScriptPlayer<A, S> {
 
     /// The next due action at `now` with the console in `state`; an error when a wait timed
     /// out (naming its line).
-    pub fn next(&mut self, state: S, now: Instant) -> Result<Option<A>, String> {
+    pub fn next(&mut self, state: S, now: Instant) -> Result<Option<A>, ScriptError> {
         while let Some(line) = self.lines.front() {
             let due = match line.at {
                 At::Absolute(s) => self.origin + Duration::from_secs_f64(s),
@@ -62,12 +62,12 @@ impl<A: Clone, S: ScriptState> ScriptPlayer<A, S> {
                     let since = *self.waiting_since.get_or_insert(now);
                     let waited = now.duration_since(since).as_secs_f64();
                     if waited > *timeout_s {
-                        return Err(format!(
-                            "script line {}: waited {waited:.1} s for '{}', the console is still '{}'",
-                            line.line,
-                            wanted.name(),
-                            state.name()
-                        ));
+                        return Err(ScriptError::WaitTimedOut {
+                            line: line.line,
+                            waited_s: waited,
+                            wanted: wanted.name(),
+                            state: state.name(),
+                        });
                     }
                     return Ok(None);
                 }
@@ -104,9 +104,9 @@ mod tests {
         let mut p = ScriptPlayer::new(lines, t0);
         assert_eq!(p.next(Screen::Ready, at(0.0)), Ok(None));
         let e = p.next(Screen::Ready, at(1.5)).unwrap_err();
-        assert!(
-            e.contains("line 1") && e.contains("'running'") && e.contains("'ready'"),
-            "{e}"
+        assert_eq!(
+            e.to_string(),
+            "script line 1: waited 1.5 s for 'running', the console is still 'ready'"
         );
     }
 }
