@@ -6,7 +6,6 @@ use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use anyhow::Context as _;
 use retarget::HandModel;
 use serde::Serialize;
 use tokio::sync::{mpsc, watch};
@@ -14,14 +13,52 @@ use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
+use crate::sim::SimError;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
 use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
-use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::sim::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
+use crate::station_node::NodeError;
 use crate::station_node::recorder::RecordingOptions;
 use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station};
+use crate::station_setup::SetupError;
 use station::StationConfig;
 use station::arm::Constraint;
+
+/// A demo that cannot start, or a node of it that failed.
+#[derive(Debug, thiserror::Error)]
+pub enum DemoError {
+    /// The station configuration is not valid.
+    #[error(transparent)]
+    Config(#[from] station::ConfigError),
+    /// The calibration profile cannot be loaded.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// The recording directory cannot be created.
+    #[error("cannot create {path}: {source}")]
+    CreateDir {
+        /// The directory.
+        path: std::path::PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The glove, the mock hand or the mock Franka failed.
+    #[error(transparent)]
+    Sim(#[from] SimError),
+    /// The station failed.
+    #[error(transparent)]
+    Station(#[from] NodeError),
+    /// A node's task panicked or was cancelled.
+    #[error("{task}: {source}")]
+    Task {
+        /// Which node (`glove task`, `station task`, ...).
+        task: &'static str,
+        /// The runtime's error.
+        #[source]
+        source: tokio::task::JoinError,
+    },
+}
 
 /// Options of a demo run.
 #[derive(Debug, Clone)]
@@ -84,12 +121,14 @@ pub struct DemoOutcome {
     pub hand: MockHandReport,
     /// What the mock Franka received.
     pub arm: MockFrankaReport,
+    /// What the simulated glove published.
+    pub glove: SimGloveReport,
     /// The log written, with `out`.
     pub recorded: Option<std::path::PathBuf>,
 }
 
 /// Run the demo.
-pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
+pub async fn run_demo(options: DemoOptions) -> Result<DemoOutcome, DemoError> {
     let clock = StationClock::new();
     let network = loopback_network(options.domain_id);
     let station = demo_station_config(&options.station, &network)?;
@@ -119,7 +158,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
     let summary = demo_summary(
         &options,
         elapsed,
-        stopped.frames_published,
+        stopped.glove.frames,
         &stopped.station,
         &hand_report,
         &arm_report,
@@ -129,6 +168,7 @@ pub async fn run_demo(options: DemoOptions) -> anyhow::Result<DemoOutcome> {
         summary,
         hand: hand_report,
         arm: arm_report,
+        glove: stopped.glove,
     })
 }
 
@@ -145,7 +185,7 @@ fn loopback_network(domain_id: u16) -> NetworkConfig {
 fn demo_station_config(
     configured: &StationConfig,
     network: &NetworkConfig,
-) -> anyhow::Result<StationConfig> {
+) -> Result<StationConfig, DemoError> {
     let mut station = configured.clone();
     station.network = network.clone();
     station.control.auto_engage = true;
@@ -161,11 +201,14 @@ fn demo_station_config(
 fn demo_recording(
     out: Option<&std::path::Path>,
     clock: StationClock,
-) -> anyhow::Result<Option<RecordingOptions>> {
+) -> Result<Option<RecordingOptions>, DemoError> {
     let Some(dir) = out else {
         return Ok(None);
     };
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|source| DemoError::CreateDir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     Ok(Some(RecordingOptions {
         path: dir.join(format!("demo-{}.mcap", clock.now_ns() / 1_000_000_000)),
         metadata: BTreeMap::from([
@@ -184,18 +227,18 @@ fn demo_recording(
 struct DemoNodes {
     robot: MockRobot,
     robot_stop: watch::Sender<bool>,
-    station: JoinHandle<anyhow::Result<StationSummary>>,
+    station: JoinHandle<Result<StationSummary, NodeError>>,
     station_shutdown: watch::Sender<bool>,
     /// Held for the whole run, so that the station's operator channel stays open.
     _operator: mpsc::UnboundedSender<OperatorCommand>,
-    glove: JoinHandle<anyhow::Result<u64>>,
+    glove: JoinHandle<Result<SimGloveReport, SimError>>,
     glove_stop: watch::Sender<bool>,
 }
 
 /// What the stopped nodes left.
 struct StoppedNodes {
-    /// Glove frames published.
-    frames_published: u64,
+    /// What the glove published.
+    glove: SimGloveReport,
     /// The station's run.
     station: StationSummary,
     /// What the mock hand saw.
@@ -212,7 +255,7 @@ impl DemoNodes {
         model: HandModel,
         network: NetworkConfig,
         clock: StationClock,
-    ) -> anyhow::Result<DemoNodes> {
+    ) -> Result<DemoNodes, DemoError> {
         let (station_shutdown, shutdown_rx) = watch::channel(false);
         let (operator, operator_rx) = mpsc::unbounded_channel();
 
@@ -279,23 +322,34 @@ impl DemoNodes {
 
     /// Stops the glove first and lets its last frames arrive, then the station, then the
     /// robot, so that each hears everything the one before it sent.
-    async fn stop(self) -> anyhow::Result<StoppedNodes> {
+    async fn stop(self) -> Result<StoppedNodes, DemoError> {
         self.glove_stop.send(true).ok();
-        let frames_published = self.glove.await.context("glove task")??;
+        let glove = join("glove task", self.glove).await?;
         tokio::time::sleep(Duration::from_millis(200)).await;
         self.station_shutdown.send(true).ok();
-        let station = self.station.await.context("station task")??;
+        let station = join("station task", self.station).await?;
         tokio::time::sleep(Duration::from_millis(100)).await;
         self.robot_stop.send(true).ok();
-        self.robot.hand.await.context("mock hand task")??;
-        self.robot.arm.await.context("mock arm task")??;
+        join("mock hand task", self.robot.hand).await?;
+        join("mock arm task", self.robot.arm).await?;
         Ok(StoppedNodes {
-            frames_published,
+            glove,
             station,
             hand_report: self.robot.hand_report,
             arm_report: self.robot.arm_report,
         })
     }
+}
+
+/// The result of the node task `task`, its panic or cancellation a [`DemoError::Task`].
+async fn join<T, E>(task: &'static str, handle: JoinHandle<Result<T, E>>) -> Result<T, DemoError>
+where
+    DemoError: From<E>,
+{
+    let result = handle
+        .await
+        .map_err(|source| DemoError::Task { task, source })?;
+    Ok(result?)
 }
 
 /// Seconds on `clock` since `start_ns`.

@@ -68,7 +68,7 @@ pub enum LaunchConfigError {
         path: PathBuf,
         /// What is wrong, by key.
         #[source]
-        source: Box<dyn std::error::Error + Send + Sync>,
+        source: Box<crate::ingress::IngressError>,
     },
 }
 
@@ -166,7 +166,7 @@ pub fn check_file(path: &Path) -> Result<LaunchConfigKind, LaunchConfigError> {
             crate::ingress::ingress_config::IngressConfig::from_toml_str(&text).map_err(|e| {
                 LaunchConfigError::Ingress {
                     path: path.to_path_buf(),
-                    source: e.into(),
+                    source: Box::new(e),
                 }
             })?;
         }

@@ -14,9 +14,40 @@ use ros2_client::Publisher;
 use serde::Serialize;
 use tokio::sync::watch;
 
-use crate::mcap_log::{LoggedMessage, TrialReader};
+use crate::mcap_log::{LogError, LoggedMessage, TrialReader};
 use crate::ros::NetworkContext as _;
-use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
+
+/// A replay that cannot start, or a message that cannot be republished.
+#[derive(Debug, thiserror::Error)]
+pub enum ReplayError {
+    /// The speed factor is not a positive number.
+    #[error("--rate must be a positive number, got {rate}")]
+    Rate {
+        /// The factor given.
+        rate: f64,
+    },
+    /// A topic asked for is not in the log, or is of a type the replay does not know.
+    #[error("topic {topic} is not in the log or has an unsupported type")]
+    Topic {
+        /// The topic asked for.
+        topic: String,
+    },
+    /// Joining the DDS domain, or creating the node or a publisher, failed.
+    #[error(transparent)]
+    Ros(#[from] RosError),
+    /// A recorded message does not decode as its channel's type.
+    #[error(transparent)]
+    Log(#[from] LogError),
+    /// The DDS writer refused a message.
+    #[error("publish on {topic}: {reason:?}")]
+    Publish {
+        /// The topic.
+        topic: String,
+        /// The writer's error (its debug form: RustDDS's errors carry the message).
+        reason: String,
+    },
+}
 
 /// Replay settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,7 +101,7 @@ impl AnyPublisher {
         topic: &str,
         type_name: &str,
         qos: QosConfig,
-    ) -> anyhow::Result<Option<AnyPublisher>> {
+    ) -> Result<Option<AnyPublisher>, ReplayError> {
         let is = |d: &msgs::MsgDefinition| {
             type_name == d.ros_type_name() || type_name == d.resource_name()
         };
@@ -99,8 +130,11 @@ impl AnyPublisher {
         }
     }
 
-    async fn publish(&self, message: &LoggedMessage) -> anyhow::Result<()> {
-        let failed = |e| anyhow::anyhow!("publish on {}: {e:?}", message.topic);
+    async fn publish(&self, message: &LoggedMessage) -> Result<(), ReplayError> {
+        let failed = |reason| ReplayError::Publish {
+            topic: message.topic.clone(),
+            reason,
+        };
         match self {
             AnyPublisher::Array(p) => p
                 .async_publish(message.decode()?)
@@ -132,12 +166,10 @@ pub async fn replay(
     network: &NetworkConfig,
     options: &ReplayOptions,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<ReplayReport> {
-    anyhow::ensure!(
-        options.rate > 0.0 && options.rate.is_finite(),
-        "--rate must be a positive number, got {}",
-        options.rate
-    );
+) -> Result<ReplayReport, ReplayError> {
+    if !(options.rate > 0.0 && options.rate.is_finite()) {
+        return Err(ReplayError::Rate { rate: options.rate });
+    }
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_replay")?;
     let mut report = ReplayReport::default();
@@ -159,11 +191,14 @@ pub async fn replay(
             }
         }
     }
-    for wanted in &options.topics {
-        anyhow::ensure!(
-            publishers.contains_key(wanted),
-            "topic {wanted} is not in the log or has an unsupported type"
-        );
+    if let Some(wanted) = options
+        .topics
+        .iter()
+        .find(|wanted| !publishers.contains_key(*wanted))
+    {
+        return Err(ReplayError::Topic {
+            topic: wanted.clone(),
+        });
     }
     let waiting = Instant::now();
     while publishers.values().any(|p| p.subscribers(&node) == 0)

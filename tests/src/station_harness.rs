@@ -65,7 +65,7 @@ pub struct Harness {
     pub heard: Arc<Mutex<Heard>>,
     shutdown: watch::Sender<bool>,
     operator: mpsc::UnboundedSender<OperatorCommand>,
-    station: JoinHandle<anyhow::Result<StationSummary>>,
+    station: JoinHandle<Result<StationSummary, teleop::station_node::NodeError>>,
     /// The test node (keep alive).
     pub node: RosNode,
     keypoints: ros2_client::Publisher<Float32MultiArray>,

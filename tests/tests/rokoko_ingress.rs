@@ -49,7 +49,7 @@ struct Heard {
 struct Ingress {
     addr: SocketAddr,
     shutdown: watch::Sender<bool>,
-    task: JoinHandle<anyhow::Result<IngressCounters>>,
+    task: JoinHandle<Result<IngressCounters, teleop::ingress::IngressError>>,
     clock: StationClock,
 }
 

@@ -38,13 +38,20 @@ pub async fn sim_glove(args: SimGloveArgs) -> anyhow::Result<()> {
         jitter_m: args.jitter_m,
         ..SimGloveConfig::default()
     };
-    let frames = run_sim_glove(
+    let report = run_sim_glove(
         config,
         args.node.network(&NetworkConfig::default()),
         StationClock::new(),
         ctrl_c_shutdown(),
     )
     .await?;
-    eprintln!("published {frames} frames");
+    eprintln!("published {} frames", report.frames);
+    if report.not_published() > 0 {
+        eprintln!(
+            "warning: {} messages not published (by topic: {:?})",
+            report.not_published(),
+            report.publish_failed
+        );
+    }
     Ok(())
 }

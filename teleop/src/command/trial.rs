@@ -316,7 +316,7 @@ fn session_info(
 /// what the console holds of it.
 struct StationHandles {
     /// The station's task; its summary when it stops.
-    task: JoinHandle<anyhow::Result<StationSummary>>,
+    task: JoinHandle<Result<StationSummary, crate::station_node::NodeError>>,
     /// Commands to the station.
     operator_tx: mpsc::UnboundedSender<OperatorCommand>,
     /// The station's status, as published.
@@ -327,7 +327,7 @@ struct StationHandles {
     shutdown_tx: watch::Sender<bool>,
     _shutdown_rx: watch::Receiver<bool>,
     /// `--simulate`: the hand's, the arm's and the glove's tasks.
-    simulated: Vec<JoinHandle<anyhow::Result<()>>>,
+    simulated: Vec<JoinHandle<Result<(), crate::sim::SimError>>>,
 }
 
 /// Starts the station (status and trial-log events back to the console) and, with
@@ -804,11 +804,11 @@ impl TrialConsole {
 
 /// Why the station's task ended while the console ran.
 fn station_stopped(
-    result: Result<anyhow::Result<StationSummary>, tokio::task::JoinError>,
+    result: Result<Result<StationSummary, crate::station_node::NodeError>, tokio::task::JoinError>,
 ) -> anyhow::Error {
     match result {
         Ok(Ok(_)) => anyhow::anyhow!("the station stopped unexpectedly"),
-        Ok(Err(e)) => e.context("the station stopped"),
+        Ok(Err(e)) => anyhow::Error::new(e).context("the station stopped"),
         Err(e) => anyhow::anyhow!("the station task failed: {e}"),
     }
 }
@@ -894,7 +894,7 @@ fn spawn_simulation(
     model: &HandModel,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<Vec<JoinHandle<anyhow::Result<()>>>> {
+) -> anyhow::Result<Vec<JoinHandle<Result<(), crate::sim::SimError>>>> {
     let robot = spawn_mock_robot(config, model, clock, shutdown)?;
     let glove_config = SimGloveConfig {
         keypoints_topic: config.input.keypoints_topic.clone(),

@@ -4,10 +4,10 @@
 use std::net::IpAddr;
 use std::path::Path;
 
-use anyhow::{Context, bail};
 use retarget::KeypointLayout;
 use serde::{Deserialize, Serialize};
 
+use crate::ingress::error::IngressError;
 use crate::ros::{NetworkConfig, QosConfig};
 
 /// Which glove hand to publish.
@@ -90,41 +90,45 @@ impl Default for IngressConfig {
 
 impl IngressConfig {
     /// Parse and validate.
-    pub fn from_toml_str(text: &str) -> anyhow::Result<IngressConfig> {
-        let config: IngressConfig =
-            toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", e.to_string().trim_end()))?;
+    pub fn from_toml_str(text: &str) -> Result<IngressConfig, IngressError> {
+        let config: IngressConfig = toml::from_str(text).map_err(|e| IngressError::Syntax {
+            reason: e.to_string().trim_end().to_string(),
+        })?;
         config.validate()?;
         Ok(config)
     }
 
     /// Read, parse and validate a file; errors name it.
-    pub fn from_file(path: &Path) -> anyhow::Result<IngressConfig> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        IngressConfig::from_toml_str(&text).with_context(|| path.display().to_string())
+    pub fn from_file(path: &Path) -> Result<IngressConfig, IngressError> {
+        let text = std::fs::read_to_string(path).map_err(|source| IngressError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        IngressConfig::from_toml_str(&text).map_err(|e| IngressError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        })
     }
 
     /// Check every value; errors name the key and the allowed range.
-    pub fn validate(&self) -> anyhow::Result<()> {
+    pub fn validate(&self) -> Result<(), IngressError> {
         if !matches!(self.layout, KeypointLayout::Lab22 | KeypointLayout::Lab21) {
-            bail!(
-                "layout = '{}' is not produced by this ingress (allowed: lab22, lab21)",
-                self.layout
-            );
+            return Err(IngressError::Layout {
+                layout: self.layout,
+            });
         }
         let scale = self.position_scale_to_m;
         if !(scale.is_finite() && (1e-4..=10.0).contains(&scale)) {
-            bail!("position_scale_to_m = {scale} must be in [0.0001, 10]");
+            return Err(IngressError::PositionScale { scale });
         }
         if !(256..=65_507).contains(&self.max_packet_bytes) {
-            bail!(
-                "max_packet_bytes = {} must be in 256..=65507",
-                self.max_packet_bytes
-            );
+            return Err(IngressError::MaxPacketBytes {
+                bytes: self.max_packet_bytes,
+            });
         }
-        let restart = self.restart_after_backwards_s;
-        if !(restart.is_finite() && restart > 0.0 && restart <= 3600.0) {
-            bail!("restart_after_backwards_s = {restart} must be in (0, 3600]");
+        let seconds = self.restart_after_backwards_s;
+        if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
+            return Err(IngressError::RestartAfterBackwards { seconds });
         }
         for (key, topic) in [
             ("keypoints_topic", &self.keypoints_topic),
@@ -132,16 +136,20 @@ impl IngressConfig {
             ("status_topic", &self.status_topic),
         ] {
             if !topic.starts_with('/') {
-                bail!("{key} = '{topic}' must be an absolute topic name (start with '/')");
+                return Err(IngressError::RelativeTopic {
+                    key,
+                    topic: topic.clone(),
+                });
             }
         }
         if let Some(actor) = &self.actor
             && actor.trim().is_empty()
         {
-            bail!("actor = '' must be a name, or be left out to follow the first actor");
+            return Err(IngressError::EmptyActor);
         }
         self.qos.validate("qos")?;
-        crate::ros::domain_id(self.network.domain_id).context("network.domain_id")?;
+        crate::ros::domain_id(self.network.domain_id)
+            .map_err(|source| IngressError::DomainId { source })?;
         Ok(())
     }
 }
@@ -178,7 +186,7 @@ mod tests {
             ("port = 70000", "port"),
             ("colour = 1", "colour"),
         ] {
-            let e = format!("{:#}", IngressConfig::from_toml_str(text).unwrap_err());
+            let e = IngressConfig::from_toml_str(text).unwrap_err().to_string();
             assert!(e.contains(key), "{text}: {e}");
         }
     }

@@ -7,6 +7,9 @@
 //! - older by less than `restart_after_backwards_s`: out of order (UDP reordering), dropped;
 //! - older by more: Studio restarted its clock; accepted as new, counted as a restart;
 //! - no timestamp: cannot be ordered, published.
+//!
+//! A message the DDS writer refuses is counted by topic (`publish_failed`); a frame counts as
+//! published when both its keypoints and its wrist pose went out.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -41,6 +44,8 @@ pub struct IngressCounters {
     /// Refused packets by kind (`oversized`, `truncated`, `malformed`, `version`,
     /// `no_actor`, `missing_bone`).
     pub refused: BTreeMap<&'static str, u64>,
+    /// Messages whose publishing failed (not sent), by topic.
+    pub publish_failed: BTreeMap<String, u64>,
     newest_timestamp_s: Option<f64>,
     logged: BTreeSet<&'static str>,
     window_start_ns: Option<i64>,
@@ -97,6 +102,29 @@ impl IngressCounters {
         self.window_published += 1;
     }
 
+    /// Count a message on `topic` that could not be published.
+    pub fn publish_failed(&mut self, topic: &str) {
+        *self.publish_failed.entry(topic.to_string()).or_default() += 1;
+    }
+
+    /// Count a frame whose keypoints (on `keypoints_topic`) and wrist pose (on `wrist_topic`)
+    /// were (`true`) or were not sent: published when both went out.
+    pub fn frame_sent(
+        &mut self,
+        (keypoints_topic, keypoints_sent): (&str, bool),
+        (wrist_topic, wrist_sent): (&str, bool),
+    ) {
+        if !keypoints_sent {
+            self.publish_failed(keypoints_topic);
+        }
+        if !wrist_sent {
+            self.publish_failed(wrist_topic);
+        }
+        if keypoints_sent && wrist_sent {
+            self.published();
+        }
+    }
+
     /// Dropped packets of every kind.
     pub fn dropped(&self) -> u64 {
         self.duplicates + self.out_of_order + self.refused.values().sum::<u64>()
@@ -122,6 +150,7 @@ impl IngressCounters {
             "out_of_order": self.out_of_order,
             "restarts": self.restarts,
             "refused": self.refused,
+            "publish_failed": self.publish_failed,
             "last_packet_age_s": self.last_packet_ns.map(|t| (now_ns - t) as f64 * 1e-9),
         })
     }
@@ -155,6 +184,21 @@ mod tests {
         assert!(c.refused("truncated"));
         assert_eq!(c.refused["malformed"], 2);
         assert_eq!(c.dropped(), 3);
+    }
+
+    #[test]
+    fn publish_failures_are_counted_by_topic_and_reported() {
+        let mut c = IngressCounters::default();
+        c.frame_sent(("/k", true), ("/w", true));
+        c.frame_sent(("/k", false), ("/w", true));
+        c.frame_sent(("/k", false), ("/w", false));
+        c.publish_failed("/s");
+        assert_eq!(c.published, 1);
+        let status = c.status(0, 14043);
+        assert_eq!(status["publish_failed"]["/k"], 2);
+        assert_eq!(status["publish_failed"]["/w"], 1);
+        assert_eq!(status["publish_failed"]["/s"], 1);
+        assert_eq!(c.dropped(), 0);
     }
 
     #[test]

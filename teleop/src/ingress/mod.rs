@@ -9,10 +9,14 @@
 //! | `ingress_counters.rs` | ordering by studio timestamp, drop counts, the status report |
 //! | `ingress_config.rs` | the settings (`launch_configs/ingress/rokoko.toml`) |
 //! | `rokoko_node.rs` | the UDP socket and the ROS publishers |
+//! | `error.rs` | the one error type ([`IngressError`]) |
 
+mod error;
 pub mod ingress_config;
 pub mod ingress_counters;
 pub mod rokoko_frame;
 pub mod rokoko_node;
 pub mod rokoko_packet;
 pub mod rokoko_packet_builder;
+
+pub use error::IngressError;

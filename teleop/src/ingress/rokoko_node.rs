@@ -10,12 +10,13 @@
 use std::net::SocketAddr;
 use std::time::Duration;
 
-use anyhow::Context as _;
 use msgs::{Float32MultiArray, PoseStamped, StringMsg};
+use ros2_client::Publisher;
 use tokio::net::UdpSocket;
 use tokio::sync::{oneshot, watch};
 
 use crate::clock::StationClock;
+use crate::ingress::error::IngressError;
 use crate::ingress::ingress_config::IngressConfig;
 use crate::ingress::ingress_counters::{IngressCounters, Order};
 use crate::ingress::rokoko_packet::{PacketError, Selection, parse_packet};
@@ -29,6 +30,43 @@ const STATUS_PERIOD: Duration = Duration::from_secs(1);
 /// Print a status line on stderr every this many status periods (with `print_status`).
 const PRINT_EVERY: u64 = 5;
 
+/// The node's publishers.
+struct Publishers {
+    keypoints: Publisher<Float32MultiArray>,
+    wrist: Publisher<PoseStamped>,
+    status: Publisher<StringMsg>,
+}
+
+impl Publishers {
+    /// Publish the status report; a failure is counted.
+    async fn status(&self, config: &IngressConfig, counters: &mut IngressCounters, status: String) {
+        if self
+            .status
+            .async_publish(StringMsg { data: status })
+            .await
+            .is_err()
+        {
+            counters.publish_failed(&config.status_topic);
+        }
+    }
+
+    /// Publish a frame's keypoints and wrist pose; failures are counted.
+    async fn frame(
+        &self,
+        config: &IngressConfig,
+        counters: &mut IngressCounters,
+        array: Float32MultiArray,
+        pose: PoseStamped,
+    ) {
+        let keypoints_sent = self.keypoints.async_publish(array).await.is_ok();
+        let wrist_sent = self.wrist.async_publish(pose).await.is_ok();
+        counters.frame_sent(
+            (&config.keypoints_topic, keypoints_sent),
+            (&config.wrist_topic, wrist_sent),
+        );
+    }
+}
+
 /// Run the ingress until `shutdown`; `bound` receives the local UDP address once listening
 /// (useful with port 0); with `print_status` a one-line status goes to stderr every 5 s.
 /// Returns the final counts.
@@ -38,22 +76,25 @@ pub async fn run_rokoko_ingress(
     mut shutdown: watch::Receiver<bool>,
     bound: Option<oneshot::Sender<SocketAddr>>,
     print_status: bool,
-) -> anyhow::Result<IngressCounters> {
+) -> Result<IngressCounters, IngressError> {
     config.validate()?;
     let socket = UdpSocket::bind((config.bind_address, config.port))
         .await
-        .with_context(|| {
-            format!(
-                "cannot listen on UDP {}:{} (is another ingress running?)",
-                config.bind_address, config.port
-            )
+        .map_err(|source| IngressError::Bind {
+            address: config.bind_address,
+            port: config.port,
+            source,
         })?;
-    let local = socket.local_addr()?;
+    let local = socket
+        .local_addr()
+        .map_err(|source| IngressError::LocalAddress { source })?;
     let context = config.network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_rokoko_ingress")?;
-    let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, config.qos)?;
-    let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, config.qos)?;
-    let status_pub = node.publisher::<StringMsg>(&config.status_topic, QosConfig::reliable(10))?;
+    let publishers = Publishers {
+        keypoints: node.publisher(&config.keypoints_topic, config.qos)?,
+        wrist: node.publisher(&config.wrist_topic, config.qos)?,
+        status: node.publisher(&config.status_topic, QosConfig::reliable(10))?,
+    };
     if let Some(tx) = bound {
         tx.send(local).ok();
     }
@@ -80,7 +121,7 @@ pub async fn run_rokoko_ingress(
                 if print_status && ticks.is_multiple_of(PRINT_EVERY) {
                     eprintln!("{}", status_line(&status));
                 }
-                status_pub.async_publish(StringMsg { data: status.to_string() }).await.ok();
+                publishers.status(&config, &mut counters, status.to_string()).await;
             }
             received = socket.recv_from(&mut buffer) => {
                 let (n, from) = match received {
@@ -120,19 +161,14 @@ pub async fn run_rokoko_ingress(
                     header: header(now, &config.wrist_frame_id),
                     pose: isometry_to_pose(&frame.wrist),
                 };
-                keypoints_pub.async_publish(array).await.ok();
-                wrist_pub.async_publish(pose).await.ok();
-                counters.published();
+                publishers.frame(&config, &mut counters, array, pose).await;
             }
         }
     }
     let status = counters.status(clock.now_ns(), local.port());
-    status_pub
-        .async_publish(StringMsg {
-            data: status.to_string(),
-        })
-        .await
-        .ok();
+    publishers
+        .status(&config, &mut counters, status.to_string())
+        .await;
     Ok(counters)
 }
 
@@ -147,8 +183,16 @@ pub fn status_line(status: &serde_json::Value) -> String {
                 .join(", ")
         })
         .unwrap_or_default();
+    let not_published = status["publish_failed"]
+        .as_object()
+        .filter(|m| !m.is_empty())
+        .map(|m| {
+            let topics: Vec<String> = m.iter().map(|(k, v)| format!("{k} {v}")).collect();
+            format!("; not published: {}", topics.join(", "))
+        })
+        .unwrap_or_default();
     format!(
-        "rokoko ingress: {} Hz, {} received, {} published, dropped {} (duplicates {}, out of order {}{}{})",
+        "rokoko ingress: {} Hz, {} received, {} published, dropped {} (duplicates {}, out of order {}{}{}){}",
         status["rate_hz"],
         status["received"],
         status["published"],
@@ -156,7 +200,8 @@ pub fn status_line(status: &serde_json::Value) -> String {
         status["duplicates"],
         status["out_of_order"],
         if refused.is_empty() { "" } else { ", " },
-        refused
+        refused,
+        not_published
     )
 }
 

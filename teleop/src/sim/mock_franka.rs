@@ -12,6 +12,7 @@ use tokio::sync::watch;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::sim::error::SimError;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
 /// What the mock arm saw.
@@ -23,6 +24,8 @@ pub struct MockFrankaReport {
     pub rejected: u64,
     /// Every accepted command, in order.
     pub targets: Vec<Isometry3<f64>>,
+    /// Pose feedback messages whose publishing failed (not sent).
+    pub publish_failed: u64,
 }
 
 /// The mock arm's settings.
@@ -49,7 +52,7 @@ pub async fn run_mock_franka(
     clock: StationClock,
     report: Arc<Mutex<MockFrankaReport>>,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<()> {
+) -> Result<(), SimError> {
     let MockFrankaConfig {
         command_topic,
         pose_topic,
@@ -87,7 +90,10 @@ pub async fn run_mock_franka(
                 let t = if angle > 0.0 { (max_rate_rad_s * period / angle).min(1.0) } else { 1.0 };
                 pose.rotation = pose.rotation.slerp(&target.rotation, t);
                 let message = PoseStamped { header: header(clock.now_ns(), "world"), pose: isometry_to_pose(&pose) };
-                pose_pub.async_publish(message).await.ok();
+                if pose_pub.async_publish(message).await.is_err() {
+                    let Ok(mut report) = report.lock() else { break };
+                    report.publish_failed += 1;
+                }
             }
         }
     }

@@ -14,6 +14,7 @@ use tokio::sync::watch;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::sim::error::SimError;
 use crate::sim::samples::Samples;
 use station::convert::header;
 
@@ -31,6 +32,8 @@ pub struct MockHandReport {
     pub receive_times_ns: Vec<i64>,
     /// The last target received, by model degree of freedom.
     pub last_target: Option<Vec<f64>>,
+    /// State messages whose publishing failed (not sent).
+    pub publish_failed: u64,
 }
 
 /// The mock hand's settings.
@@ -65,7 +68,7 @@ pub async fn run_mock_hand(
     clock: StationClock,
     report: Arc<Mutex<MockHandReport>>,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<()> {
+) -> Result<(), SimError> {
     let MockHandConfig {
         targets_topic,
         state_topic,
@@ -124,7 +127,10 @@ pub async fn run_mock_hand(
                     velocity: vec![],
                     effort: vec![],
                 };
-                state_pub.async_publish(message).await.ok();
+                if state_pub.async_publish(message).await.is_err() {
+                    let Ok(mut report) = report.lock() else { break };
+                    report.publish_failed += 1;
+                }
             }
         }
     }

@@ -9,6 +9,7 @@ use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
+use crate::sim::error::SimError;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
 use station::StationConfig;
@@ -17,9 +18,9 @@ use station::StationConfig;
 #[derive(Debug)]
 pub struct MockRobot {
     /// The mock hand's node.
-    pub hand: JoinHandle<anyhow::Result<()>>,
+    pub hand: JoinHandle<Result<(), SimError>>,
     /// The mock Franka's node.
-    pub arm: JoinHandle<anyhow::Result<()>>,
+    pub arm: JoinHandle<Result<(), SimError>>,
     /// What the hand saw.
     pub hand_report: Arc<Mutex<MockHandReport>>,
     /// What the arm saw.
@@ -32,13 +33,13 @@ pub fn spawn_mock_robot(
     model: &HandModel,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<MockRobot> {
+) -> Result<MockRobot, SimError> {
     let hand_report = Arc::new(Mutex::new(MockHandReport::default()));
     let arm_report = Arc::new(Mutex::new(MockFrankaReport::default()));
     let start = station
         .arm
         .start_pose_isometry()
-        .map_err(|e| anyhow::anyhow!("arm: {e}"))?;
+        .map_err(|source| SimError::ArmStartPose { source })?;
     let hand = tokio::spawn(run_mock_hand(
         model.clone(),
         MockHandConfig {

@@ -2,8 +2,11 @@
 //! model driven by scripted motions), a mock ORCA hand and a mock Franka arm, each a ROS 2
 //! node on its own DDS participant, exactly as separate processes would be.
 
+mod error;
 pub mod mock_franka;
 pub mod mock_hand;
 pub mod mock_robot;
 pub use crate::samples;
 pub mod sim_glove_node;
+
+pub use error::SimError;

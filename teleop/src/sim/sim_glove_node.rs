@@ -2,6 +2,7 @@
 //! metres) and `/ingress/wrist` (PoseStamped, frame `coil`) from the parametric human hand
 //! model at a fixed rate, optionally with keypoint noise and timing jitter.
 
+use std::collections::BTreeMap;
 use std::time::Duration;
 
 use msgs::{Float32MultiArray, PoseStamped};
@@ -13,6 +14,7 @@ use tokio::sync::watch;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::sim::error::SimError;
 use station::convert::{header, isometry_to_pose};
 
 /// How long the glove waits for a subscriber before publishing anyway.
@@ -60,14 +62,44 @@ impl Default for SimGloveConfig {
 
 impl SimGloveConfig {
     /// The glove model for this configuration.
-    pub fn glove(&self) -> anyhow::Result<SimGlove> {
+    pub fn glove(&self) -> Result<SimGlove, SimError> {
         let shape = HumanHandShape::average().scaled(self.hand_scale);
-        let motion = Motion::new(self.motion, self.period_s, &shape)
-            .map_err(|e| anyhow::anyhow!("sim glove: {e}"))?;
-        let glove = SimGlove::new(shape, motion, self.layout)
+        let glove = Motion::new(self.motion, self.period_s, &shape)
+            .and_then(|motion| SimGlove::new(shape, motion, self.layout))
             .and_then(|g| g.with_jitter(self.jitter_m, self.seed))
-            .map_err(|e| anyhow::anyhow!("sim glove: {e}"))?;
+            .map_err(|source| SimError::Glove { source })?;
         Ok(glove)
+    }
+}
+
+/// What a glove published.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SimGloveReport {
+    /// Frames published (keypoints and wrist pose both sent).
+    pub frames: u64,
+    /// Messages whose publishing failed (not sent), by topic.
+    pub publish_failed: BTreeMap<String, u64>,
+}
+
+impl SimGloveReport {
+    /// Count a frame whose keypoints and wrist pose were (`true`) or were not sent.
+    fn count(&mut self, config: &SimGloveConfig, keypoints_sent: bool, wrist_sent: bool) {
+        for (topic, sent) in [
+            (&config.keypoints_topic, keypoints_sent),
+            (&config.wrist_topic, wrist_sent),
+        ] {
+            if !sent {
+                *self.publish_failed.entry(topic.clone()).or_default() += 1;
+            }
+        }
+        if keypoints_sent && wrist_sent {
+            self.frames += 1;
+        }
+    }
+
+    /// Messages not sent, every topic.
+    pub fn not_published(&self) -> u64 {
+        self.publish_failed.values().sum()
     }
 }
 
@@ -81,13 +113,13 @@ pub enum GloveOrigin {
     Shared(watch::Receiver<Option<i64>>),
 }
 
-/// Publish until `shutdown`; returns the number of frames published.
+/// Publish until `shutdown`; returns what was published.
 pub async fn run_sim_glove(
     config: SimGloveConfig,
     network: NetworkConfig,
     clock: StationClock,
     shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<u64> {
+) -> Result<SimGloveReport, SimError> {
     let glove = config.glove()?;
     publish_glove(
         glove,
@@ -101,7 +133,7 @@ pub async fn run_sim_glove(
 }
 
 /// Publish `glove`'s frames on `config`'s topics at its rate until `shutdown`, its motion time
-/// starting at `origin`; returns the number of frames published.
+/// starting at `origin`; returns what was published.
 pub async fn publish_glove(
     glove: SimGlove,
     config: &SimGloveConfig,
@@ -109,7 +141,7 @@ pub async fn publish_glove(
     clock: StationClock,
     origin: GloveOrigin,
     mut shutdown: watch::Receiver<bool>,
-) -> anyhow::Result<u64> {
+) -> Result<SimGloveReport, SimError> {
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_sim_glove")?;
     let qos = QosConfig::best_effort(400);
@@ -121,7 +153,7 @@ pub async fn publish_glove(
         && waiting_since.elapsed() < MATCH_WAIT
     {
         tokio::select! {
-            _ = shutdown.changed() => if *shutdown.borrow() { return Ok(0) },
+            _ = shutdown.changed() => if *shutdown.borrow() { return Ok(SimGloveReport::default()) },
             _ = tokio::time::sleep(Duration::from_millis(10)) => {}
         }
     }
@@ -132,7 +164,7 @@ pub async fn publish_glove(
     };
     let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / config.rate_hz));
     interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
-    let mut frames = 0;
+    let mut report = SimGloveReport::default();
     loop {
         tokio::select! {
             _ = shutdown.changed() => if *shutdown.borrow() { break },
@@ -142,12 +174,12 @@ pub async fn publish_glove(
                 let (points, wrist) = glove.frame(t_s);
                 let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
                 let array = Float32MultiArray::from_points(&rows)?;
-                keypoints_pub.async_publish(array).await.ok();
+                let keypoints_sent = keypoints_pub.async_publish(array).await.is_ok();
                 let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
-                wrist_pub.async_publish(pose).await.ok();
-                frames += 1;
+                let wrist_sent = wrist_pub.async_publish(pose).await.is_ok();
+                report.count(config, keypoints_sent, wrist_sent);
             }
         }
     }
-    Ok(frames)
+    Ok(report)
 }

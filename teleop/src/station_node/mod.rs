@@ -1,7 +1,10 @@
 //! The station as a ROS 2 node: the shell around [`station::Station`] that subscribes, stamps,
 //! records, steps the station and publishes what it returns.
 
+mod error;
 pub mod operator;
 pub mod recorder;
 pub mod ros_node;
 pub mod station_log;
+
+pub use error::NodeError;

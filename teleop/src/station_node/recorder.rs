@@ -13,7 +13,8 @@ use std::path::PathBuf;
 use msgs::RosMessage;
 use serde_json::json;
 
-use crate::mcap_log::{FinishedTrial, OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::mcap_log::{FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::station_node::error::NodeError;
 use station::StationConfig;
 use station::convert::KeypointMessage;
 
@@ -46,7 +47,7 @@ pub struct StationRecorder {
     path: PathBuf,
     failed: bool,
     /// The first write error, until taken by [`StationRecorder::take_error`].
-    error: Option<String>,
+    error: Option<NodeError>,
 }
 
 impl std::fmt::Debug for StationRecorder {
@@ -64,7 +65,7 @@ impl StationRecorder {
         options: &RecordingOptions,
         config: &StationConfig,
         now_ns: i64,
-    ) -> anyhow::Result<StationRecorder> {
+    ) -> Result<StationRecorder, NodeError> {
         let mut writer = TrialWriter::create(&options.path, TrialWriterOptions::default())?;
         let input_qos = OfferedQos::from(config.input.qos);
         let output_qos = OfferedQos::from(config.output.qos);
@@ -96,12 +97,10 @@ impl StationRecorder {
         })
     }
 
-    fn check(&mut self, result: Result<(), crate::mcap_log::LogError>) {
-        if let Err(e) = result {
+    fn check(&mut self, result: Result<(), LogError>) {
+        if let Err(source) = result {
             if !self.failed {
-                self.error = Some(format!(
-                    "error: recording: {e} (the station keeps running; the log may be incomplete)"
-                ));
+                self.error = Some(NodeError::Recording { source });
             }
             self.failed = true;
         }
@@ -174,7 +173,7 @@ impl StationRecorder {
     }
 
     /// The first write error, once (the station reports it: stderr or the operator console).
-    pub fn take_error(&mut self) -> Option<String> {
+    pub fn take_error(&mut self) -> Option<NodeError> {
         self.error.take()
     }
 
@@ -183,13 +182,16 @@ impl StationRecorder {
         self.failed
     }
 
-    /// Write the stop event with `summary`, the summary section, and rename the log.
+    /// Write the stop event with `summary`, the summary section, and rename the log; if the
+    /// stop event cannot be written the log stays a `.part` (for `pomdar recover`). Take an
+    /// earlier write error with [`StationRecorder::take_error`] first: it is not returned here.
     pub fn finish(
         mut self,
         now_ns: i64,
         summary: serde_json::Value,
-    ) -> anyhow::Result<FinishedTrial> {
-        self.event(now_ns, &json!({ "event": "stop", "summary": summary }));
+    ) -> Result<FinishedTrial, NodeError> {
+        self.writer
+            .write_event(now_ns, &json!({ "event": "stop", "summary": summary }))?;
         Ok(self.writer.finish()?)
     }
 }

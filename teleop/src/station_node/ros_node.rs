@@ -33,6 +33,7 @@ use tokio::sync::{mpsc, watch};
 use crate::clock::StationClock;
 use crate::ros::{QosConfig, RosNode};
 use crate::samples::Samples;
+use crate::station_node::error::NodeError;
 pub use crate::station_node::operator::{OperatorCommand, StationEvent, StationHooks};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 use crate::station_setup::build_station;
@@ -80,7 +81,7 @@ pub async fn run_station(
     shutdown: watch::Receiver<bool>,
     operator: mpsc::UnboundedReceiver<OperatorCommand>,
     recording: Option<RecordingOptions>,
-) -> anyhow::Result<StationSummary> {
+) -> Result<StationSummary, NodeError> {
     run_station_observed(
         config,
         model,
@@ -102,7 +103,7 @@ pub async fn run_station_observed(
     mut operator: mpsc::UnboundedReceiver<OperatorCommand>,
     recording: Option<RecordingOptions>,
     hooks: StationHooks,
-) -> anyhow::Result<StationSummary> {
+) -> Result<StationSummary, NodeError> {
     let (station, description) = build_station(&config, model)?;
     if let Some(line) = description {
         hooks.send(StationEvent::Message(line));
@@ -176,7 +177,7 @@ struct Streams<'a> {
 }
 
 impl Endpoints {
-    fn open(config: &StationConfig) -> anyhow::Result<Endpoints> {
+    fn open(config: &StationConfig) -> Result<Endpoints, NodeError> {
         use crate::ros::NetworkContext as _;
         let context = config.network.context()?;
         let mut node = RosNode::new(&context, "/", "pomdar_station")?;
@@ -441,7 +442,8 @@ impl StationNode {
             r.output(&self.config.output.status_topic, now, &message);
             r.tick(now);
             if let Some(error) = r.take_error() {
-                self.hooks.send(StationEvent::Message(error));
+                self.hooks
+                    .send(StationEvent::Message(format!("error: {error}")));
             }
         }
         if endpoints.status.async_publish(message).await.is_err() {
@@ -473,7 +475,7 @@ impl StationNode {
             }
             Err(e) => self.hooks.send(StationEvent::TrialStartFailed {
                 path: options.path.clone(),
-                error: format!("{e:#}"),
+                error: e.to_string(),
             }),
         }
     }
@@ -491,7 +493,8 @@ impl StationNode {
             "arm_targets": totals.arm_targets,
         });
         if let Some(error) = recorder.take_error() {
-            self.hooks.send(StationEvent::Message(error));
+            self.hooks
+                .send(StationEvent::Message(format!("error: {error}")));
         }
         let path = recorder.path().to_path_buf();
         match recorder.finish(now_ns, summary) {
@@ -502,7 +505,7 @@ impl StationNode {
             }
             Err(e) => self.hooks.send(StationEvent::TrialFinishFailed {
                 path,
-                error: format!("{e:#}"),
+                error: e.to_string(),
             }),
         }
     }

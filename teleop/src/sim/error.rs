@@ -1,0 +1,29 @@
+//! The simulated parts' one error type: the glove node, the mock hand, the mock Franka and the
+//! mock robot that starts the last two.
+
+use crate::ros::RosError;
+
+/// A simulated node could not be set up or could not build what it publishes.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// Joining the DDS domain, or creating the node, a publisher or a subscription, failed.
+    #[error(transparent)]
+    Ros(#[from] RosError),
+    /// The glove's scripted motion or its hand shape is not valid.
+    #[error("sim glove: {source}")]
+    Glove {
+        /// What is wrong, by setting.
+        #[source]
+        source: retarget::Error,
+    },
+    /// The station configuration's arm start pose is not a valid pose.
+    #[error("arm: {source}")]
+    ArmStartPose {
+        /// What is wrong with it.
+        #[source]
+        source: station::arm::ArmError,
+    },
+    /// A glove frame's keypoints do not fit a ROS point matrix.
+    #[error(transparent)]
+    Keypoints(#[from] msgs::Error),
+}
