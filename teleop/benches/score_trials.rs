@@ -237,7 +237,7 @@ fn score_pass(
     let results = process_files(
         &found.files,
         |p| {
-            let log = load_trial_log(p)?;
+            let log = load_trial_log(p).map_err(|e| e.to_string())?;
             score_trial(&log, &inputs.catalog, Some(baseline), &inputs.rules)
                 .map_err(|e| e.to_string())
         },

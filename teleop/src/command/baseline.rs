@@ -89,7 +89,7 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     let results = process_files(
         &found.files,
         |path| {
-            let log = load_trial_log(path)?;
+            let log = load_trial_log(path).map_err(|e| e.to_string())?;
             TrialRecord::from_log(&log, &inputs.catalog).map_err(reason)
         },
         progress_style(found.files.len()),

@@ -188,7 +188,7 @@ fn fit_options(args: &CalibrateArgs) -> anyhow::Result<FitOptions> {
     let station = crate::station_setup::load_station_config(args.config.as_deref(), None)?;
     let settings = match &args.settings {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
-            .map_err(|e| anyhow::anyhow!("calibration settings {}: {e}", path.display()))?,
+            .with_context(|| format!("calibration settings {}", path.display()))?,
         None => CalibrationSettings::default(),
     };
     let out = match &args.out {

@@ -28,8 +28,7 @@ pub async fn mock_franka(args: MockFrankaArgs) -> anyhow::Result<()> {
     let report = Arc::new(Mutex::new(MockFrankaReport::default()));
     let start = ::station::StationConfig::default()
         .arm
-        .start_pose_isometry()
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
+        .start_pose_isometry()?;
     let config = MockFrankaConfig {
         command_topic: args.command_topic,
         pose_topic: args.pose_topic,

@@ -661,7 +661,8 @@ impl TrialConsole {
                 effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
             }
             StationEvent::TrialFinished(path) => {
-                effects.extend(flow.trial_logged(inputs.score_file(&path).map_err(String::from)));
+                effects
+                    .extend(flow.trial_logged(inputs.score_file(&path).map_err(|e| e.to_string())));
             }
             StationEvent::TrialFinishFailed { path, error } => {
                 effects.extend(flow.trial_logged(Err(format!(
@@ -809,7 +810,7 @@ fn station_stopped(
     match result {
         Ok(Ok(_)) => anyhow::anyhow!("the station stopped unexpectedly"),
         Ok(Err(e)) => anyhow::Error::new(e).context("the station stopped"),
-        Err(e) => anyhow::anyhow!("the station task failed: {e}"),
+        Err(e) => anyhow::Error::new(e).context("the station task failed"),
     }
 }
 

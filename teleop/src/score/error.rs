@@ -72,13 +72,6 @@ pub enum TrialFileError {
     Scoring(#[from] ScoringError),
 }
 
-/// The reason alone: what a [`scoring::FileProblem`] holds.
-impl From<TrialFileError> for String {
-    fn from(error: TrialFileError) -> String {
-        error.to_string()
-    }
-}
-
 /// `source`'s message without the `path: ` it starts with.
 fn without_path(path: &Path, source: &LogError) -> String {
     let message = source.to_string();

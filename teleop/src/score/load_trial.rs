@@ -68,6 +68,6 @@ mod tests {
         std::fs::remove_dir_all(&dir).ok();
         let reason = error.to_string();
         assert!(reason.starts_with("not an MCAP file: "), "{reason}");
-        assert_eq!(String::from(error), reason);
+        assert_eq!(error.to_string(), reason);
     }
 }
