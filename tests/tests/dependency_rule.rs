@@ -89,3 +89,28 @@ fn no_crate_has_a_module_cycle() {
     assert_eq!(crates, 7);
     assert!(report.is_empty(), "module cycles:\n{}", report.join("\n"));
 }
+
+#[test]
+fn anyhow_is_only_in_the_binary_wiring() {
+    let src = workspace_root().join("teleop").join("src");
+    let files = files_with_extension(&src, "rs").unwrap();
+    assert!(
+        files.len() > 50,
+        "found only {} teleop sources",
+        files.len()
+    );
+    let wiring = |path: &std::path::Path| {
+        path.starts_with(src.join("command")) || path == src.join("main.rs")
+    };
+    let offenders: Vec<String> = files
+        .iter()
+        .filter(|path| !wiring(path))
+        .filter(|path| std::fs::read_to_string(path).unwrap().contains("anyhow"))
+        .map(|path| path.display().to_string())
+        .collect();
+    assert!(
+        offenders.is_empty(),
+        "anyhow outside teleop/src/command/ and main.rs (each module has its own typed error):\n{}",
+        offenders.join("\n")
+    );
+}
