@@ -24,7 +24,8 @@ use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::pose_session::CalibrationAction;
 use crate::tui::script::{
-    ScriptError, ScriptLine, ScriptState, load_script_with, parse_script_with,
+    ScriptError, ScriptLine, ScriptState, WordError, load_script_with, parse_script_with,
+    split_word, without_argument,
 };
 use crate::tui::script_player::ScriptPlayer;
 
@@ -57,33 +58,22 @@ pub const CALIBRATION_WORDS: &[(&str, &str)] = &[
 
 /// Parses a calibration action word.
 pub fn parse_calibration_action(text: &str) -> Result<CalibrationAction, CalibrateError> {
-    let text = text.trim();
-    let (word, rest) = text
-        .split_once(char::is_whitespace)
-        .map_or((text, ""), |(w, r)| (w, r.trim()));
+    let (word, rest) = split_word(text);
     let action = match word {
         "accept" => CalibrationAction::Accept,
         "retry" => CalibrationAction::Retry,
         "quit" => CalibrationAction::Quit,
         other => {
-            return Err(CalibrateError::UnknownCommand {
+            let mut known: Vec<&str> = CALIBRATION_WORDS.iter().map(|(w, _)| *w).collect();
+            known.push("wait STATE [TIMEOUT_S]");
+            return Err(WordError::Unknown {
                 word: other.to_string(),
-                known: CALIBRATION_WORDS
-                    .iter()
-                    .map(|(w, _)| *w)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            });
+                known: known.join(", "),
+            }
+            .into());
         }
     };
-    if rest.is_empty() {
-        Ok(action)
-    } else {
-        Err(CalibrateError::TakesNoArgument {
-            word: word.to_string(),
-            rest: rest.to_string(),
-        })
-    }
+    Ok(without_argument(word, rest, action)?)
 }
 
 /// Reads and parses a script; errors name the file and the line.

@@ -9,7 +9,7 @@ use crate::atomic_file::AtomicWriteError;
 use crate::mcap_log::LogError;
 use crate::ros::RosError;
 use crate::tui::TuiError;
-use crate::tui::script::ScriptError;
+use crate::tui::script::{ScriptError, WordError};
 
 /// A session log could not be read or fitted, a profile not written, a session not run to
 /// its end, or a flag, script word or simulated user was refused.
@@ -216,22 +216,9 @@ pub enum CalibrateError {
         /// The session log.
         log: PathBuf,
     },
-    /// An unknown word in a calibration script.
-    #[error("unknown command '{word}' (known: {known}, wait STATE [TIMEOUT_S])")]
-    UnknownCommand {
-        /// The word given.
-        word: String,
-        /// The known words.
-        known: String,
-    },
-    /// A script word that takes no argument, with one.
-    #[error("'{word}' takes no argument (got '{rest}')")]
-    TakesNoArgument {
-        /// The word.
-        word: String,
-        /// What followed it.
-        rest: String,
-    },
+    /// An unknown word in a calibration script, or an argument to a word that takes none.
+    #[error(transparent)]
+    Word(#[from] WordError),
     /// `--hand-scale` out of range.
     #[error("--hand-scale {hand_scale} must be in [0.5, 2]")]
     HandScale {

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use crate::atomic_file::AtomicWriteError;
 use crate::tui::TuiError;
+use crate::tui::script::WordError;
 
 /// A name, a session directory, its manifest, a `.part` log's recovery, a script or an
 /// operator's command was refused or failed.
@@ -106,22 +107,9 @@ pub enum ConsoleError {
     /// A `--script` file cannot be read or does not follow the grammar.
     #[error(transparent)]
     Script(#[from] TuiError),
-    /// An unknown command word.
-    #[error("unknown command '{word}' (known: {known})")]
-    UnknownCommand {
-        /// The word given.
-        word: String,
-        /// The known words.
-        known: String,
-    },
-    /// A command word that takes no argument, with one.
-    #[error("'{word}' takes no argument (got '{rest}')")]
-    TakesNoArgument {
-        /// The word.
-        word: String,
-        /// What followed it.
-        rest: String,
-    },
+    /// An unknown command word, or an argument to a word that takes none.
+    #[error(transparent)]
+    Word(#[from] WordError),
     /// A progress value that is not a number.
     #[error("progress value '{value}' is not a number")]
     ProgressNotANumber {

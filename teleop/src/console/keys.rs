@@ -2,6 +2,7 @@
 //! the keyboard, a `--script` file or a line on stdin.
 
 use super::ConsoleError;
+use crate::tui::script::{WordError, split_word, without_argument};
 
 /// One thing the operator asks of the console.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,21 +81,8 @@ pub const KEY_HELP: &str = "e engage/clutch · space start/stop · + mark · - u
 
 /// Parses a command word with its argument (`progress 30`, `note glove slipped`).
 pub fn parse_action(text: &str) -> Result<Action, ConsoleError> {
-    let text = text.trim();
-    let (word, rest) = match text.split_once(char::is_whitespace) {
-        Some((w, r)) => (w, r.trim()),
-        None => (text, ""),
-    };
-    let no_argument = |action: Action| {
-        if rest.is_empty() {
-            Ok(action)
-        } else {
-            Err(ConsoleError::TakesNoArgument {
-                word: word.to_string(),
-                rest: rest.to_string(),
-            })
-        }
-    };
+    let (word, rest) = split_word(text);
+    let no_argument = |action: Action| Ok(without_argument(word, rest, action)?);
     match word {
         "engage" => no_argument(Action::Engage),
         "disengage" | "clutch" => no_argument(Action::Disengage),
@@ -126,14 +114,15 @@ pub fn parse_action(text: &str) -> Result<Action, ConsoleError> {
             }
         }
         "quit" => no_argument(Action::Quit),
-        other => Err(ConsoleError::UnknownCommand {
+        other => Err(WordError::Unknown {
             word: other.to_string(),
             known: ACTION_WORDS
                 .iter()
                 .map(|(w, _)| w.split(' ').next().unwrap_or(w))
                 .collect::<Vec<_>>()
                 .join(", "),
-        }),
+        }
+        .into()),
     }
 }
 

@@ -71,6 +71,46 @@ pub struct ScriptLine<A, S> {
 /// Default `wait` timeout, seconds.
 pub const DEFAULT_WAIT_S: f64 = 30.0;
 
+/// A console's command word (in a script or typed on stdin) that it does not take.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum WordError {
+    /// An unknown word.
+    #[error("unknown command '{word}' (known: {known})")]
+    Unknown {
+        /// The word given.
+        word: String,
+        /// The known words.
+        known: String,
+    },
+    /// A word that takes no argument, with one.
+    #[error("'{word}' takes no argument (got '{rest}')")]
+    TakesNoArgument {
+        /// The word.
+        word: String,
+        /// What followed it.
+        rest: String,
+    },
+}
+
+/// A command line's word and the rest (trimmed): `progress 30` → (`progress`, `30`).
+pub fn split_word(text: &str) -> (&str, &str) {
+    let text = text.trim();
+    text.split_once(char::is_whitespace)
+        .map_or((text, ""), |(word, rest)| (word, rest.trim()))
+}
+
+/// `action` when nothing follows `word`.
+pub fn without_argument<A>(word: &str, rest: &str, action: A) -> Result<A, WordError> {
+    if rest.is_empty() {
+        Ok(action)
+    } else {
+        Err(WordError::TakesNoArgument {
+            word: word.to_string(),
+            rest: rest.to_string(),
+        })
+    }
+}
+
 /// A script line that does not follow the grammar, or a `wait` that timed out while the
 /// script played; every variant names its 1-based line.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
