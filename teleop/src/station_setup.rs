@@ -163,4 +163,15 @@ mod tests {
             Some(Path::new("/p.toml").to_path_buf())
         );
     }
+
+    #[test]
+    fn a_missing_profile_is_named() {
+        let err = load_profile(
+            Path::new("/nonexistent/bob.toml"),
+            &HandModel::orca_v1_right(),
+            retarget::KeypointLayout::Lab22,
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("/nonexistent/bob.toml"), "{err}");
+    }
 }

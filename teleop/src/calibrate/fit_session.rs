@@ -12,8 +12,8 @@ use calibration::{
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
+use crate::atomic_file::write_atomically;
 use crate::calibrate::CalibrateError;
-use crate::calibrate::profile_file::write_atomically;
 use crate::calibrate::progress_bar::ProgressBar;
 use crate::calibrate::session_frames::read_session;
 use crate::mcap_log::TrialReader;

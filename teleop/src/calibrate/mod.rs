@@ -15,7 +15,6 @@
 //! | `calibration_screen.rs` | drawing the view full-screen (ratatui) |
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
-//! | `profile_file.rs` | loading a profile for the station, its one-line description, atomic writes |
 //! | `progress_bar.rs` | the fit's progress on stderr |
 //! | `error.rs` | the one error type, [`CalibrateError`] |
 
@@ -27,7 +26,6 @@ pub mod capture_quality;
 pub mod error;
 pub mod fit_session;
 pub mod pose_session;
-pub mod profile_file;
 pub mod progress_bar;
 pub mod session_events;
 pub mod session_frames;
