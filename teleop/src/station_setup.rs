@@ -169,7 +169,7 @@ mod tests {
         let err = load_profile(
             Path::new("/nonexistent/bob.toml"),
             &HandModel::orca_v1_right(),
-            retarget::KeypointLayout::Lab22,
+            KeypointLayout::Lab22,
         )
         .unwrap_err();
         assert!(err.to_string().contains("/nonexistent/bob.toml"), "{err}");
