@@ -102,7 +102,8 @@ struct PendingFrame {
 /// The hand side of the station.
 #[derive(Debug)]
 pub struct HandControl {
-    retargeter: Retargeter,
+    /// `None` in a human study: frames are judged and timed, never retargeted.
+    retargeter: Option<Retargeter>,
     order: SourceOrder,
     gate: FrameGate,
     watchdog: Watchdog,
@@ -114,8 +115,13 @@ pub struct HandControl {
 }
 
 impl HandControl {
-    /// Hand control around a configured retargeter, gate and watchdog.
-    pub fn new(retargeter: Retargeter, gate: FrameGate, watchdog: Watchdog) -> HandControl {
+    /// Hand control around a configured retargeter (none for a human study), gate and
+    /// watchdog.
+    pub fn new(
+        retargeter: Option<Retargeter>,
+        gate: FrameGate,
+        watchdog: Watchdog,
+    ) -> HandControl {
         let mut counters = Counters::default();
         for reason in Rejection::ALL {
             counters.rejected.insert(reason.name().into(), 0);
@@ -132,9 +138,9 @@ impl HandControl {
         }
     }
 
-    /// The retargeter (model, configuration).
-    pub fn retargeter(&self) -> &Retargeter {
-        &self.retargeter
+    /// The retargeter (model, configuration); `None` in a human study.
+    pub fn retargeter(&self) -> Option<&Retargeter> {
+        self.retargeter.as_ref()
     }
 
     /// The counters.
@@ -254,7 +260,8 @@ impl HandControl {
 
     fn solve(&mut self, pending: &PendingFrame) -> Option<HandCommand> {
         let dt_s = self.time_step_s(pending);
-        let Ok(solution) = self.retargeter.retarget(&pending.frame.points, dt_s) else {
+        let retargeter = self.retargeter.as_mut()?;
+        let Ok(solution) = retargeter.retarget(&pending.frame.points, dt_s) else {
             self.count_rejection(Rejection::Retargeter);
             return None;
         };

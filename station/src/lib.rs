@@ -50,7 +50,8 @@ pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
 pub use network_config::{NetworkConfig, QosConfig, Reliability};
 pub use station::{ArmStatus, Station, StationStatus, Totals};
 pub use station_config::{
-    ControlConfig, ControlMode, InputConfig, KeypointFormat, OutputConfig, StationConfig,
+    ControlConfig, ControlMode, HUMAN_EMBODIMENT, InputConfig, KeypointFormat, OutputConfig,
+    StationConfig,
 };
 pub use station_error::StationError;
 pub use station_input::{ControlInput, Notice, StationInput, StationOutputs};

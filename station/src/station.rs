@@ -16,6 +16,11 @@
 //!  engage, disengage           the watchdog's operator side
 //!  arm blocked                 no arm targets while another publisher drives the arm topic
 //! ```
+//!
+//! In a human study (embodiment [`HUMAN_EMBODIMENT`](crate::HUMAN_EMBODIMENT)) there is no
+//! robot: frames still pass the source order, frame gate and watchdog (the status shows the
+//! glove's rate, age and rejections), but nothing engages, nothing is retargeted and no hand
+//! or arm message is sent.
 
 use msgs::Pose;
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel, Retargeter};
@@ -101,6 +106,8 @@ pub struct Station {
     output: OutputStage,
     arm_inputs: ArmInputs,
     control: ControlConfig,
+    /// False in a human study: no retargeting, no engaging, no hand or arm messages.
+    drives_robot: bool,
     auto_engage_pending: bool,
     meters: Meters,
     totals: Totals,
@@ -116,14 +123,12 @@ impl Station {
     ) -> Result<Station, StationError> {
         config.validate()?;
         let output = OutputStage::new(config, &model)?;
-        let mut retargeter = Retargeter::new(
-            model,
-            config.retarget.clone(),
-            &EmbodimentCatalog::builtin(),
-        )?;
-        if let Some(transform) = calibration {
-            retargeter.set_calibration(transform)?;
-        }
+        let drives_robot = config.drives_robot();
+        let retargeter = if drives_robot {
+            Some(Self::retargeter_for(config, model, calibration)?)
+        } else {
+            None
+        };
         let hand = HandControl::new(
             retargeter,
             FrameGate::new(config.retarget.layout, config.gate.clone()),
@@ -138,7 +143,8 @@ impl Station {
                 blocked: false,
             },
             control: config.control.clone(),
-            auto_engage_pending: config.control.auto_engage,
+            drives_robot,
+            auto_engage_pending: config.control.auto_engage && drives_robot,
             meters: Meters {
                 input: RateMeter::new(RATE_WINDOW_S),
                 repeat: RateMeter::new(RATE_WINDOW_S),
@@ -148,9 +154,31 @@ impl Station {
         })
     }
 
-    /// The retargeter (model, configuration).
-    pub fn retargeter(&self) -> &Retargeter {
+    fn retargeter_for(
+        config: &StationConfig,
+        model: HandModel,
+        calibration: Option<CalibrationTransform>,
+    ) -> Result<Retargeter, StationError> {
+        let mut retargeter = Retargeter::new(
+            model,
+            config.retarget.clone(),
+            &EmbodimentCatalog::builtin(),
+        )?;
+        if let Some(transform) = calibration {
+            retargeter.set_calibration(transform)?;
+        }
+        Ok(retargeter)
+    }
+
+    /// The retargeter (model, configuration); `None` in a human study.
+    pub fn retargeter(&self) -> Option<&Retargeter> {
         self.hand.retargeter()
+    }
+
+    /// Whether this station drives a robot (false in a human study, embodiment
+    /// [`HUMAN_EMBODIMENT`](crate::HUMAN_EMBODIMENT)).
+    pub fn drives_robot(&self) -> bool {
+        self.drives_robot
     }
 
     /// The hand's counters.
@@ -212,7 +240,7 @@ impl Station {
             counters: self.hand.counters().clone(),
             totals: self.totals.clone(),
             arm: ArmStatus {
-                enabled: self.output.arm_enabled(),
+                enabled: self.drives_robot && self.output.arm_enabled(),
                 engaged: self.output.arm().is_engaged(),
                 second_publisher: self.arm_inputs.blocked,
                 constraint: self.output.arm().constraint(),
@@ -269,7 +297,9 @@ impl Station {
         match control {
             ControlInput::Tick => self.on_tick(now_ns, &mut outputs),
             ControlInput::Engage => {
-                self.hand.engage(now_ns);
+                if self.drives_robot {
+                    self.hand.engage(now_ns);
+                }
             }
             ControlInput::Disengage => self.hand.disengage(),
             ControlInput::ArmBlocked { blocked } => {
@@ -284,6 +314,9 @@ impl Station {
 
     fn on_tick(&mut self, now_ns: i64, outputs: &mut StationOutputs) {
         let state = self.hand.update(now_ns);
+        if !self.drives_robot {
+            return;
+        }
         match (state, self.control.mode) {
             (DriveState::Engaged, ControlMode::Rate) => {
                 if !self.command_fresh(now_ns, outputs) {

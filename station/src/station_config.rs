@@ -173,7 +173,16 @@ impl Default for ControlConfig {
     }
 }
 
+/// The embodiment of a human study: the participant's own hand, no robot.
+pub const HUMAN_EMBODIMENT: &str = "human";
+
 impl StationConfig {
+    /// Whether this configuration drives a robot: false for embodiment
+    /// [`HUMAN_EMBODIMENT`] (a human study records the glove only).
+    pub fn drives_robot(&self) -> bool {
+        self.retarget.embodiment != HUMAN_EMBODIMENT
+    }
+
     /// Parse and validate.
     pub fn from_toml_str(text: &str) -> Result<StationConfig, ConfigError> {
         let config: StationConfig = toml::from_str(text).map_err(|e| ConfigError::Syntax {

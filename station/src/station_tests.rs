@@ -5,6 +5,7 @@ use retarget::{HandModel, KeypointLayout};
 
 use super::*;
 use crate::convert::isometry_to_pose;
+use crate::HUMAN_EMBODIMENT;
 use crate::frame_gate::Rejection;
 
 const MS: i64 = 1_000_000;
@@ -227,4 +228,35 @@ fn the_status_reports_the_qp_method_that_ran() {
     assert!(qp.iterations > 0, "{qp:?}");
     assert_eq!(status.totals.hand_commands, 2);
     assert!(status.input_rate_hz > 0.0);
+}
+
+#[test]
+fn a_human_study_station_judges_and_times_frames_but_never_drives_a_robot() {
+    let mut config = StationConfig::default();
+    config.retarget.embodiment = HUMAN_EMBODIMENT.into();
+    config.control.auto_engage = true;
+    assert!(!config.drives_robot());
+    let mut s = station(&config);
+    assert!(!s.drives_robot());
+    assert!(s.retargeter().is_none(), "no retargeter for a human hand");
+    s.step(wrist(0.0), 0);
+    let out = s.step(frame(0.2, 0), 0);
+    assert_eq!(out.verdict, Some(Verdict::New));
+    s.step(engage(), 5 * MS);
+    for k in 1..5 {
+        let out = s.step(frame(0.2 + 0.05 * k as f64, 40 * k), 40 * k * MS);
+        assert_eq!(out.hand, None);
+        let out = s.step(tick(), (40 * k + 10) * MS);
+        assert_eq!((out.hand, out.arm), (None, None), "tick {k}");
+    }
+    s.step(frame(0.4, 200), 200 * MS);
+    let status = s.status(205 * MS);
+    assert_eq!(status.state, DriveState::Disengaged, "nothing engages");
+    assert_eq!(status.counters.frames_new, 5);
+    assert_eq!(status.counters.frames_repeated, 1);
+    assert_eq!(status.counters.solves, 0);
+    assert_eq!((status.totals.hand_commands, status.totals.arm_targets), (0, 0));
+    assert!(status.input_rate_hz > 0.0);
+    assert_eq!(status.input_age_ms, Some(45.0), "the last new frame came at 160 ms");
+    assert!(!status.arm.enabled, "no arm in a human study");
 }
