@@ -12,6 +12,9 @@ pub struct StartLimits {
     pub max_input_age_ms: f64,
     /// Oldest the station's status may be, milliseconds (else the station is not reporting).
     pub max_status_age_ms: f64,
+    /// Whether the station drives a robot, which must be engaged before a trial starts;
+    /// false in a human study, where only the glove's health is checked.
+    pub drives_robot: bool,
 }
 
 impl Default for StartLimits {
@@ -20,6 +23,7 @@ impl Default for StartLimits {
             min_glove_rate_hz: 20.0,
             max_input_age_ms: 200.0,
             max_status_age_ms: 1500.0,
+            drives_robot: true,
         }
     }
 }
@@ -165,7 +169,7 @@ impl Health {
                 self.glove_rate_hz, limits.min_glove_rate_hz
             ));
         }
-        if !self.engaged() {
+        if limits.drives_robot && !self.engaged() {
             return Some(format!("the station is {}: press e to engage", self.state));
         }
         None
@@ -242,5 +246,26 @@ mod tests {
                 .is_some_and(|r| r.contains("engage"))
         );
         assert!(Health::default().refuse_start(&limits, 0).is_some());
+    }
+
+    #[test]
+    fn a_human_study_start_checks_only_the_glove() {
+        let limits = StartLimits {
+            drives_robot: false,
+            ..StartLimits::default()
+        };
+        let healthy = Health::from_status(&status("disengaged", 99.0, Some(5.0)), 0);
+        assert_eq!(healthy.refuse_start(&limits, 10 * MS), None);
+        let slow = Health::from_status(&status("disengaged", 12.0, Some(5.0)), 0);
+        assert!(
+            slow.refuse_start(&limits, 0)
+                .is_some_and(|r| r.contains("12.0 Hz"))
+        );
+        let stale = Health::from_status(&status("disengaged", 99.0, Some(500.0)), 0);
+        assert!(
+            stale
+                .refuse_start(&limits, 0)
+                .is_some_and(|r| r.contains("stale"))
+        );
     }
 }

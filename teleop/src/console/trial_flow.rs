@@ -298,6 +298,9 @@ impl TrialFlow {
     }
 
     fn engage(&mut self, health: &Health, now_ns: i64) -> Vec<Effect> {
+        if !self.limits.drives_robot {
+            return self.refuse("a human study drives no robot: nothing to engage");
+        }
         if health.engaged() {
             return vec![];
         }
@@ -353,7 +356,8 @@ impl TrialFlow {
             return vec![];
         };
         if let Some(why) = health.refuse_start(&self.limits, now_ns) {
-            if !health.engaged() && self.engage_pending.is_none() {
+            let engaging = health.engaged() || self.engage_pending.is_some();
+            if self.limits.drives_robot && !engaging {
                 return self.refuse(&format!("cannot start: {why}"));
             }
             // Engaging, or the glove rate still settling: start once the station is ready.

@@ -287,3 +287,35 @@ fn a_start_while_the_glove_rate_settles_waits_for_it() {
     flow.tick(&healthy(13 * S), 13 * S);
     assert_eq!(flow.phase(), &Phase::Idle);
 }
+
+#[test]
+fn a_human_study_starts_on_glove_health_alone_and_never_engages() {
+    let limits = StartLimits {
+        drives_robot: false,
+        ..StartLimits::default()
+    };
+    let mut flow = TrialFlow::new(manifest(0, 1), notches(), 1.0, limits);
+    let glove = |rate: f64, t: i64| {
+        Health::from_status(
+            &json!({"state": "disengaged", "input_rate_hz": rate, "input_age_ms": 3.0}),
+            t,
+        )
+    };
+    assert!(flow.act(Action::Engage, &glove(100.0, 0), 0).is_empty());
+    assert!(
+        flow.messages()
+            .last()
+            .is_some_and(|m| m.contains("drives no robot"))
+    );
+    // A settling glove rate is waited for, as for a robot.
+    assert!(flow.act(Action::Start, &glove(9.0, 0), 0).is_empty());
+    assert_eq!(flow.phase(), &Phase::Idle);
+    flow.tick(&glove(100.0, S), S);
+    assert!(matches!(flow.phase(), Phase::Countdown { .. }));
+    let effects = flow.tick(&glove(100.0, 2 * S), 2 * S);
+    assert!(
+        effects.iter().any(|e| matches!(e, Effect::StartTrial { .. })),
+        "{effects:?}"
+    );
+    assert!(!effects.iter().any(|e| matches!(e, Effect::Engage)));
+}

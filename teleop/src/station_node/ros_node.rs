@@ -148,7 +148,8 @@ pub async fn run_station_observed(
 /// The node's publishers and subscriptions.
 struct Endpoints {
     node: RosNode,
-    joint: Publisher<JointState>,
+    /// The hand command publisher; `None` in a human study (no robot, nothing commanded).
+    joint: Option<Publisher<JointState>>,
     policy: Option<Publisher<Float32MultiArray>>,
     arm: Option<Publisher<PoseStamped>>,
     /// The station's own subscription to the arm command topic: counts its publishers.
@@ -191,8 +192,9 @@ impl Endpoints {
                 KeypointSubscription::Poses(node.subscription(topic, input_qos)?)
             }
         };
+        let robot = config.drives_robot();
         let arm_topic = &config.output.arm_target_topic;
-        let (arm, arm_monitor) = if arm_topic.is_empty() {
+        let (arm, arm_monitor) = if arm_topic.is_empty() || !robot {
             (None, None)
         } else {
             (
@@ -202,10 +204,15 @@ impl Endpoints {
         };
         let policy = match config.policy_output.topic.as_str() {
             "" => None,
+            _ if !robot => None,
             topic => Some(node.publisher(topic, output_qos)?),
         };
+        let joint = match robot {
+            true => Some(node.publisher(&config.output.joint_targets_topic, output_qos)?),
+            false => None,
+        };
         Ok(Endpoints {
-            joint: node.publisher(&config.output.joint_targets_topic, output_qos)?,
+            joint,
             policy,
             arm,
             arm_monitor,
@@ -246,7 +253,7 @@ impl Endpoints {
     fn listeners(&self) -> serde_json::Value {
         let node = self.node.node();
         json!({
-            "hand": self.joint.get_subscription_count(node),
+            "hand": self.joint.as_ref().map(|p| p.get_subscription_count(node)),
             "arm": self.arm.as_ref().map(|p| p.get_subscription_count(node).saturating_sub(1)),
         })
     }
@@ -382,10 +389,10 @@ impl StationNode {
         }
         let config = Arc::clone(&self.config);
         let output = &config.output;
-        if let Some(hand) = outputs.hand {
+        if let (Some(hand), Some(joint)) = (outputs.hand, &endpoints.joint) {
             let sent = self
                 .publish(
-                    &endpoints.joint,
+                    joint,
                     &output.joint_targets_topic,
                     now,
                     hand.joint_state,
