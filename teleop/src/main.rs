@@ -177,6 +177,10 @@ enum Command {
     /// command again to resume an interrupted session: a trial cut short by quit, Ctrl-C or a
     /// crash is kept aside (*.interrupted) and run again.
     ///
+    /// --embodiment human is a human-study session (see `pomdar study`): no robot, no
+    /// retargeting, the glove's keypoints and wrist recorded; the start checks only the glove;
+    /// no practice and 3 trials unless --practice / --trials say otherwise.
+    ///
     /// Keys: e engage / clutch out · space start (after the countdown) / stop · + one notch or
     /// curve · - take one back · p type a value (degrees, mm, grasp level 0 / 0.5 / 1) · d drop
     /// · a abort (scored as aborted) · r redo (abort and run again, or set the last trial
@@ -201,8 +205,30 @@ enum Command {
     /// Examples:
     ///   pomdar trial --task V1 --embodiment orca_full --user alice --operator bob --profile profiles/alice.toml --baseline baselines/eth_2026.toml
     ///   pomdar trial --task G2 --user sim --operator me --simulate --practice 1 --trials 3
+    ///   pomdar trial --task V1 --embodiment human --user p01 --operator bob
     #[command(verbatim_doc_comment)]
     Trial(command::trial::TrialArgs),
+    /// The human study: a participant does each task of a plan with their own hand.
+    ///
+    /// The baseline a robot's speed is scored against comes from people: in the POMDAR study
+    /// each participant does every task 3 times with their right hand, wearing the glove.
+    /// For each task in --tasks, in order, this runs the trial console as `pomdar trial
+    /// --embodiment human` would: the task's instruction and where the participant is in the
+    /// plan are shown; no robot, no retargeting; the glove's keypoints and wrist pose are
+    /// recorded with the trial's timing and events (one MCAP per trial, embodiment "human",
+    /// the participant as the user) in <out>/<participant>/human/<task>; a trial starts once
+    /// the glove is fresh and fast enough (space, or `start` in a script). Defaults: no
+    /// practice, 3 trials per task. Run the same command again to resume: complete tasks are
+    /// skipped, the interrupted one resumes at its next trial. Then `pomdar baseline` makes
+    /// the baseline table and `pomdar study-report` checks the participants' strategies.
+    /// Exit status: 0 study complete, 130 stopped (Ctrl-C, SIGTERM, q) before the end, 1 on
+    /// an error.
+    ///
+    /// Examples:
+    ///   pomdar study --participant p01 --operator bob --tasks V1,H2,C1,G2
+    ///   pomdar study --participant sim1 --operator me --tasks V1,C1,G2 --simulate --simulate-motion open-close,pinches,abduction
+    #[command(verbatim_doc_comment)]
+    Study(command::study::StudyArgs),
     /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
     /// embodiment.
     ///
@@ -276,6 +302,9 @@ fn main() -> ExitCode {
         }
         Command::Trial(args) => {
             return exit_code(command::common::run_async(command::trial::trial(args)));
+        }
+        Command::Study(args) => {
+            return exit_code(command::common::run_async(command::study::study(args)));
         }
         Command::Demo(args) => command::common::run_async(command::demo::demo(args)),
         Command::Calibrate(args) => command::calibrate::calibrate(args),

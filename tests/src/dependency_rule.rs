@@ -1,5 +1,5 @@
 //! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`,
-//! `scoring` and `station` never depend, directly or transitively, on ros2-client, rustdds or tokio, and
+//! `scoring`, `study` and `station` never depend, directly or transitively, on ros2-client, rustdds or tokio, and
 //! their sources do no I/O and read no clock. Only `teleop` does.
 
 use std::collections::{BTreeSet, HashMap};
@@ -7,7 +7,14 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 5] = ["msgs", "retarget", "calibration", "scoring", "station"];
+pub const CORE_CRATES: [&str; 6] = [
+    "msgs",
+    "retarget",
+    "calibration",
+    "scoring",
+    "study",
+    "station",
+];
 
 /// Packages a core crate must never pull in.
 pub const BANNED_PACKAGES: [&str; 3] = ["ros2-client", "rustdds", "tokio"];

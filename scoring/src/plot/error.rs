@@ -94,6 +94,39 @@ pub enum PlotError {
         /// What is wrong with it.
         problem: ValueProblem,
     },
+    /// A scatter chart without points.
+    #[error("scatter chart '{title}' has no points to draw")]
+    NoScatterPoints {
+        /// The chart's title.
+        title: String,
+    },
+    /// More scatter series than colours × marker styles.
+    #[error(
+        "scatter chart '{title}' has {count} series; at most {max} can be told apart by colour \
+         and marker"
+    )]
+    TooManyScatterSeries {
+        /// The chart's title.
+        title: String,
+        /// How many series it has.
+        count: usize,
+        /// Colours × marker styles.
+        max: usize,
+    },
+    /// A scatter point's coordinate that cannot be drawn.
+    #[error("series '{series}', point {index}, {axis}: value {value} is {problem}")]
+    BadScatterValue {
+        /// The series' label.
+        series: String,
+        /// The point's index in its series (0-based).
+        index: usize,
+        /// `x` or `y`.
+        axis: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        problem: ValueProblem,
+    },
     /// The rasteriser could not make the canvas or encode the PNG.
     #[error("could not rasterise the figure: {reason}")]
     Raster {

@@ -7,8 +7,10 @@
 //!   markers at 0 for tasks not attempted, listed under the legend.
 //! - [`dof_scatter`]: overall score against degrees of freedom, one labelled point per
 //!   embodiment, ± one standard deviation as error bars when given.
+//! - [`pca_scatter`]: principal component scores (the human study's strategy analysis), one
+//!   colour per series, round ticks around the data, light zero lines, a legend.
 //!
-//! Both charts build one drawing description (polylines, polygons, circles, text;
+//! The charts build one drawing description (polylines, polygons, circles, text;
 //! `primitives`) which two backends render: an SVG writer (`<text>` in a sans-serif family,
 //! escaped) and a tiny-skia rasteriser for the PNG, which draws text with this crate's own
 //! stroke font (`glyphs`, `stroke_font`) because tiny-skia has none. Everything is
@@ -20,6 +22,7 @@ mod glyphs;
 mod label_placement;
 mod legend;
 mod palette;
+mod pca_chart;
 mod png_backend;
 mod primitives;
 mod radar;
@@ -32,6 +35,7 @@ mod svg_backend;
 pub use dof_chart::{DofChart, DofPoint, dof_scatter};
 pub use error::{PlotError, ValueProblem};
 pub use palette::SERIES_COLORS;
+pub use pca_chart::{MAX_SCATTER_SERIES, PcaChart, PcaSeries, pca_scatter};
 pub use primitives::Rgba;
 pub use radar::radar;
 pub use radar_chart::{RadarChart, RadarSeries};

@@ -9,7 +9,7 @@ use tokio::sync::watch;
 use crate::ros::NetworkConfig;
 
 /// The glove's scripted motions.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum MotionArg {
     /// Open hand to fist and back.
     OpenClose,
@@ -33,7 +33,7 @@ impl From<MotionArg> for MotionKind {
 }
 
 /// Options shared by the node commands.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct NodeArgs {
     /// ROS domain id, 0–232 (default: the config's, else ROS_DOMAIN_ID, else 0).
     #[arg(long)]

@@ -19,4 +19,5 @@ pub mod resim;
 pub mod score;
 pub mod sim_glove;
 pub mod station;
+pub mod study;
 pub mod trial;

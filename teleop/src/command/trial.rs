@@ -12,13 +12,14 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
+use retarget::human_hand::MotionKind;
 use scoring::{ArmConstraint, TaskSpec};
 use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
-use crate::command::common::NodeArgs;
+use crate::command::common::{MotionArg, NodeArgs};
 use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
 use crate::score::report_files::write_report_files;
@@ -54,21 +55,26 @@ pub struct TrialArgs {
     /// The task ID (V1–V3, H1–H5, C1–C4, G1–G6; the catalog's IDs).
     #[arg(long, value_name = "ID")]
     pub task: String,
-    /// The embodiment being benchmarked (the station's embodiment catalog).
+    /// The embodiment being benchmarked (the station's embodiment catalog), or `human`: a
+    /// human-study session (no robot, no retargeting: the glove is recorded, the start
+    /// checks only its health; see `pomdar study` for a plan over several tasks).
     #[arg(long, value_name = "NAME", default_value = "orca_full")]
     pub embodiment: String,
-    /// The user wearing the glove (names the session directory and goes into every log).
+    /// The user wearing the glove, or the study's participant (names the session directory
+    /// and goes into every log).
     #[arg(long, value_name = "NAME")]
     pub user: String,
     /// The operator running the session.
     #[arg(long, value_name = "NAME")]
     pub operator: String,
-    /// Recorded trials in the series (the POMDAR protocol: 20).
-    #[arg(long, value_name = "N", default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=200))]
-    pub trials: u32,
-    /// Practice trials first (the POMDAR protocol: 5; not in the series' mean).
-    #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(0..=50))]
-    pub practice: u32,
+    /// Recorded trials in the series (default: the POMDAR protocol's 20 for a robot, the
+    /// human study's 3 for `--embodiment human`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=200))]
+    pub trials: Option<u32>,
+    /// Practice trials first, not in the series' mean (default: the POMDAR protocol's 5 for a
+    /// robot, none for `--embodiment human`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=50))]
+    pub practice: Option<u32>,
     /// Sessions directory; this session's is <DIR>/<user>/<embodiment>/<task>, holding one
     /// MCAP per trial, session.json (the manifest) and report/ when the plan is done. A
     /// session found there resumes where it stopped.
@@ -102,10 +108,19 @@ pub struct TrialArgs {
     /// without --script, commands are read from stdin, one per line.
     #[arg(long)]
     pub plain: bool,
-    /// Run a simulated glove, a mock hand and a mock Franka in this process, on loopback
-    /// (domain 150–229 from the process id unless --domain-id): a demo or a rehearsal.
+    /// Run a simulated glove, a mock hand and a mock Franka (only the glove for
+    /// `--embodiment human`) in this process, on loopback (domain 150–229 from the process
+    /// id unless --domain-id): a demo or a rehearsal.
     #[arg(long)]
     pub simulate: bool,
+    /// With --simulate: the simulated glove's motion.
+    #[arg(long, value_enum, value_name = "KIND", default_value = "task-like")]
+    pub simulate_motion: MotionArg,
+    /// With --simulate: the simulated hand's size relative to an average adult hand
+    /// (0.8–1.25; default: 1, or a size drawn from the user's name for `--embodiment human`,
+    /// so each simulated participant has their own hand).
+    #[arg(long, value_name = "SCALE")]
+    pub simulate_hand_scale: Option<f64>,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -140,34 +155,84 @@ enum Prompt {
     Note,
 }
 
+/// Default protocols: (practice, recorded trials).
+const ROBOT_PROTOCOL: (u32, u32) = (5, 20);
+/// The POMDAR human study's protocol: no practice, three trials per task.
+pub const HUMAN_PROTOCOL: (u32, u32) = (0, 3);
+
+impl TrialArgs {
+    /// Whether this is a human-study session (embodiment `human`).
+    pub fn human(&self) -> bool {
+        self.embodiment == station::HUMAN_EMBODIMENT
+    }
+
+    /// Practice and recorded trials: the flags, else the protocol's defaults.
+    pub fn plan_counts(&self) -> (u32, u32) {
+        let (practice, trials) = if self.human() {
+            HUMAN_PROTOCOL
+        } else {
+            ROBOT_PROTOCOL
+        };
+        (
+            self.practice.unwrap_or(practice),
+            self.trials.unwrap_or(trials),
+        )
+    }
+}
+
+/// How a console session ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SessionEnd {
+    /// Ctrl-C, SIGTERM, q or stdin closed.
+    pub interrupted: bool,
+    /// Every planned trial is done.
+    pub complete: bool,
+}
+
 /// `pomdar trial`.
 pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
-    check_args(&args)?;
+    let end = run_session(&args, Vec::new()).await?;
+    Ok(if end.interrupted {
+        ExitCode::from(EXIT_INTERRUPTED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// One task's console session; `study` lines are added to the setting shown (the study's
+/// plan and where the participant is in it).
+pub async fn run_session(
+    args: &TrialArgs,
+    study: Vec<(String, String)>,
+) -> anyhow::Result<SessionEnd> {
+    check_args(args)?;
     let inputs = args.scoring.load()?;
-    let task = task_of(&args, &inputs)?;
-    let config = station_config_for(&args, &task)?;
+    let task = task_of(args, &inputs)?;
+    let config = station_config_for(args, &task)?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
     crate::station_setup::build_station(&config, model.clone())?;
     let script = args.script.as_deref().map(load_script).transpose()?;
 
-    let plan = session_plan(&args, &task, &config);
+    let plan = session_plan(args, &task, &config);
     let dir = session_dir(&args.out, &plan);
     let (manifest, opened) = open_session(&dir, &plan)?;
     let limits = StartLimits {
         min_glove_rate_hz: args.min_glove_rate,
         max_input_age_ms: args.max_input_age,
-        ..StartLimits::default()
+        max_status_age_ms: StartLimits::default().max_status_age_ms,
+        drives_robot: !args.human(),
     };
     let mut flow = TrialFlow::new(manifest, task.correctness, args.countdown, limits);
     for line in opened {
         flow.say(line);
     }
-    let info = session_info(&args, &plan, &config, &dir, &inputs, task, limits)?;
+    let mut info = session_info(args, &plan, &config, &dir, &inputs, task, limits)?;
+    info.setup.splice(0..0, study);
 
     // The station (and, with --simulate, the glove and the robot).
     let clock = StationClock::new();
-    let station = spawn_station(&args, &config, &model, clock)?;
+    let station = spawn_station(args, &config, &model, clock)?;
     let operator = OperatorSide::open(args.plain, script)?;
     let mut console = TrialConsole {
         operator,
@@ -194,6 +259,20 @@ fn check_args(args: &TrialArgs) -> anyhow::Result<()> {
     check_name("--user", &args.user)?;
     check_name("--operator", &args.operator)?;
     check_name("--embodiment", &args.embodiment)?;
+    if args.human() && args.profile.is_some() {
+        anyhow::bail!(
+            "--profile: a human-study session (--embodiment human) drives no robot and uses no calibration profile"
+        );
+    }
+    if let Some(scale) = args.simulate_hand_scale {
+        check_range(
+            "--simulate-hand-scale",
+            scale,
+            0.5,
+            2.0,
+            "(relative hand size)",
+        )?;
+    }
     check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
     check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
     check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
@@ -226,6 +305,10 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
         };
     }
     config.retarget.embodiment.clone_from(&args.embodiment);
+    if args.human() {
+        // No robot: nothing is retargeted, so no user's calibration applies.
+        config.calibration_profile = None;
+    }
     config.arm.constraint = station_constraint(task.arm);
     config.control.auto_engage = false;
     config.validate()?;
@@ -234,13 +317,14 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
 
 /// What the session is: its task, embodiment, people, plan and the files it depends on.
 fn session_plan(args: &TrialArgs, task: &TaskSpec, config: &StationConfig) -> SessionPlan {
+    let (practice, trials) = args.plan_counts();
     SessionPlan {
         task: task.id.clone(),
         embodiment: args.embodiment.clone(),
         user: args.user.clone(),
         operator: args.operator.clone(),
-        practice: args.practice,
-        trials: args.trials,
+        practice,
+        trials,
         calibration_profile: config
             .calibration_profile
             .as_ref()
@@ -270,17 +354,32 @@ fn session_info(
         .as_ref()
         .and_then(|b| b.get(&task.id))
         .map(|b| b.mean_s);
+    let (who, embodiment, profile) = if args.human() {
+        (
+            "participant",
+            "human (study: no robot, the glove is recorded)".to_string(),
+            "none (no retargeting)".to_string(),
+        )
+    } else {
+        (
+            "user",
+            args.embodiment.clone(),
+            plan.calibration_profile
+                .clone()
+                .unwrap_or_else(|| "none (scale 1, no rotation)".into()),
+        )
+    };
+    let simulated = match (args.simulate, args.human()) {
+        (false, _) => "",
+        (true, true) => " (simulated glove)",
+        (true, false) => " (simulated glove and robot)",
+    };
     Ok(SessionInfo {
         setup: vec![
-            ("user".into(), args.user.clone()),
+            (who.into(), args.user.clone()),
             ("operator".into(), args.operator.clone()),
-            ("embodiment".into(), args.embodiment.clone()),
-            (
-                "profile".into(),
-                plan.calibration_profile
-                    .clone()
-                    .unwrap_or_else(|| "none (scale 1, no rotation)".into()),
-            ),
+            ("embodiment".into(), embodiment),
+            ("profile".into(), profile),
             (
                 "baseline".into(),
                 match baseline_s {
@@ -290,19 +389,14 @@ fn session_info(
             ),
             (
                 "plan".into(),
-                format!("{} practice + {} recorded", args.practice, args.trials),
+                format!("{} practice + {} recorded", plan.practice, plan.trials),
             ),
             ("session".into(), dir.display().to_string()),
             (
                 "domain".into(),
                 format!(
-                    "{}{}",
-                    crate::ros::domain_id(config.network.domain_id)?,
-                    if args.simulate {
-                        " (simulated glove and robot)"
-                    } else {
-                        ""
-                    }
+                    "{}{simulated}",
+                    crate::ros::domain_id(config.network.domain_id)?
                 ),
             ),
         ],
@@ -356,7 +450,7 @@ fn spawn_station(
     ));
     let mut simulated = Vec::new();
     if args.simulate {
-        simulated = spawn_simulation(config, model, clock, &shutdown_rx)?;
+        simulated = spawn_simulation(args, config, model, clock, &shutdown_rx)?;
     }
     Ok(StationHandles {
         task: station,
@@ -765,7 +859,7 @@ impl TrialConsole {
 
     /// The console has quit: the station disengages and stops, the console is left, the
     /// session's state printed; the exit status says whether it was interrupted.
-    async fn finish(self) -> anyhow::Result<ExitCode> {
+    async fn finish(self) -> anyhow::Result<SessionEnd> {
         let TrialConsole {
             operator,
             session,
@@ -789,16 +883,16 @@ impl TrialConsole {
         }
         drop(operator.display);
         session.print_summary();
+        let complete = session.flow.manifest.next_slot().is_none();
         if summary.counters.frames_new == 0 {
             eprintln!("note: the station received no glove frames");
         }
         if let Some(error) = end.failure {
             return Err(error);
         }
-        Ok(if end.interrupted {
-            ExitCode::from(EXIT_INTERRUPTED)
-        } else {
-            ExitCode::SUCCESS
+        Ok(SessionEnd {
+            interrupted: end.interrupted,
+            complete,
         })
     }
 }
@@ -888,19 +982,29 @@ fn write_session_report(
     Ok(out.join("report.md"))
 }
 
-/// `--simulate`: a simulated glove, a mock hand and a mock Franka on the station's loopback
-/// domain, until `shutdown`.
+/// `--simulate`: a simulated glove, and for a robot a mock hand and a mock Franka, on the
+/// station's loopback domain, until `shutdown`.
 fn spawn_simulation(
+    args: &TrialArgs,
     config: &StationConfig,
     model: &HandModel,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
 ) -> anyhow::Result<Vec<JoinHandle<Result<(), crate::sim::SimError>>>> {
-    let robot = spawn_mock_robot(config, model, clock, shutdown)?;
+    let mut tasks = Vec::new();
+    if config.drives_robot() {
+        let robot = spawn_mock_robot(config, model, clock, shutdown)?;
+        tasks.extend([robot.hand, robot.arm]);
+    }
+    let motion = MotionKind::from(args.simulate_motion);
     let glove_config = SimGloveConfig {
         keypoints_topic: config.input.keypoints_topic.clone(),
         wrist_topic: config.input.wrist_topic.clone(),
         layout: config.retarget.layout,
+        motion,
+        period_s: motion.default_period_s(),
+        hand_scale: simulated_hand_scale(args),
+        seed: name_seed(&args.user),
         ..SimGloveConfig::default()
     };
     let network = config.network.clone();
@@ -911,5 +1015,23 @@ fn spawn_simulation(
             Ok(())
         }
     });
-    Ok(vec![robot.hand, robot.arm, glove])
+    tasks.push(glove);
+    Ok(tasks)
+}
+
+/// The simulated hand's size: the flag, else 1 for a robot session, else one drawn from the
+/// participant's name in [0.85, 1.15] (each simulated participant keeps their own hand).
+fn simulated_hand_scale(args: &TrialArgs) -> f64 {
+    match (args.simulate_hand_scale, args.human()) {
+        (Some(scale), _) => scale,
+        (None, false) => 1.0,
+        (None, true) => 0.85 + 0.3 * (name_seed(&args.user) % 1000) as f64 / 999.0,
+    }
+}
+
+/// A stable seed from a name (FNV-1a), so a simulated participant is the same every run.
+fn name_seed(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
 }

@@ -135,6 +135,16 @@ impl Health {
         self.state == "engaged"
     }
 
+    /// Whether the glove is fit for a trial as of the last status: reported, fresh and fast
+    /// enough (the readiness of a human study, which has nothing to engage).
+    pub fn glove_ready(&self, limits: &StartLimits) -> bool {
+        self.received_ns.is_some()
+            && self
+                .input_age_ms
+                .is_some_and(|age| age <= limits.max_input_age_ms)
+            && self.glove_rate_hz >= limits.min_glove_rate_hz
+    }
+
     /// Age of the glove input at `now_ns`: the status's age plus the input age it reported.
     pub fn input_age_at(&self, now_ns: i64) -> Option<f64> {
         let received = self.received_ns?;

@@ -196,6 +196,11 @@ impl TrialFlow {
         (self.progress, self.drops)
     }
 
+    /// The limits a trial start is held to.
+    pub fn limits(&self) -> &StartLimits {
+        &self.limits
+    }
+
     /// The task's scoring kind.
     pub fn kind(&self) -> &CorrectnessKind {
         &self.kind

@@ -314,7 +314,9 @@ fn a_human_study_starts_on_glove_health_alone_and_never_engages() {
     assert!(matches!(flow.phase(), Phase::Countdown { .. }));
     let effects = flow.tick(&glove(100.0, 2 * S), 2 * S);
     assert!(
-        effects.iter().any(|e| matches!(e, Effect::StartTrial { .. })),
+        effects
+            .iter()
+            .any(|e| matches!(e, Effect::StartTrial { .. })),
         "{effects:?}"
     );
     assert!(!effects.iter().any(|e| matches!(e, Effect::Engage)));

@@ -79,6 +79,9 @@ impl Screen {
             Phase::Complete => Screen::Complete,
             Phase::Idle if flow.last_trial().is_some() => Screen::Summary,
             Phase::Idle if health.engaged() => Screen::Ready,
+            Phase::Idle if !flow.limits().drives_robot && health.glove_ready(flow.limits()) => {
+                Screen::Ready
+            }
             Phase::Idle => Screen::WaitingEngage,
         }
     }
@@ -122,8 +125,9 @@ pub struct ConsoleView {
     pub messages: Vec<String>,
 }
 
-/// The task's instruction for the operator: what to mark and how the arm moves.
-pub fn instruction(task: &TaskSpec) -> String {
+/// The task's instruction for the operator: what to mark and how the arm moves (with a robot),
+/// or that the participant uses their own hand (a human study).
+pub fn instruction(task: &TaskSpec, drives_robot: bool) -> String {
     let marks = match task.correctness {
         CorrectnessKind::Notches { count } => {
             format!("press + at each of the {count} notches passed (- takes one back)")
@@ -142,6 +146,7 @@ pub fn instruction(task: &TaskSpec) -> String {
         }
     };
     let arm = match task.arm {
+        _ if !drives_robot => "the participant does the task with their own right hand",
         ArmConstraint::Fixed => "arm fixed",
         ArmConstraint::VerticalAxis => "arm moves on the vertical axis only",
         ArmConstraint::HorizontalAxis => "arm moves on the horizontal axis only",
@@ -194,7 +199,7 @@ impl ConsoleView {
         ConsoleView {
             screen,
             title: title(info, &flow.manifest),
-            instruction: instruction(&info.task),
+            instruction: instruction(&info.task, info.limits.drives_robot),
             setup: info.setup.clone(),
             health: health_lines(health, &info.limits, now_ns),
             banner,
@@ -248,7 +253,7 @@ fn phase_banner(
                 "marked: {progress} {} · drops {drops}",
                 flow.kind().progress_unit()
             ));
-            detail.push(if health.engaged() {
+            detail.push(if health.engaged() || !flow.limits().drives_robot {
                 "space stops · a aborts · r aborts and redoes".to_string()
             } else {
                 format!(
@@ -270,6 +275,9 @@ fn phase_banner(
             ));
             screen.banner().to_string()
         }
+        _ if screen == Screen::WaitingEngage && !flow.limits().drives_robot => {
+            "WAITING FOR THE GLOVE".to_string()
+        }
         _ => screen.banner().to_string(),
     };
     (banner, detail)
@@ -282,11 +290,16 @@ fn next_step(flow: &TrialFlow, health: &Health) -> Option<String> {
         (Phase::Idle, Some((practice, index))) => {
             let slot = Slot { practice, index };
             let next = format!("next: {}", slot.label(manifest));
-            Some(if health.engaged() {
-                format!("{next} · space starts it (countdown)")
-            } else {
-                format!("{next} · press e to engage")
-            })
+            let human = !flow.limits().drives_robot;
+            Some(
+                if health.engaged() || (human && health.glove_ready(flow.limits())) {
+                    format!("{next} · space starts it (countdown)")
+                } else if human {
+                    format!("{next} · waiting for the glove (fresh input at the minimum rate)")
+                } else {
+                    format!("{next} · press e to engage")
+                },
+            )
         }
         (Phase::Complete, _) => Some(format!(
             "all {} practice and {} recorded trials done · q quits",
@@ -329,6 +342,27 @@ fn health_lines(
     if health.received_ns.is_none() {
         return vec![("station".into(), "starting…".into(), Level::Warn)];
     }
+    let lines = all_health_lines(health, limits, now_ns);
+    if limits.drives_robot {
+        return lines;
+    }
+    // A human study: the glove is all there is.
+    let mut glove: Vec<_> = lines
+        .into_iter()
+        .filter(|(k, _, _)| matches!(k.as_str(), "glove" | "input age" | "rejected" | "faults"))
+        .collect();
+    glove.insert(
+        0,
+        ("mode".into(), "human study: no robot".into(), Level::Ok),
+    );
+    glove
+}
+
+fn all_health_lines(
+    health: &Health,
+    limits: &StartLimits,
+    now_ns: i64,
+) -> Vec<(String, String, Level)> {
     let age = health.input_age_at(now_ns);
     let state_level = match health.state.as_str() {
         "engaged" => Level::Ok,
@@ -521,7 +555,7 @@ mod tests {
     #[test]
     fn instructions_say_what_to_mark_and_how_the_arm_moves() {
         let catalog = TaskCatalog::builtin();
-        let text = |id: &str| instruction(catalog.get(id).unwrap_or_else(|| panic!("{id}")));
+        let text = |id: &str| instruction(catalog.get(id).unwrap_or_else(|| panic!("{id}")), true);
         assert!(text("V1").contains("6 notches") && text("V1").contains("vertical axis"));
         assert!(text("G2").contains("0.5 lifted then dropped"));
         assert!(
@@ -529,6 +563,9 @@ mod tests {
             "{}",
             text("C1")
         );
+        let human = instruction(catalog.get("V1").unwrap(), false);
+        assert!(human.contains("6 notches") && human.contains("own right hand"));
+        assert!(!human.contains("arm"), "{human}");
     }
 
     #[test]

@@ -391,12 +391,7 @@ impl StationNode {
         let output = &config.output;
         if let (Some(hand), Some(joint)) = (outputs.hand, &endpoints.joint) {
             let sent = self
-                .publish(
-                    joint,
-                    &output.joint_targets_topic,
-                    now,
-                    hand.joint_state,
-                )
+                .publish(joint, &output.joint_targets_topic, now, hand.joint_state)
                 .await;
             if let (true, Some(received)) = (sent, outputs.fresh_frame_received_ns) {
                 self.last_latency_ms = Some((self.clock.now_ns() - received) as f64 * 1e-6);

@@ -1,0 +1,191 @@
+//! `pomdar study`: the human study's plan. One participant does each task of the plan in
+//! order with their own hand, wearing the glove; each task is a `pomdar trial --embodiment
+//! human` session (no robot, no retargeting, the glove's keypoints and wrist recorded with the
+//! trial timing and events, one MCAP per trial, a manifest per task). A study resumes: tasks
+//! already complete are skipped, the interrupted one resumes at its next trial.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::common::{MotionArg, NodeArgs};
+use super::trial::{EXIT_INTERRUPTED, HUMAN_PROTOCOL, TrialArgs, run_session};
+use crate::console::manifest::{MANIFEST_FILE, Manifest};
+use crate::console::view::instruction;
+use crate::score::score_inputs::ScoringFileArgs;
+
+/// `pomdar study` options.
+#[derive(Debug, Args)]
+pub struct StudyArgs {
+    /// The participant (names the session directories and goes into every log as the user).
+    #[arg(long, value_name = "NAME")]
+    pub participant: String,
+    /// The experimenter running the study.
+    #[arg(long, value_name = "NAME")]
+    pub operator: String,
+    /// The tasks, in the order the participant does them (catalog IDs, comma-separated).
+    #[arg(long, value_name = "ID,ID,…", value_delimiter = ',', required = true)]
+    pub tasks: Vec<String>,
+    /// Recorded trials per task (the POMDAR study: 3).
+    #[arg(long, value_name = "N", default_value_t = HUMAN_PROTOCOL.1, value_parser = clap::value_parser!(u32).range(1..=200))]
+    pub trials: u32,
+    /// Practice trials per task before the recorded ones (the POMDAR study: none).
+    #[arg(long, value_name = "N", default_value_t = HUMAN_PROTOCOL.0, value_parser = clap::value_parser!(u32).range(0..=50))]
+    pub practice: u32,
+    /// Sessions directory; each task's session is <DIR>/<participant>/human/<task>.
+    #[arg(long, value_name = "DIR", default_value = "sessions")]
+    pub out: PathBuf,
+    /// Station configuration (default: the built-in ETH lab preset): its glove input
+    /// (topics, layout, network) is used; nothing is retargeted.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// The catalog (the tasks' instructions) and rules; a baseline, if given, shows each
+    /// trial's speed against it.
+    #[command(flatten)]
+    pub scoring: ScoringFileArgs,
+    /// Countdown before a trial starts, seconds (0–30).
+    #[arg(long, value_name = "S", default_value_t = 3.0)]
+    pub countdown: f64,
+    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
+    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
+    pub min_glove_rate: f64,
+    /// Refuse to start a trial while the last glove frame is older than this, ms.
+    #[arg(long, value_name = "MS", default_value_t = 200.0)]
+    pub max_input_age: f64,
+    /// Timed actions from a file (the `pomdar trial` script format), played once for each
+    /// task the study runs.
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// Print lines instead of the full-screen console.
+    #[arg(long)]
+    pub plain: bool,
+    /// Run a simulated glove in this process, on loopback: a rehearsal, or the study's test.
+    #[arg(long)]
+    pub simulate: bool,
+    /// With --simulate: the glove's motion for each task, in the order of --tasks (the last
+    /// one repeats for the tasks after it).
+    #[arg(
+        long,
+        value_enum,
+        value_name = "KIND,…",
+        value_delimiter = ',',
+        default_value = "task-like"
+    )]
+    pub simulate_motion: Vec<MotionArg>,
+    /// With --simulate: the hand's size (default: one drawn from the participant's name).
+    #[arg(long, value_name = "SCALE")]
+    pub simulate_hand_scale: Option<f64>,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+impl StudyArgs {
+    /// The `pomdar trial` session of the plan's task number `index`.
+    fn task_session(&self, index: usize) -> TrialArgs {
+        let motion = self
+            .simulate_motion
+            .get(index)
+            .or(self.simulate_motion.last())
+            .copied()
+            .unwrap_or(MotionArg::TaskLike);
+        TrialArgs {
+            task: self.tasks[index].clone(),
+            embodiment: station::HUMAN_EMBODIMENT.to_string(),
+            user: self.participant.clone(),
+            operator: self.operator.clone(),
+            trials: Some(self.trials),
+            practice: Some(self.practice),
+            out: self.out.clone(),
+            config: self.config.clone(),
+            profile: None,
+            scoring: self.scoring.clone(),
+            countdown: self.countdown,
+            min_glove_rate: self.min_glove_rate,
+            max_input_age: self.max_input_age,
+            script: self.script.clone(),
+            plain: self.plain,
+            simulate: self.simulate,
+            simulate_motion: motion,
+            simulate_hand_scale: self.simulate_hand_scale,
+            node: self.node.clone(),
+        }
+    }
+
+    /// A task's session directory.
+    fn task_dir(&self, task: &str) -> PathBuf {
+        self.out
+            .join(&self.participant)
+            .join(station::HUMAN_EMBODIMENT)
+            .join(task)
+    }
+}
+
+/// Whether the session in `dir` has done every trial of this plan.
+fn task_complete(dir: &Path, practice: u32, trials: u32) -> anyhow::Result<bool> {
+    let path = dir.join(MANIFEST_FILE);
+    if !path.exists() {
+        return Ok(false);
+    }
+    let manifest = Manifest::load(&path)?;
+    Ok(manifest.done(true) >= practice && manifest.done(false) >= trials)
+}
+
+/// Checks the plan before anything runs: every task in the catalog, none twice.
+fn check_plan(args: &StudyArgs) -> anyhow::Result<()> {
+    let inputs = args.scoring.load()?;
+    for (i, task) in args.tasks.iter().enumerate() {
+        if inputs.catalog.get(task).is_none() {
+            anyhow::bail!(
+                "--tasks: {task:?} is not in the {} ({})",
+                inputs.catalog.origin,
+                inputs.catalog.ids()
+            );
+        }
+        if args.tasks[..i].contains(task) {
+            anyhow::bail!("--tasks: {task} is listed twice (each task is one session)");
+        }
+    }
+    Ok(())
+}
+
+/// `pomdar study`.
+pub async fn study(args: StudyArgs) -> anyhow::Result<ExitCode> {
+    check_plan(&args)?;
+    let catalog = args.scoring.load()?.catalog;
+    let count = args.tasks.len();
+    for (index, task) in args.tasks.iter().enumerate() {
+        let spec = catalog.get(task).cloned();
+        let what = spec
+            .as_ref()
+            .map(|t| instruction(t, false))
+            .unwrap_or_default();
+        let step = format!("task {} of {count}: {task}", index + 1);
+        if task_complete(&args.task_dir(task), args.practice, args.trials)? {
+            eprintln!("study {}: {step} is complete: skipped", args.participant);
+            continue;
+        }
+        eprintln!("study {}: {step} — {what}", args.participant);
+        let plan = (
+            "study".to_string(),
+            format!("{step} (plan: {})", args.tasks.join(", ")),
+        );
+        let end = run_session(&args.task_session(index), vec![plan]).await?;
+        if end.interrupted || !end.complete {
+            eprintln!(
+                "study {}: stopped at {step}; run the same command again to resume",
+                args.participant
+            );
+            return Ok(ExitCode::from(EXIT_INTERRUPTED));
+        }
+    }
+    println!(
+        "study {}: all {count} tasks complete in {}; next: pomdar baseline {} --out FILE, pomdar study-report {} --out DIR",
+        args.participant,
+        args.out.join(&args.participant).display(),
+        args.out.display(),
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
