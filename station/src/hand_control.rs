@@ -117,11 +117,7 @@ pub struct HandControl {
 impl HandControl {
     /// Hand control around a configured retargeter (none for a human study), gate and
     /// watchdog.
-    pub fn new(
-        retargeter: Option<Retargeter>,
-        gate: FrameGate,
-        watchdog: Watchdog,
-    ) -> HandControl {
+    pub fn new(retargeter: Option<Retargeter>, gate: FrameGate, watchdog: Watchdog) -> HandControl {
         let mut counters = Counters::default();
         for reason in Rejection::ALL {
             counters.rejected.insert(reason.name().into(), 0);

@@ -4,8 +4,8 @@ use msgs::Pose;
 use retarget::{HandModel, KeypointLayout};
 
 use super::*;
-use crate::convert::isometry_to_pose;
 use crate::HUMAN_EMBODIMENT;
+use crate::convert::isometry_to_pose;
 use crate::frame_gate::Rejection;
 
 const MS: i64 = 1_000_000;
@@ -255,8 +255,15 @@ fn a_human_study_station_judges_and_times_frames_but_never_drives_a_robot() {
     assert_eq!(status.counters.frames_new, 5);
     assert_eq!(status.counters.frames_repeated, 1);
     assert_eq!(status.counters.solves, 0);
-    assert_eq!((status.totals.hand_commands, status.totals.arm_targets), (0, 0));
+    assert_eq!(
+        (status.totals.hand_commands, status.totals.arm_targets),
+        (0, 0)
+    );
     assert!(status.input_rate_hz > 0.0);
-    assert_eq!(status.input_age_ms, Some(45.0), "the last new frame came at 160 ms");
+    assert_eq!(
+        status.input_age_ms,
+        Some(45.0),
+        "the last new frame came at 160 ms"
+    );
     assert!(!status.arm.enabled, "no arm in a human study");
 }
