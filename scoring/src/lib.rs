@@ -42,6 +42,7 @@
 //! | `catalog.rs` | [`TaskCatalog`]: the 18 tasks as data (`data/tasks_pomdar.toml`), validated |
 //! | `rules.rs` | [`ScoringRules`]: weights, time limits, unfinished trials |
 //! | `baseline.rs` | [`BaselineTable`] and [`compute_baseline`] from human trials |
+//! | `baseline_report.rs` | [`baseline_study`]: the study per participant × task, rendered |
 //! | `trial_log.rs` | [`TrialLog`] and its checks ([`TrialRecord`]) |
 //! | `correctness.rs` | [`correctness`] per kind |
 //! | `trial_score.rs` | [`score_trial`]: outcome, time, speed, score |
@@ -56,6 +57,7 @@ pub mod plot;
 
 mod aggregate;
 mod baseline;
+mod baseline_report;
 mod catalog;
 mod correctness;
 mod error;
@@ -71,7 +73,12 @@ mod trial_score;
 
 pub use aggregate::{Aggregate, EmbodimentResult, TaskResult, aggregate, overall_means};
 pub use baseline::{
-    BaselineComputation, BaselineHeader, BaselineTable, LeftOut, TaskBaseline, compute_baseline,
+    BaselineComputation, BaselineHeader, BaselineTable, LeftOut, TaskBaseline, UsedTrial,
+    compute_baseline,
+};
+pub use baseline_report::{
+    BaselineStudy, POMDAR_STUDY_TRIALS_PER_TASK, ParticipantTimes, StudySummary, StudyTask,
+    StudyTrial, UNNAMED_PARTICIPANT, baseline_study, render_study_markdown, render_study_text,
 };
 pub use catalog::{
     ArmConstraint, BUILTIN_CATALOG_ORIGIN, CatalogHeader, Configuration, CorrectnessKind,

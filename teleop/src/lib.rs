@@ -26,5 +26,6 @@ pub mod score;
 pub mod sim;
 pub mod station_node;
 pub mod station_setup;
+pub mod study_logs;
 pub mod tui;
 pub mod utc_date;

@@ -229,6 +229,27 @@ enum Command {
     ///   pomdar study --participant sim1 --operator me --tasks V1,C1,G2 --simulate --simulate-motion open-close,pinches,abduction
     #[command(verbatim_doc_comment)]
     Study(command::study::StudyArgs),
+    /// The human study's strategy check: do participants do each task the same way?
+    ///
+    /// Reads the recorded human trials (embodiment "human"; practice and aborted trials left
+    /// out) and cuts each trial's glove keypoints into 1.5 s segments. Each frame's keypoints
+    /// are expressed in the palm frame and divided by the participant's hand length (so hand
+    /// size, glove placement and where the hand is in the room do not count); a segment's
+    /// features are the mean and the standard deviation of those coordinates (the posture and
+    /// the movement). A PCA of the standardised features gives the first 3 principal
+    /// components. Writes to --out: strategy_pc1_pc2 and strategy_pc1_pc3 (.svg and .png: one
+    /// point per segment, coloured by task), report.md (variance explained, per-task
+    /// separation, the trial files used and left out) and strategy.json. The separation is
+    /// the silhouette of the segments' task labels on the kept components, read with Kaufman
+    /// & Rousseeuw's bands: > 0.70 strong, > 0.50 reasonable, > 0.25 weak, otherwise no
+    /// substantial structure. Exit status: 0 every file read; 3 some files could not be read
+    /// (the report is still written from the rest); 1 nothing to analyse (fewer than 2 tasks,
+    /// too few segments), or a file could not be written.
+    ///
+    /// Example:
+    ///   pomdar study-report sessions/ --out reports/study_strategy
+    #[command(verbatim_doc_comment)]
+    StudyReport(command::study_report::StudyReportArgs),
     /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
     /// embodiment.
     ///
@@ -267,13 +288,23 @@ enum Command {
     /// recorded trials that were stopped, not aborted, and within the rules' time limit;
     /// practice, aborted and timed-out trials are listed and left out. Trials of another
     /// embodiment are refused by name. Writes the table atomically as TOML (example = false,
-    /// a source note with --source, the trial count and the users), for `pomdar score
-    /// --baseline`. Exit status: 0 every file used or left out for a stated reason; 3 some
-    /// files were rejected or refused (the table is still written from the rest); 1 nothing
-    /// usable, or a file could not be read or written.
+    /// a source note with --source, the trial count and the users; per task the number of
+    /// participants when every trial names its user), for `pomdar score --baseline`.
     ///
-    /// Example:
+    /// Prints the study: per task the trials, mean, std, min–max and participants, then per
+    /// participant × task (the trials' user; "(unnamed)" without one) the trial times in
+    /// trial-index order. Tasks with fewer than --min-trials trials (default 18: the POMDAR
+    /// study's 6 participants × 3 trials) are flagged FEW and warned about on stderr; the
+    /// table is still written and the exit status is unchanged. --report FILE also writes the
+    /// study as Markdown (atomically; an existing file needs --overwrite, like --out).
+    ///
+    /// Exit status: 0 every file used or left out for a stated reason; 3 some files were
+    /// rejected or refused (the table is still written from the rest); 1 nothing usable, or
+    /// a file could not be read or written.
+    ///
+    /// Examples:
     ///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
+    ///   pomdar baseline trials/human/ --out baselines/pilot.toml --min-trials 6 --report baselines/pilot_study.md
     #[command(verbatim_doc_comment)]
     Baseline(command::baseline::BaselineArgs),
     /// Glove ingress: a motion-capture stream in, the lab's ROS 2 keypoint topics out.
@@ -305,6 +336,9 @@ fn main() -> ExitCode {
         }
         Command::Study(args) => {
             return exit_code(command::common::run_async(command::study::study(args)));
+        }
+        Command::StudyReport(args) => {
+            return exit_code(command::study_report::study_report(args));
         }
         Command::Demo(args) => command::common::run_async(command::demo::demo(args)),
         Command::Calibrate(args) => command::calibrate::calibrate(args),

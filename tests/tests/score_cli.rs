@@ -348,6 +348,95 @@ fn a_robot_trial_is_refused_for_the_baseline_by_name() {
     assert!(String::from_utf8_lossy(&again.stderr).contains("give --overwrite"));
 }
 
+#[test]
+fn the_baseline_reports_the_study_per_participant_and_flags_tasks_with_few_trials() {
+    let set = set();
+    // The default minimum is the POMDAR study's 18 trials per task: every task is flagged,
+    // with a warning, and the run still succeeds.
+    assert!(set.baseline_run.status.success(), "pomdar baseline failed");
+    let stderr = String::from_utf8_lossy(&set.baseline_run.stderr);
+    assert!(
+        stderr.contains("warning: task V1: 2 trials < --min-trials 18"),
+        "{stderr}"
+    );
+    let stdout = String::from_utf8_lossy(&set.baseline_run.stdout);
+    assert!(stdout.contains("FEW: 2 trials < minimum 18"), "{stdout}");
+    let text = std::fs::read_to_string(&set.baseline).unwrap();
+    let table: toml::Value = toml::from_str(&text).unwrap();
+    let v1 = &table["task"].as_array().unwrap()[0];
+    assert_eq!(v1["participants"].as_integer(), Some(2), "{text}");
+
+    let out = set.dir.join("study_baseline.toml");
+    let report = set.dir.join("study.md");
+    let _ = std::fs::remove_file(&out);
+    let _ = std::fs::remove_file(&report);
+    let human = set.dir.join("human");
+    let args = [
+        "baseline",
+        s(&human),
+        "--out",
+        s(&out),
+        "--min-trials",
+        "2",
+        "--report",
+        s(&report),
+    ];
+    let output = pomdar(&args);
+    assert!(output.status.success(), "{output:?}");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let row = |id: &str| {
+        stdout
+            .lines()
+            .find(|l| l.starts_with(id))
+            .unwrap()
+            .to_string()
+    };
+    assert!(
+        row("V1 ").contains("  11.000    1.414   10.000   12.000"),
+        "{stdout}"
+    );
+    assert!(!row("V1 ").contains("FEW"), "{stdout}");
+    assert!(
+        row("C1 ").ends_with("FEW: 1 trials < minimum 2"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("warning: task C1: 1 trials < --min-trials 2"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("warning: task V1"), "{stderr}");
+    let listing = stdout
+        .split("trial times per participant × task")
+        .nth(1)
+        .unwrap();
+    assert!(
+        listing.contains("\nV1    ann        #1 10.000\n      bob        #1 12.000\n"),
+        "{stdout}"
+    );
+    let md = std::fs::read_to_string(&report).unwrap();
+    assert!(md.contains("| V1 | bob | 1 | #1 12.000 |"), "{md}");
+    assert!(md.contains("| **FEW: 1 trials < minimum 2** |"), "{md}");
+    assert!(md.contains("v1_p.mcap | practice trial |"), "{md}");
+
+    // An existing report is not replaced without --overwrite; a bad minimum is refused.
+    std::fs::remove_file(&out).unwrap();
+    let again = pomdar(&args);
+    assert_eq!(again.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        stderr.contains(&format!("{} exists: give --overwrite", report.display())),
+        "{stderr}"
+    );
+    assert!(
+        !out.exists(),
+        "nothing is written when the report would be replaced"
+    );
+    let zero = pomdar(&["baseline", s(&human), "--out", s(&out), "--min-trials", "0"]);
+    assert_eq!(zero.status.code(), Some(2), "{zero:?}");
+    assert!(!out.exists());
+}
+
 fn png_is_sane(path: &Path) {
     let bytes = std::fs::read(path).unwrap();
     assert!(

@@ -2,12 +2,13 @@
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
 use scoring::{
-    BaselineTable, FileProblem, HUMAN_EMBODIMENT, TaskCatalog, TrialRecord, compute_baseline,
+    FileProblem, HUMAN_EMBODIMENT, POMDAR_STUDY_TRIALS_PER_TASK, TrialRecord, baseline_study,
+    compute_baseline, render_study_markdown, render_study_text,
 };
 
 use super::score::EXIT_SOME_REJECTED;
@@ -37,49 +38,48 @@ pub struct BaselineArgs {
     /// Scoring rules (TOML): their time limit leaves timed-out trials out of the baseline.
     #[arg(long, value_name = "FILE")]
     pub rules: Option<PathBuf>,
-    /// Replace an existing --out file.
+    /// Trials per task below which a task is flagged (a warning; the table is still
+    /// written). Default: the POMDAR study's 6 participants × 3 trials.
+    #[arg(long, value_name = "N", default_value_t = POMDAR_STUDY_TRIALS_PER_TASK, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub min_trials: u32,
+    /// Also write the study report (Markdown): per task mean, std, min–max, participants and
+    /// trials; per participant × task the trial times; the trials not averaged.
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
+    /// Replace an existing --out or --report file.
     #[arg(long)]
     pub overwrite: bool,
 }
 
-fn table_text(table: &BaselineTable, catalog: &TaskCatalog) -> String {
-    let mut out = String::new();
-    let _ = writeln!(out, "task  name              trials   mean s    std s");
-    for task in &catalog.tasks {
-        match table.get(&task.id) {
-            Some(b) => {
-                let _ = writeln!(
-                    out,
-                    "{:<5} {:<16} {:>7} {:>8.3} {:>8}",
-                    task.id,
-                    task.name,
-                    b.n,
-                    b.mean_s,
-                    b.std_s.map_or("–".to_string(), |s| format!("{s:.3}"))
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    out,
-                    "{:<5} {:<16}       0   (no usable human trial)",
-                    task.id, task.name
-                );
-            }
-        }
+/// Refuses to replace an existing `path` without `--overwrite`.
+fn check_writable(path: &Path, overwrite: bool) -> anyhow::Result<()> {
+    if path.exists() && !overwrite {
+        anyhow::bail!("{} exists: give --overwrite to replace it", path.display());
     }
-    out
+    Ok(())
 }
 
-/// `pomdar baseline`.
-pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
-    let inputs = ScoringInputs::load(args.catalog.as_deref(), args.rules.as_deref(), None)?;
-    if args.out.exists() && !args.overwrite {
-        anyhow::bail!(
-            "{} exists: give --overwrite to replace it",
-            args.out.display()
-        );
+/// Refuses an --out or --report file that exists (without --overwrite), or one path for both.
+fn check_outputs(args: &BaselineArgs) -> anyhow::Result<()> {
+    check_writable(&args.out, args.overwrite)?;
+    if let Some(report) = &args.report {
+        if report == &args.out {
+            anyhow::bail!(
+                "--report and --out are the same file ({}): give two paths",
+                report.display()
+            );
+        }
+        check_writable(report, args.overwrite)?;
     }
-    let found = collect_trial_files(&args.paths);
+    Ok(())
+}
+
+/// The trial files under `paths`, checked: the records and the files rejected.
+fn read_records(
+    paths: &[PathBuf],
+    inputs: &ScoringInputs,
+) -> anyhow::Result<(Vec<TrialRecord>, Vec<FileProblem>)> {
+    let found = collect_trial_files(paths);
     for s in &found.skipped {
         eprintln!("note: skipped {}: {}", s.file, s.reason);
     }
@@ -106,19 +106,20 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
             }),
         }
     }
+    Ok((records, rejected))
+}
+
+/// The table's source note: `--source`, then the count of trials averaged and the users of
+/// the recorded human trials.
+fn source_note(source: Option<&str>, records: &[TrialRecord], used: usize) -> String {
     let users: BTreeSet<&str> = records
         .iter()
         .filter(|r| r.embodiment == HUMAN_EMBODIMENT && !r.practice)
         .filter_map(|r| r.user.as_deref())
         .collect();
-    let provisional = compute_baseline(&records, &inputs.catalog, &inputs.rules, "");
-    let used: u32 = provisional.table.tasks.iter().map(|t| t.n).sum();
-    let mut source = args
-        .source
-        .clone()
-        .map_or(String::new(), |s| format!("{s}; "));
+    let mut note = source.map_or(String::new(), |s| format!("{s}; "));
     let _ = write!(
-        source,
+        note,
         "pomdar baseline over {used} recorded human trials (users: {})",
         if users.is_empty() {
             "not recorded".to_string()
@@ -126,9 +127,20 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
             users.into_iter().collect::<Vec<_>>().join(", ")
         }
     );
-    let result = compute_baseline(&records, &inputs.catalog, &inputs.rules, &source);
+    note
+}
 
-    print!("{}", table_text(&result.table, &inputs.catalog));
+/// `pomdar baseline`.
+pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
+    let inputs = ScoringInputs::load(args.catalog.as_deref(), args.rules.as_deref(), None)?;
+    check_outputs(&args)?;
+    let (records, rejected) = read_records(&args.paths, &inputs)?;
+    let mut result = compute_baseline(&records, &inputs.catalog, &inputs.rules, "");
+    let used = result.used.len();
+    result.table.header.source = source_note(args.source.as_deref(), &records, used);
+    let study = baseline_study(&result, &inputs.catalog, args.min_trials);
+
+    print!("{}", render_study_text(&study));
     for l in &result.left_out {
         eprintln!("note: not averaged {}: {}", l.file, l.reason);
     }
@@ -137,6 +149,12 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     }
     for r in &rejected {
         eprintln!("error: {}: {}", r.file, r.reason);
+    }
+    for (task, summary) in study.below_minimum() {
+        eprintln!(
+            "warning: task {}: {} trials < --min-trials {}",
+            task.id, summary.trials, args.min_trials
+        );
     }
     if result.table.tasks.is_empty() {
         anyhow::bail!(
@@ -153,9 +171,75 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
         result.refused.len(),
         rejected.len()
     );
+    if let Some(report) = &args.report {
+        write_atomically(report, render_study_markdown(&study))?;
+        eprintln!(
+            "wrote {} (the study per participant × task)",
+            report.display()
+        );
+    }
     Ok(if rejected.is_empty() && result.refused.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(EXIT_SOME_REJECTED)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: BaselineArgs,
+    }
+
+    fn parse(extra: &[&str]) -> Result<BaselineArgs, clap::Error> {
+        let argv = ["pomdar", "trials/", "--out", "b.toml"];
+        Cli::try_parse_from(argv.iter().chain(extra)).map(|c| c.args)
+    }
+
+    #[test]
+    fn min_trials_defaults_to_the_pomdar_study_and_is_range_checked() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let args = parse(&[]).unwrap();
+        assert_eq!((args.min_trials, args.report), (18, None));
+        let args = parse(&["--min-trials", "6", "--report", "study.md"]).unwrap();
+        assert_eq!(args.min_trials, 6);
+        assert_eq!(args.report, Some(PathBuf::from("study.md")));
+        for bad in ["0", "1001", "-3", "six"] {
+            assert!(parse(&["--min-trials", bad]).is_err(), "--min-trials {bad}");
+        }
+        assert!(parse(&["--min-trials", "1000"]).is_ok());
+    }
+
+    #[test]
+    fn the_report_and_the_table_must_be_two_files_and_are_not_replaced_silently() {
+        let dir = std::env::temp_dir().join(format!("pomdar-baseline-args-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("b.toml");
+        let report = dir.join("study.md");
+        let _ = std::fs::remove_file(&out);
+        std::fs::write(&report, "old").unwrap();
+        let mut args = parse(&["--report", report.to_str().unwrap()]).unwrap();
+        args.out = out.clone();
+        let refused = check_outputs(&args).unwrap_err().to_string();
+        assert!(
+            refused.contains("study.md exists: give --overwrite"),
+            "{refused}"
+        );
+        args.overwrite = true;
+        assert!(check_outputs(&args).is_ok());
+        args.report = Some(out.clone());
+        let same = check_outputs(&args).unwrap_err().to_string();
+        assert!(
+            same.contains("--report and --out are the same file"),
+            "{same}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -20,4 +20,5 @@ pub mod score;
 pub mod sim_glove;
 pub mod station;
 pub mod study;
+pub mod study_report;
 pub mod trial;

@@ -3,8 +3,8 @@
 //! console.
 
 use std::io::{BufRead as _, IsTerminal as _};
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use ratatui::crossterm::event::{self, Event, KeyCode, KeyEventKind, KeyModifiers};
@@ -112,18 +112,62 @@ fn read_keys(keys: &mpsc::UnboundedSender<Input>, stop: &AtomicBool) {
     }
 }
 
-/// Reads stdin lines into `lines` on a thread (the line console); [`Input::Closed`] at the end.
+/// Where stdin's lines go: the console reading them now, and lines that came while none was
+/// (between the tasks of a study), handed to the next.
+#[derive(Default)]
+struct StdinRoute {
+    target: Option<mpsc::UnboundedSender<Input>>,
+    pending: Vec<Input>,
+}
+
+impl StdinRoute {
+    fn deliver(&mut self, input: Input) {
+        match &self.target {
+            Some(target) => {
+                if let Err(unsent) = target.send(input) {
+                    self.target = None;
+                    self.pending.push(unsent.0);
+                }
+            }
+            None => self.pending.push(input),
+        }
+    }
+}
+
+static STDIN_ROUTE: Mutex<Option<StdinRoute>> = Mutex::new(None);
+
+/// Reads stdin lines into `lines` (the line console); [`Input::Closed`] at the end. stdin is
+/// read by one thread for the whole process: a later console (the next task of a study) takes
+/// the lines over, with any typed while no console was reading.
 pub fn read_stdin_lines(lines: mpsc::UnboundedSender<Input>) -> Result<(), TuiError> {
+    let mut route = STDIN_ROUTE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let started = route.is_some();
+    let route = route.get_or_insert_with(StdinRoute::default);
+    route.target = Some(lines);
+    for input in std::mem::take(&mut route.pending) {
+        route.deliver(input);
+    }
+    if started {
+        return Ok(());
+    }
+    let forward = |input: Input| {
+        let mut route = STDIN_ROUTE
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(route) = route.as_mut() {
+            route.deliver(input);
+        }
+    };
     std::thread::Builder::new()
         .name("console-stdin".into())
         .spawn(move || {
             for line in std::io::stdin().lock().lines() {
                 let Ok(line) = line else { break };
-                if lines.send(Input::Line(line)).is_err() {
-                    return;
-                }
+                forward(Input::Line(line));
             }
-            lines.send(Input::Closed).ok();
+            forward(Input::Closed);
         })
         .map_err(|source| TuiError::InputThread {
             thread: "console-stdin",
