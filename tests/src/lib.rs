@@ -3,6 +3,7 @@
 pub mod dependency_rule;
 pub mod deployment_guide;
 pub mod interop;
+pub mod line_console;
 pub mod module_graph;
 pub mod netns_lab;
 pub mod pomdar_binary;

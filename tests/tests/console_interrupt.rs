@@ -6,83 +6,20 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::io::{BufRead as _, BufReader, Write as _};
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use futures::StreamExt;
 use msgs::JointState;
+use pomdar_tests::line_console::{LineConsole, Process};
 use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
 use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use teleop::mcap_log::read_trial_events;
 use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
-
-/// A child process, killed when dropped so a failing test leaves nothing running.
-struct Process(Child);
-
-impl Drop for Process {
-    fn drop(&mut self) {
-        self.0.kill().ok();
-        self.0.wait().ok();
-    }
-}
-
-/// A line console: its stdin, and its stderr collected as it comes.
-struct LineConsole {
-    process: Process,
-    stderr: Arc<Mutex<String>>,
-}
-
-impl LineConsole {
-    fn start(args: &[String]) -> LineConsole {
-        let mut child = Command::new(pomdar_binary().unwrap())
-            .args(args)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let stderr = Arc::new(Mutex::new(String::new()));
-        let sink = stderr.clone();
-        let pipe = child.stderr.take().unwrap();
-        std::thread::spawn(move || {
-            for line in BufReader::new(pipe).lines() {
-                let Ok(line) = line else { break };
-                sink.lock().unwrap().push_str(&(line + "\n"));
-            }
-        });
-        LineConsole {
-            process: Process(child),
-            stderr,
-        }
-    }
-
-    fn say(&mut self, command: &str) {
-        let stdin = self.process.0.stdin.as_mut().unwrap();
-        writeln!(stdin, "{command}").unwrap();
-        stdin.flush().unwrap();
-    }
-
-    fn wait_for(&self, text: &str, timeout_s: f64) {
-        let start = Instant::now();
-        while !self.stderr.lock().unwrap().contains(text) {
-            assert!(
-                start.elapsed().as_secs_f64() < timeout_s,
-                "waited {timeout_s} s for {text:?}; the console printed:\n{}",
-                self.stderr.lock().unwrap()
-            );
-            std::thread::sleep(Duration::from_millis(50));
-        }
-    }
-
-    fn pid(&self) -> String {
-        self.process.0.id().to_string()
-    }
-}
 
 fn console_args(dir: &Path, domain: u16) -> Vec<String> {
     [
