@@ -44,7 +44,7 @@ pub fn strategy_chart(
     let axis = |i: usize| format!("PC{} ({:.0} % of variance)", i + 1, percent(i));
     let note = format!(
         "variance explained {:.0} % / {:.0} %; silhouette {:.2} ({}); {} segments of {} s, {} \
-         participants",
+         participant{}",
         percent(xi),
         percent(yi),
         analysis.silhouette,
@@ -52,6 +52,7 @@ pub fn strategy_chart(
         analysis.segments.len(),
         analysis.settings.segment_s,
         analysis.participants,
+        if analysis.participants == 1 { "" } else { "s" },
     );
     Ok(PcaChart {
         title: format!("Hand-motion segments by task: PC{x_pc} vs PC{y_pc}"),

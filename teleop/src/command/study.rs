@@ -12,6 +12,7 @@ use clap::Args;
 use super::common::{MotionArg, NodeArgs};
 use super::trial::{EXIT_INTERRUPTED, HUMAN_PROTOCOL, TrialArgs, run_session};
 use crate::console::manifest::{MANIFEST_FILE, Manifest};
+use crate::console::session_dir::check_name;
 use crate::console::view::instruction;
 use crate::score::score_inputs::ScoringFileArgs;
 
@@ -132,8 +133,10 @@ fn task_complete(dir: &Path, practice: u32, trials: u32) -> anyhow::Result<bool>
     Ok(manifest.done(true) >= practice && manifest.done(false) >= trials)
 }
 
-/// Checks the plan before anything runs: every task in the catalog, none twice.
+/// Checks the plan before anything runs: the names, every task in the catalog, none twice.
 fn check_plan(args: &StudyArgs) -> anyhow::Result<()> {
+    check_name("--participant", &args.participant)?;
+    check_name("--operator", &args.operator)?;
     let inputs = args.scoring.load()?;
     for (i, task) in args.tasks.iter().enumerate() {
         if inputs.catalog.get(task).is_none() {
