@@ -89,3 +89,48 @@ pub fn simulated_calibration_errors(stdout: &str) -> (String, f64, f64) {
         number_after("rotation error "),
     )
 }
+
+/// The `event` names of a trial log's events, in order.
+///
+/// # Panics
+/// When the log cannot be read or an event is not JSON with an `event` name (a test's
+/// failure report).
+pub fn trial_event_names(path: &Path) -> Vec<String> {
+    let events = teleop::mcap_log::read_trial_events(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    events
+        .events
+        .iter()
+        .map(|(_, text)| {
+            let event: serde_json::Value = serde_json::from_str(text)
+                .unwrap_or_else(|e| panic!("{}: event {text:?}: {e}", path.display()));
+            event["event"]
+                .as_str()
+                .unwrap_or_else(|| panic!("{}: event without a name: {text}", path.display()))
+                .to_string()
+        })
+        .collect()
+}
+
+/// (file, status) of every trial in a console session's manifest (`DIR/session.json`).
+///
+/// # Panics
+/// When the manifest cannot be read or lacks the fields (a test's failure report).
+pub fn session_trial_statuses(dir: &Path) -> Vec<(String, String)> {
+    let path = dir.join("session.json");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let manifest: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let field = |t: &serde_json::Value, key: &str| {
+        t[key]
+            .as_str()
+            .unwrap_or_else(|| panic!("{}: a trial without {key}", path.display()))
+            .to_string()
+    };
+    manifest["trials"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{}: no trials", path.display()))
+        .iter()
+        .map(|t| (field(t, "file"), field(t, "status")))
+        .collect()
+}

@@ -15,9 +15,8 @@ use futures::StreamExt;
 use msgs::JointState;
 use pomdar_tests::line_console::{LineConsole, Process};
 use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
-use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::{loopback, test_domain};
-use teleop::mcap_log::read_trial_events;
+use pomdar_tests::{scratch_dir, session_trial_statuses, trial_event_names};
 use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
 
@@ -51,36 +50,8 @@ fn console_args(dir: &Path, domain: u16) -> Vec<String> {
     .collect()
 }
 
-fn event_names(path: &Path) -> Vec<String> {
-    read_trial_events(path)
-        .unwrap()
-        .events
-        .iter()
-        .map(|(_, text)| {
-            serde_json::from_str::<serde_json::Value>(text).unwrap()["event"]
-                .as_str()
-                .unwrap()
-                .to_string()
-        })
-        .collect()
-}
-
 fn manifest(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("session.json")).unwrap()).unwrap()
-}
-
-fn statuses(dir: &Path) -> Vec<(String, String)> {
-    manifest(dir)["trials"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|t| {
-            (
-                t["file"].as_str().unwrap().to_string(),
-                t["status"].as_str().unwrap().to_string(),
-            )
-        })
-        .collect()
 }
 
 /// Joint targets the robot heard: receive times.
@@ -186,7 +157,7 @@ fn ctrl_c_during_trial_two(root: &Path, dir: &Path, domain: u16, heard: &Heard) 
     assert_eq!(code, Some(130), "{}", console.stderr.lock().unwrap());
     assert_silent_after(heard, stopped, "after Ctrl-C");
     assert_eq!(
-        statuses(dir),
+        session_trial_statuses(dir),
         [
             ("V1-t01.mcap".to_string(), "scored".to_string()),
             (
@@ -196,11 +167,11 @@ fn ctrl_c_during_trial_two(root: &Path, dir: &Path, domain: u16, heard: &Heard) 
         ]
     );
     assert_eq!(
-        event_names(&dir.join("V1-t01.mcap")),
+        trial_event_names(&dir.join("V1-t01.mcap")),
         ["start", "progress", "progress", "stop"]
     );
     assert_eq!(
-        event_names(&dir.join("V1-t02.mcap.interrupted")),
+        trial_event_names(&dir.join("V1-t02.mcap.interrupted")),
         ["start", "progress", "abort", "stop"]
     );
     assert_eq!(manifest(dir)["trials"][0]["progress"], 2.0);
@@ -223,12 +194,12 @@ fn sigkill_after_resuming(root: &Path, dir: &Path, domain: u16, heard: &Heard) {
     assert_silent_after(heard, stopped, "after SIGKILL");
     assert!(dir.join("V1-t02-a2.mcap.part").exists());
     assert_eq!(
-        statuses(dir).len(),
+        session_trial_statuses(dir).len(),
         2,
         "the manifest is as the Ctrl-C left it"
     );
     assert_eq!(
-        event_names(&dir.join("V1-t01.mcap")),
+        trial_event_names(&dir.join("V1-t01.mcap")),
         ["start", "progress", "progress", "stop"]
     );
 }
@@ -252,7 +223,7 @@ fn finish_by_script(root: &Path, dir: &Path, domain: u16) {
         "{stderr}"
     );
     assert_eq!(
-        statuses(dir),
+        session_trial_statuses(dir),
         [
             ("V1-t01.mcap", "scored"),
             ("V1-t02.mcap.interrupted", "interrupted"),
@@ -263,7 +234,7 @@ fn finish_by_script(root: &Path, dir: &Path, domain: u16) {
         .map(|(f, s)| (f.to_string(), s.to_string()))
     );
     // The recovered log keeps what was flushed before the kill: the start and the mark.
-    let recovered = event_names(&dir.join("V1-t02-a2.mcap.interrupted"));
+    let recovered = trial_event_names(&dir.join("V1-t02-a2.mcap.interrupted"));
     assert_eq!(&recovered[..2], ["start", "progress"], "{recovered:?}");
     assert!(!dir.join("V1-t02-a2.mcap.part").exists());
     assert_eq!(manifest(dir)["runs"], 3);

@@ -9,9 +9,8 @@ use std::path::Path;
 use std::time::Duration;
 
 use pomdar_tests::line_console::LineConsole;
-use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
-use teleop::mcap_log::read_trial_events;
+use pomdar_tests::{scratch_dir, session_trial_statuses, trial_event_names};
 
 fn study_args(root: &Path, domain: u16) -> Vec<String> {
     [
@@ -40,37 +39,6 @@ fn study_args(root: &Path, domain: u16) -> Vec<String> {
     .collect()
 }
 
-fn event_names(path: &Path) -> Vec<String> {
-    read_trial_events(path)
-        .unwrap()
-        .events
-        .iter()
-        .map(|(_, text)| {
-            serde_json::from_str::<serde_json::Value>(text).unwrap()["event"]
-                .as_str()
-                .unwrap()
-                .to_string()
-        })
-        .collect()
-}
-
-/// (file, status) of every trial in a task's manifest.
-fn statuses(dir: &Path) -> Vec<(String, String)> {
-    let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("session.json")).unwrap()).unwrap();
-    manifest["trials"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|t| {
-            (
-                t["file"].as_str().unwrap().to_string(),
-                t["status"].as_str().unwrap().to_string(),
-            )
-        })
-        .collect()
-}
-
 fn pairs(list: &[(&str, &str)]) -> Vec<(String, String)> {
     list.iter()
         .map(|(f, s)| (f.to_string(), s.to_string()))
@@ -92,17 +60,22 @@ fn run_trial(console: &mut LineConsole, ready_seen: usize, file: &str) {
     console.say("stop");
 }
 
+/// The task's second trial, once its first is summed up: one second, stopped.
+fn second_trial(console: &mut LineConsole, file: &str) {
+    console.wait_for("last trial 1: completed", 30.0);
+    console.say("start");
+    console.wait_for(&format!("→ {file}"), 30.0);
+    std::thread::sleep(Duration::from_secs(1));
+    console.say("stop");
+}
+
 /// 1. V1 done (both trials), Ctrl-C during C1's first trial: exit 130, V1 complete, the cut
 ///    trial logged as aborted and set aside.
 fn ctrl_c_in_the_second_task(root: &Path, domain: u16) {
     let mut console = LineConsole::start(&study_args(root, domain));
     console.wait_for("task 1 of 2: V1", 30.0);
     run_trial(&mut console, 1, "V1-t01.mcap");
-    console.wait_for("last trial 1: completed", 30.0);
-    console.say("start");
-    console.wait_for("→ V1-t02.mcap", 30.0);
-    std::thread::sleep(Duration::from_secs(1));
-    console.say("stop");
+    second_trial(&mut console, "V1-t02.mcap");
     console.wait_for("task 2 of 2: C1", 30.0);
     start_trial(&mut console, 2, "C1-t01.mcap");
     std::thread::sleep(Duration::from_secs(1));
@@ -115,16 +88,16 @@ fn ctrl_c_in_the_second_task(root: &Path, domain: u16) {
     );
     let v1 = root.join("cut/human/V1");
     assert_eq!(
-        statuses(&v1),
+        session_trial_statuses(&v1),
         pairs(&[("V1-t01.mcap", "scored"), ("V1-t02.mcap", "scored")])
     );
     let c1 = root.join("cut/human/C1");
     assert_eq!(
-        statuses(&c1),
+        session_trial_statuses(&c1),
         pairs(&[("C1-t01.mcap.interrupted", "interrupted")])
     );
     assert_eq!(
-        event_names(&c1.join("C1-t01.mcap.interrupted")),
+        trial_event_names(&c1.join("C1-t01.mcap.interrupted")),
         ["start", "abort", "stop"]
     );
 }
@@ -142,11 +115,11 @@ fn sigkill_after_resuming(root: &Path, domain: u16) {
     let c1 = root.join("cut/human/C1");
     assert!(c1.join("C1-t01-a2.mcap.part").exists());
     assert_eq!(
-        statuses(&c1).len(),
+        session_trial_statuses(&c1).len(),
         1,
         "the manifest is as the Ctrl-C left it"
     );
-    assert_eq!(statuses(&root.join("cut/human/V1")).len(), 2);
+    assert_eq!(session_trial_statuses(&root.join("cut/human/V1")).len(), 2);
 }
 
 /// 3. Resumed again: the .part is recovered and set aside, C1's two trials run, the study
@@ -155,17 +128,13 @@ fn finish_the_study(root: &Path, domain: u16) {
     let mut console = LineConsole::start(&study_args(root, domain));
     console.wait_for("task 2 of 2: C1", 30.0);
     run_trial(&mut console, 1, "C1-t01-a3.mcap");
-    console.wait_for("last trial 1: completed", 30.0);
-    console.say("start");
-    console.wait_for("→ C1-t02.mcap", 30.0);
-    std::thread::sleep(Duration::from_secs(1));
-    console.say("stop");
+    second_trial(&mut console, "C1-t02.mcap");
     console.wait_for("session complete", 30.0);
     let status = console.process.0.wait().unwrap();
     assert!(status.success(), "{}", console.printed());
     let c1 = root.join("cut/human/C1");
     assert_eq!(
-        statuses(&c1),
+        session_trial_statuses(&c1),
         pairs(&[
             ("C1-t01.mcap.interrupted", "interrupted"),
             ("C1-t01-a2.mcap.interrupted", "interrupted"),
@@ -179,7 +148,11 @@ fn finish_the_study(root: &Path, domain: u16) {
         "cut/human/C1/C1-t01-a3.mcap",
         "cut/human/C1/C1-t02.mcap",
     ] {
-        assert_eq!(event_names(&root.join(file)), ["start", "stop"], "{file}");
+        assert_eq!(
+            trial_event_names(&root.join(file)),
+            ["start", "stop"],
+            "{file}"
+        );
     }
 }
 

@@ -11,13 +11,13 @@ use scoring::{
     compute_baseline, render_study_markdown, render_study_text,
 };
 
+use super::common::human_trial_files;
 use super::score::EXIT_SOME_REJECTED;
 use crate::atomic_file::write_atomically;
 use crate::score::load_trial::load_trial_log;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
 use crate::score::score_inputs::reason;
-use crate::score::trial_files::collect_trial_files;
 
 /// `pomdar baseline` options.
 #[derive(Debug, Args)]
@@ -79,13 +79,7 @@ fn read_records(
     paths: &[PathBuf],
     inputs: &ScoringInputs,
 ) -> anyhow::Result<(Vec<TrialRecord>, Vec<FileProblem>)> {
-    let found = collect_trial_files(paths);
-    for s in &found.skipped {
-        eprintln!("note: skipped {}: {}", s.file, s.reason);
-    }
-    if found.files.is_empty() && found.problems.is_empty() {
-        anyhow::bail!("no .mcap trial files found");
-    }
+    let found = human_trial_files(paths)?;
     let results = process_files(
         &found.files,
         |path| {

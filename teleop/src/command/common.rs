@@ -78,3 +78,26 @@ pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
     });
     rx
 }
+
+/// The `.mcap` trial files under `paths` for a command that reads human trials (`pomdar
+/// baseline`, `pomdar study-report`): `.part` files skipped with a note; an error when there is
+/// nothing to read.
+pub(crate) fn human_trial_files(
+    paths: &[std::path::PathBuf],
+) -> anyhow::Result<crate::score::trial_files::TrialFiles> {
+    let found = crate::score::trial_files::collect_trial_files(paths);
+    for s in &found.skipped {
+        eprintln!("note: skipped {}: {}", s.file, s.reason);
+    }
+    if found.files.is_empty() && found.problems.is_empty() {
+        anyhow::bail!(
+            "no .mcap trial files in {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(found)
+}

@@ -10,7 +10,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::common::{MotionArg, NodeArgs};
-use super::trial::{EXIT_INTERRUPTED, HUMAN_PROTOCOL, TrialArgs, run_session};
+use super::trial::{ConsoleArgs, EXIT_INTERRUPTED, HUMAN_PROTOCOL, TrialArgs, run_session};
 use crate::console::manifest::{MANIFEST_FILE, Manifest};
 use crate::console::session_dir::check_name;
 use crate::console::view::instruction;
@@ -45,22 +45,9 @@ pub struct StudyArgs {
     /// trial's speed against it.
     #[command(flatten)]
     pub scoring: ScoringFileArgs,
-    /// Countdown before a trial starts, seconds (0–30).
-    #[arg(long, value_name = "S", default_value_t = 3.0)]
-    pub countdown: f64,
-    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
-    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
-    pub min_glove_rate: f64,
-    /// Refuse to start a trial while the last glove frame is older than this, ms.
-    #[arg(long, value_name = "MS", default_value_t = 200.0)]
-    pub max_input_age: f64,
-    /// Timed actions from a file (the `pomdar trial` script format), played once for each
-    /// task the study runs.
-    #[arg(long, value_name = "FILE")]
-    pub script: Option<PathBuf>,
-    /// Print lines instead of the full-screen console.
-    #[arg(long)]
-    pub plain: bool,
+    /// The countdown, the start gate, the script (played once for each task) and the display.
+    #[command(flatten)]
+    pub console: ConsoleArgs,
     /// Run a simulated glove in this process, on loopback: a rehearsal, or the study's test.
     #[arg(long)]
     pub simulate: bool,
@@ -102,11 +89,7 @@ impl StudyArgs {
             config: self.config.clone(),
             profile: None,
             scoring: self.scoring.clone(),
-            countdown: self.countdown,
-            min_glove_rate: self.min_glove_rate,
-            max_input_age: self.max_input_age,
-            script: self.script.clone(),
-            plain: self.plain,
+            console: self.console.clone(),
             simulate: self.simulate,
             simulate_motion: motion,
             simulate_hand_scale: self.simulate_hand_scale,

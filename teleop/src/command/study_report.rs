@@ -9,12 +9,12 @@ use std::process::ExitCode;
 use clap::Args;
 use study::{StrategyAnalysis, StrategySettings, TrialMotion, analyse, strategy_figure};
 
+use super::common::human_trial_files;
 use super::score::EXIT_SOME_REJECTED;
 use crate::atomic_file::write_atomically;
 use crate::score::ScoreFileError;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
-use crate::score::trial_files::collect_trial_files;
 use crate::study_logs::{StudyTrial, read_study_trial};
 
 /// `pomdar study-report` options.
@@ -48,13 +48,7 @@ struct ReadTrials {
 }
 
 fn read_trials(args: &StudyReportArgs, inputs: &ScoringInputs) -> anyhow::Result<ReadTrials> {
-    let found = collect_trial_files(&args.paths);
-    for s in &found.skipped {
-        eprintln!("note: skipped {}: {}", s.file, s.reason);
-    }
-    if found.files.is_empty() && found.problems.is_empty() {
-        anyhow::bail!("no .mcap trial files found");
-    }
+    let found = human_trial_files(&args.paths)?;
     let results = process_files(
         &found.files,
         |path| read_study_trial(path, &inputs.catalog).map_err(|e| e.to_string()),

@@ -91,23 +91,9 @@ pub struct TrialArgs {
     /// catalog and rules.
     #[command(flatten)]
     pub scoring: ScoringFileArgs,
-    /// Countdown before a trial starts, seconds (0–30).
-    #[arg(long, value_name = "S", default_value_t = 3.0)]
-    pub countdown: f64,
-    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
-    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
-    pub min_glove_rate: f64,
-    /// Refuse to start a trial while the last glove frame is older than this, ms.
-    #[arg(long, value_name = "MS", default_value_t = 200.0)]
-    pub max_input_age: f64,
-    /// Timed operator actions from a file instead of (or besides) the keyboard; see
-    /// `pomdar trial --help` for the format.
-    #[arg(long, value_name = "FILE")]
-    pub script: Option<PathBuf>,
-    /// Print lines instead of the full-screen console (the default without a terminal);
-    /// without --script, commands are read from stdin, one per line.
-    #[arg(long)]
-    pub plain: bool,
+    /// The countdown, the start gate, the script and the display.
+    #[command(flatten)]
+    pub console: ConsoleArgs,
     /// Run a simulated glove, a mock hand and a mock Franka (only the glove for
     /// `--embodiment human`) in this process, on loopback (domain 150–229 from the process
     /// id unless --domain-id): a demo or a rehearsal.
@@ -124,6 +110,28 @@ pub struct TrialArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+}
+
+/// How the trial console runs: shared by `pomdar trial` and `pomdar study`.
+#[derive(Debug, Clone, Args)]
+pub struct ConsoleArgs {
+    /// Countdown before a trial starts, seconds (0–30).
+    #[arg(long, value_name = "S", default_value_t = 3.0)]
+    pub countdown: f64,
+    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
+    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
+    pub min_glove_rate: f64,
+    /// Refuse to start a trial while the last glove frame is older than this, ms.
+    #[arg(long, value_name = "MS", default_value_t = 200.0)]
+    pub max_input_age: f64,
+    /// Timed operator actions from a file instead of (or besides) the keyboard; see
+    /// `pomdar trial --help` for the format (a study plays it once for each task).
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// Print lines instead of the full-screen console (the default without a terminal);
+    /// without --script, commands are read from stdin, one per line.
+    #[arg(long)]
+    pub plain: bool,
 }
 
 fn station_constraint(arm: ArmConstraint) -> Constraint {
@@ -212,18 +220,23 @@ pub async fn run_session(
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
     crate::station_setup::build_station(&config, model.clone())?;
-    let script = args.script.as_deref().map(load_script).transpose()?;
+    let script = args
+        .console
+        .script
+        .as_deref()
+        .map(load_script)
+        .transpose()?;
 
     let plan = session_plan(args, &task, &config);
     let dir = session_dir(&args.out, &plan);
     let (manifest, opened) = open_session(&dir, &plan)?;
     let limits = StartLimits {
-        min_glove_rate_hz: args.min_glove_rate,
-        max_input_age_ms: args.max_input_age,
+        min_glove_rate_hz: args.console.min_glove_rate,
+        max_input_age_ms: args.console.max_input_age,
         max_status_age_ms: StartLimits::default().max_status_age_ms,
         drives_robot: !args.human(),
     };
-    let mut flow = TrialFlow::new(manifest, task.correctness, args.countdown, limits);
+    let mut flow = TrialFlow::new(manifest, task.correctness, args.console.countdown, limits);
     for line in opened {
         flow.say(line);
     }
@@ -233,7 +246,7 @@ pub async fn run_session(
     // The station (and, with --simulate, the glove and the robot).
     let clock = StationClock::new();
     let station = spawn_station(args, &config, &model, clock)?;
-    let operator = OperatorSide::open(args.plain, script)?;
+    let operator = OperatorSide::open(args.console.plain, script)?;
     let mut console = TrialConsole {
         operator,
         wakeups: Wakeups::start()?,
@@ -273,9 +286,21 @@ fn check_args(args: &TrialArgs) -> anyhow::Result<()> {
             "(relative hand size)",
         )?;
     }
-    check_range("--countdown", args.countdown, 0.0, 30.0, "s")?;
-    check_range("--min-glove-rate", args.min_glove_rate, 0.0, 1000.0, "Hz")?;
-    check_range("--max-input-age", args.max_input_age, 10.0, 10_000.0, "ms")?;
+    check_range("--countdown", args.console.countdown, 0.0, 30.0, "s")?;
+    check_range(
+        "--min-glove-rate",
+        args.console.min_glove_rate,
+        0.0,
+        1000.0,
+        "Hz",
+    )?;
+    check_range(
+        "--max-input-age",
+        args.console.max_input_age,
+        10.0,
+        10_000.0,
+        "ms",
+    )?;
     Ok(())
 }
 
