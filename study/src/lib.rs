@@ -34,10 +34,14 @@
 //!
 //! The mean is the segment's posture (a power grasp and a pinch hold the fingers
 //! differently); the (population) standard deviation is its movement (spreading the fingers
-//! or opening and closing the hand moves different points by different amounts). Both are
-//! insensitive to where in its cycle a segment starts and to the speed of the motion, which
-//! differ between participants and trials without being a different strategy; raw
-//! trajectories would separate segments by phase instead of by task.
+//! or opening and closing the hand moves different points by different amounts). Neither
+//! depends on the order of the frames within the window, so they are far less sensitive than
+//! raw trajectories to where in its cycle a segment starts and to the motion's speed, which
+//! differ between participants and trials without being a different strategy. Not
+//! insensitive: a window shorter than a slow motion's cycle sees only part of it, so such a
+//! task's segments spread over the phases they caught (in the simulated study, the 4 s
+//! open–close cycle cut into 1.5 s windows separates least, silhouette about 0.2–0.35, the
+//! other two tasks 0.65–0.8).
 //!
 //! **3. PCA.** Every feature is standardised over all segments (z-score; a feature whose
 //! standard deviation is below 1e-9 hand lengths is constant and set to 0), so a coordinate
