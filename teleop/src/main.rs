@@ -71,7 +71,11 @@ enum Command {
     ///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
     #[command(verbatim_doc_comment)]
     Resim(command::resim::ResimArgs),
-    /// Retargeting quality on a recording's glove keypoints: how closely the hand follows.
+    /// Retargeting quality on recordings' glove keypoints: how closely the hand follows.
+    ///
+    /// Several recordings (files, or directories searched for .mcap files: an evaluation
+    /// set) give a report per recording, then a summary table (live path and retargeter alone,
+    /// one row per recording, the worst of each column).
     ///
     /// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
     /// through the station's retargeter, configured by --config and calibrated by --profile,
@@ -89,8 +93,23 @@ enum Command {
     /// Examples:
     ///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
     ///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
+    ///   pomdar eval ../shared/reference/ eval_set/
     #[command(verbatim_doc_comment)]
     Eval(command::eval::EvalArgs),
+    /// Build an evaluation set: transformed copies of real recordings for `pomdar eval`.
+    ///
+    /// Each recording's distinct keypoint frames are written again as they would come from
+    /// other users and gloves: a smaller hand (0.85×) with the glove turned 15°, a larger hand
+    /// (1.2×) turned −12°, a noisy glove (2 mm per coordinate) dropping 10 % of its frames,
+    /// 30 Hz and 120 Hz (re-sampled linearly), and, for the lab's 22 points, its 21-point
+    /// layout. One MCAP per copy in --out and set.json listing them; the sources are not
+    /// copied (evaluate them beside the set).
+    ///
+    /// Example:
+    ///   pomdar eval-set ../shared/reference/ --out eval_set/
+    ///   pomdar eval ../shared/reference/ eval_set/
+    #[command(verbatim_doc_comment)]
+    EvalSet(command::eval_set::EvalSetArgs),
     /// Repair an interrupted log (NAME.mcap.part) up to its last flushed chunk.
     ///
     /// Prints what was recovered and what was lost; never modifies the input.
@@ -344,6 +363,7 @@ fn main() -> ExitCode {
         Command::Calibrate(args) => command::calibrate::calibrate(args),
         Command::Resim(args) => command::resim::resim(args),
         Command::Eval(args) => command::eval::eval(args),
+        Command::EvalSet(args) => command::eval_set::eval_set(args),
         Command::Recover(args) => command::recover::recover(args),
         Command::Replay(args) => command::common::run_async(command::replay::replay(args)),
         Command::Probe(args) => {

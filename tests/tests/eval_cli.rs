@@ -157,7 +157,90 @@ fn robot_keypoints_give_no_tip_error() {
         mean < 0.5,
         "tip error {mean} mm on the robot's own keypoints"
     );
+    // The metrics without the global scale, end to end: each digit's own scale ≈ 1, flexion
+    // followed (correlation ≈ 1), no lag beyond one frame of the station's smoothing.
+    let own = number(&json, "tip_error_own_scale_mean_mm");
+    assert!(own < 0.5, "own-scale tip error {own} mm");
+    for digit in &json["per_digit"].as_array().unwrap()[..5] {
+        let s = digit["tip_own_scale"].as_f64().unwrap();
+        assert!((s - 1.0).abs() < 0.02, "{}: own scale {s}", digit["digit"]);
+    }
+    let r = number(&json, "flexion_correlation_mean");
+    assert!(r > 0.99, "flexion correlation {r}");
+    let lag = number(&json, "flexion_lag_frames");
+    assert!(lag.abs() <= 1.0, "lag {lag} frames");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The evaluation set built from the reference recording (`pomdar eval-set`) and evaluated
+/// with it: every copy is written and scored, and the 21-point copy (the forearm dropped,
+/// which no metric or retargeting term uses) scores exactly as the original.
+#[test]
+fn an_evaluation_set_from_the_reference_recording() {
+    let Some(input) = reference_file("rokoko_orca_2024-11-20.mcap") else {
+        return;
+    };
+    let dir = pomdar_tests::scratch_dir("eval_set");
+    let set = dir.join("set");
+    let built = pomdar(&[
+        "eval-set",
+        input.to_str().unwrap(),
+        "--out",
+        set.to_str().unwrap(),
+    ]);
+    assert!(built.status.success(), "pomdar eval-set failed");
+    let listed: Value =
+        serde_json::from_str(&std::fs::read_to_string(set.join("set.json")).unwrap()).unwrap();
+    let frames = |label: &str| {
+        listed
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["variants"].to_string().contains(label))
+            .unwrap_or_else(|| panic!("no {label} copy in {listed}"))["frames"]
+            .as_u64()
+            .unwrap()
+    };
+    assert_eq!(listed.as_array().unwrap().len(), 6);
+    assert_eq!(frames("21pt"), 727);
+    assert_eq!(frames("rate120hz"), 3601, "30 s at 120 Hz");
+    assert_eq!(frames("rate30hz"), 901);
+    assert!((600..700).contains(&frames("noise2mm-drop10")));
+
+    let output = pomdar(&[
+        "eval",
+        input.to_str().unwrap(),
+        set.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(output.status.success(), "pomdar eval over the set failed");
+    let json: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let rows = json["summary"].as_array().unwrap();
+    assert_eq!(rows.len(), 7, "the original and its six copies");
+    let row = |name: &str| {
+        rows.iter()
+            .find(|r| r["recording"].as_str().unwrap().ends_with(name))
+            .unwrap_or_else(|| panic!("no {name} row"))
+    };
+    let (original, dropped) = (row("11-20.mcap"), row("-21pt.mcap"));
+    assert_eq!(dropped["layout"], "lab21");
+    for path in ["alone", "live"] {
+        let (a, b) = (&original[path], &dropped[path]);
+        assert!(
+            (a["tip_error_mean_mm"].as_f64().unwrap() - b["tip_error_mean_mm"].as_f64().unwrap())
+                .abs()
+                < 1e-9,
+            "{path}: {a} vs {b}"
+        );
+        assert_eq!(a["pinch_frames"], b["pinch_frames"]);
+    }
+    for r in rows {
+        assert_eq!(r["live"]["limit_violation_frames"], 0, "{r}");
+        assert!(r["live"]["max_step_rad"].as_f64().unwrap() <= 0.3, "{r}");
+    }
+    let table = pomdar(&["eval", input.to_str().unwrap(), set.to_str().unwrap()]);
+    let text = String::from_utf8(table.stdout).unwrap();
+    assert!(text.contains("evaluation set: 7 recordings") && text.contains("worst"));
 }
 
 /// The live path (the station re-simulated, the command in force at each distinct frame) is

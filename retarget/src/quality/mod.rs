@@ -2,7 +2,8 @@
 //! keypoint frames, with definitions fixed so results compare across retargeters.
 //!
 //! Feed [`QualityRecorder::push`] each distinct human frame (keypoints in the configured
-//! layout, metres) with the joint command the retargeter produced for it; [`QualityRecorder::report`]
+//! layout, metres) with the joint command the retargeter produced for it, in time order
+//! ([`QualityRecorder::push_at`] also takes the frame's time); [`QualityRecorder::report`]
 //! then gives, overall and per digit:
 //!
 //! - **tip error**: human fingertips `h_{t,i}` in the human palm frame and robot fingertips
@@ -11,19 +12,44 @@
 //!   joint, finger bases at their abduction joints). One global scale
 //!   `s* = Σ r·h / Σ h·h` (least squares over every frame and digit), then the mean and p95 of
 //!   `‖r_{t,i} − s* h_{t,i}‖`;
+//! - **own-scale tip error**: the same with each digit's own least-squares scale
+//!   `s_i = Σ_t r_{t,i}·h_{t,i} / Σ_t h_{t,i}·h_{t,i}`: per digit `s_i` and the mean and p95
+//!   of `‖r_{t,i} − s_i h_{t,i}‖`, overall the mean and p95 over every digit's frames. The
+//!   global `s*` shrinks when the robot cannot reach some digits' targets (the ORCA thumb and
+//!   index), which then measures the reachable digits against targets that are too short; the
+//!   own scale does not carry one digit's shortfall to another;
+//! - **flexion correlation**: a digit's flexion is the distance from the palm-frame origin to
+//!   its tip, `‖h_{t,i}‖` and `‖r_{t,i}‖`, rather than from the digit's own base: one
+//!   reference point for every digit, the one the tip error already uses; it shrinks as a
+//!   finger curls and, for the thumb, as it opposes. Per digit the Pearson correlation over
+//!   frames of the human and robot series; `None` with fewer than [`CORRELATION_MIN_FRAMES`]
+//!   frames or when either series is constant (standard deviation under
+//!   [`FLEXION_MIN_STD_M`]): a finger the robot holds still reads `None`, one opening while
+//!   the human's closes reads negative. Overall the mean of the defined per-digit values.
+//!   Independent of scale and offset, so a smaller hand is neither rewarded nor punished;
+//! - **lag**: the shift `k`, `|k| ≤` [`LAG_MAX_FRAMES`] and at most half the frames, that
+//!   maximises the mean over digits (those defined at `k`) of the correlation of human flexion
+//!   at frame `t` with robot flexion at frame `t + k`; positive `k`: the robot is behind. Ties
+//!   keep the shift nearest 0. In seconds, the mean of `t_{t+k} − t_t` over the paired frames
+//!   when every frame was pushed with its time, else `None`;
 //! - **pinches**: frames where the human thumb tip is within [`PINCH_HUMAN_M`] of another
 //!   fingertip (unscaled; the nearest one counts); the robot's thumb-tip to that fingertip
-//!   distance, and the share of those frames where it is under [`PINCH_CLOSED_M`];
+//!   distance, and the number and share of those frames where it is under [`PINCH_CLOSED_M`];
 //! - **jerk**: mean over joints and frames of `|q_t − 3q_{t−1} + 3q_{t−2} − q_{t−3}|`, radians;
 //!   **max step**: largest `|q_t − q_{t−1}|` of any joint;
 //! - **limit violations**: frames with a joint outside the model's limits by more than
 //!   [`LIMIT_TOLERANCE_RAD`], or not finite.
 //!
-//! Joints belong to the digit whose fingertip chain alone they move; joints shared by every
-//! chain (the wrist) are reported as "wrist". Pure: the caller reads files and measures time.
+//! Frames with a non-finite command are left out of the tip, own-scale and flexion metrics
+//! (a pinch in one counts as open). Joints belong to the digit whose fingertip chain alone
+//! they move; joints shared by every chain (the wrist) are reported as "wrist". Pure: the
+//! caller reads files and measures time.
 
+mod flexion;
 mod report;
+mod scale_free;
 
+pub use flexion::{CORRELATION_MIN_FRAMES, FLEXION_MIN_STD_M, LAG_MAX_FRAMES};
 pub use report::{DigitQuality, QualityReport};
 
 use nalgebra::{Point3, Vector3};
@@ -59,6 +85,8 @@ struct FrameSample {
     q: Vec<f64>,
     /// Whether the command is outside the limits or not finite.
     violation: bool,
+    /// The frame's time, seconds, when pushed with one.
+    t_s: Option<f64>,
 }
 
 /// Collects (human keypoints, robot command) pairs and computes the quality metrics.
@@ -112,6 +140,27 @@ impl QualityRecorder {
     /// keypoints are malformed (count, not finite, collapsed palm) or `q` has the wrong length;
     /// nothing is recorded then. A non-finite command is recorded as a limit violation.
     pub fn push(&mut self, keypoints: &[Point3<f64>], q: &[f64]) -> Result<(), Error> {
+        self.record(None, keypoints, q)
+    }
+
+    /// [`QualityRecorder::push`] with the frame's time `t_s` (seconds, any origin), so the lag
+    /// is also reported in seconds (when every frame has a time). `Err(InvalidTimeStep)` when
+    /// `t_s` is not finite or not after the previous timed frame; nothing is recorded then.
+    pub fn push_at(&mut self, t_s: f64, keypoints: &[Point3<f64>], q: &[f64]) -> Result<(), Error> {
+        let previous = self.samples.iter().rev().find_map(|s| s.t_s);
+        let step_s = previous.map_or(t_s, |p| t_s - p);
+        if !t_s.is_finite() || previous.is_some() && step_s <= 0.0 {
+            return Err(Error::InvalidTimeStep { dt_s: step_s });
+        }
+        self.record(Some(t_s), keypoints, q)
+    }
+
+    fn record(
+        &mut self,
+        t_s: Option<f64>,
+        keypoints: &[Point3<f64>],
+        q: &[f64],
+    ) -> Result<(), Error> {
         validate_keypoints(self.layout, keypoints)?;
         if q.len() != self.model.dof() {
             return Err(Error::DofMismatch {
@@ -153,6 +202,7 @@ impl QualityRecorder {
             pinch,
             q: q.to_vec(),
             violation: !(finite && within),
+            t_s,
         });
         Ok(())
     }
@@ -163,5 +213,7 @@ impl QualityRecorder {
     }
 }
 
+#[cfg(test)]
+mod scale_free_tests;
 #[cfg(test)]
 mod tests;

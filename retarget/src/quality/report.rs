@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{FrameSample, PINCH_CLOSED_M};
+use super::scale_free::{OwnScale, own_scale};
+use super::{FrameSample, PINCH_CLOSED_M, flexion};
 use crate::finger::Finger;
 
 /// Quality metrics over a recording, overall.
@@ -22,6 +23,26 @@ pub struct QualityReport {
     pub pinch_gap_mean_mm: Option<f64>,
     /// Share of pinch frames where that distance is under 15 mm, percent.
     pub pinches_closed_pct: Option<f64>,
+    /// Pinch frames where that distance is under 15 mm.
+    #[serde(default)]
+    pub pinch_closed_frames: usize,
+    /// Mean of `‖r − s_i·h‖` over digits and frames, each digit `i` with its own least-squares
+    /// scale `s_i` ([`DigitQuality::tip_own_scale`]), millimetres; `None` without a finite
+    /// command.
+    pub tip_error_own_scale_mean_mm: Option<f64>,
+    /// 95th percentile of the same, millimetres.
+    pub tip_error_own_scale_p95_mm: Option<f64>,
+    /// Mean of the digits' defined [`DigitQuality::flexion_correlation`]s.
+    pub flexion_correlation_mean: Option<f64>,
+    /// The shift `k` (frames, within ±[`super::LAG_MAX_FRAMES`]) maximising the mean over
+    /// digits of the correlation of human flexion at `t` with robot flexion at `t + k`;
+    /// positive: the robot is behind the human. `None` when no digit's correlation is defined.
+    pub flexion_lag_frames: Option<i64>,
+    /// The same in seconds (mean of `t_{t+k} − t_t` over the paired frames), when every frame
+    /// was pushed with its time ([`super::QualityRecorder::push_at`]).
+    pub flexion_lag_s: Option<f64>,
+    /// The mean correlation at that shift.
+    pub flexion_lag_correlation: Option<f64>,
     /// Mean absolute third difference of each joint per frame, radians.
     pub jerk_rad: f64,
     /// Largest per-frame change of any joint, radians.
@@ -45,6 +66,19 @@ pub struct DigitQuality {
     pub pinch_frames: usize,
     /// Share of them closed, percent.
     pub pinches_closed_pct: Option<f64>,
+    /// Number of them closed (robot gap under 15 mm).
+    #[serde(default)]
+    pub pinch_closed_frames: usize,
+    /// This digit's own least-squares scale `s_i = Σ_t r·h / Σ_t h·h` (`None` for the wrist).
+    pub tip_own_scale: Option<f64>,
+    /// Mean of `‖r − s_i·h‖`, millimetres (`None` for the wrist).
+    pub tip_error_own_scale_mean_mm: Option<f64>,
+    /// 95th percentile of the same, millimetres (`None` for the wrist).
+    pub tip_error_own_scale_p95_mm: Option<f64>,
+    /// Pearson correlation over frames of human and robot flexion (palm-frame origin to tip
+    /// distance); `None` for the wrist, with fewer than 3 frames, or when either side is
+    /// constant (a finger the robot holds still).
+    pub flexion_correlation: Option<f64>,
     /// Mean absolute third difference of this digit's joints, radians.
     pub jerk_rad: Option<f64>,
     /// Largest per-frame change of this digit's joints, radians.
@@ -86,18 +120,35 @@ fn motion(samples: &[FrameSample], keep: impl Fn(usize) -> bool) -> (Vec<f64>, V
     (jerks, steps)
 }
 
-fn pinch_stats<'a>(gaps: impl Iterator<Item = &'a Option<f64>>) -> (usize, Vec<f64>, Option<f64>) {
+/// Pinch frames, closed frames, the finite robot gaps and the closed share of some pinches.
+struct PinchStats {
+    frames: usize,
+    closed: usize,
+    gaps: Vec<f64>,
+    closed_pct: Option<f64>,
+}
+
+fn pinch_stats<'a>(gaps: impl Iterator<Item = &'a Option<f64>>) -> PinchStats {
     let gaps: Vec<Option<f64>> = gaps.copied().collect();
     let closed = gaps
         .iter()
         .filter(|g| g.is_some_and(|g| g < PINCH_CLOSED_M))
         .count();
-    let share = (!gaps.is_empty()).then(|| 100.0 * closed as f64 / gaps.len() as f64);
-    (gaps.len(), gaps.into_iter().flatten().collect(), share)
+    PinchStats {
+        frames: gaps.len(),
+        closed,
+        closed_pct: (!gaps.is_empty()).then(|| 100.0 * closed as f64 / gaps.len() as f64),
+        gaps: gaps.into_iter().flatten().collect(),
+    }
 }
 
-pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> QualityReport {
-    // The scale: least squares of r ≈ s·h over every frame with a finite command.
+fn max(values: &[f64]) -> Option<f64> {
+    values.iter().copied().reduce(f64::max)
+}
+
+/// The global scale `s*` and each digit's errors after it, millimetres.
+fn global_scale(samples: &[FrameSample]) -> (f64, [Vec<f64>; 5]) {
+    // Least squares of r ≈ s·h over every frame with a finite command.
     let (mut rh, mut hh) = (0.0, 0.0);
     for s in samples {
         if let Some(robot) = &s.robot_tips {
@@ -116,58 +167,100 @@ pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> 
             }
         }
     }
+    (scale, errors)
+}
+
+/// One digit's metrics, given its errors after the global scale, its own scale and its
+/// flexion correlation.
+fn digit_quality(
+    samples: &[FrameSample],
+    dof_digit: &[Option<Finger>],
+    finger: Finger,
+    errors: &[f64],
+    own: &OwnScale,
+    flexion_correlation: Option<f64>,
+) -> DigitQuality {
+    let pinches = pinch_stats(
+        samples
+            .iter()
+            .filter_map(|s| s.pinch.as_ref())
+            .filter(|p| p.0 == finger)
+            .map(|p| &p.1),
+    );
+    let (jerks, steps) = motion(samples, |j| dof_digit[j] == Some(finger));
+    DigitQuality {
+        digit: finger.name().into(),
+        tip_error_mean_mm: mean(errors),
+        tip_error_p95_mm: percentile(errors, 0.95),
+        pinch_frames: pinches.frames,
+        pinches_closed_pct: pinches.closed_pct,
+        pinch_closed_frames: pinches.closed,
+        tip_own_scale: own.scale,
+        tip_error_own_scale_mean_mm: mean(&own.errors_mm),
+        tip_error_own_scale_p95_mm: percentile(&own.errors_mm, 0.95),
+        flexion_correlation,
+        jerk_rad: mean(&jerks),
+        max_step_rad: max(&steps),
+    }
+}
+
+/// The joints every chain shares, as a digit row without tip or pinch metrics.
+fn wrist_quality(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> DigitQuality {
+    let (jerks, steps) = motion(samples, |j| dof_digit[j].is_none());
+    DigitQuality {
+        digit: "wrist".into(),
+        tip_error_mean_mm: None,
+        tip_error_p95_mm: None,
+        pinch_frames: 0,
+        pinches_closed_pct: None,
+        pinch_closed_frames: 0,
+        tip_own_scale: None,
+        tip_error_own_scale_mean_mm: None,
+        tip_error_own_scale_p95_mm: None,
+        flexion_correlation: None,
+        jerk_rad: mean(&jerks),
+        max_step_rad: max(&steps),
+    }
+}
+
+pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> QualityReport {
+    let (scale, errors) = global_scale(samples);
     let all_errors: Vec<f64> = errors.iter().flatten().copied().collect();
-    let (pinch_frames, gaps, closed) = pinch_stats(
+    let own = Finger::ALL.map(|f| own_scale(samples, f));
+    let own_errors: Vec<f64> = own.iter().flat_map(|o| &o.errors_mm).copied().collect();
+    let flexion = flexion::compute(samples);
+    let pinches = pinch_stats(
         samples
             .iter()
             .filter_map(|s| s.pinch.as_ref().map(|p| &p.1)),
     );
     let (jerks, steps) = motion(samples, |_| true);
-    let max = |v: &[f64]| v.iter().copied().reduce(f64::max);
-
     let mut per_digit: Vec<DigitQuality> = Finger::ALL
         .into_iter()
-        .map(|finger| {
-            let (frames, _, closed) = pinch_stats(
-                samples
-                    .iter()
-                    .filter_map(|s| s.pinch.as_ref())
-                    .filter(|p| p.0 == finger)
-                    .map(|p| &p.1),
-            );
-            let (jerks, steps) = motion(samples, |j| dof_digit[j] == Some(finger));
-            let e = &errors[finger.index()];
-            DigitQuality {
-                digit: finger.name().into(),
-                tip_error_mean_mm: mean(e),
-                tip_error_p95_mm: percentile(e, 0.95),
-                pinch_frames: frames,
-                pinches_closed_pct: closed,
-                jerk_rad: mean(&jerks),
-                max_step_rad: max(&steps),
-            }
+        .map(|f| {
+            let i = f.index();
+            let correlation = flexion.per_digit[i];
+            digit_quality(samples, dof_digit, f, &errors[i], &own[i], correlation)
         })
         .collect();
     if dof_digit.iter().any(Option::is_none) {
-        let (jerks, steps) = motion(samples, |j| dof_digit[j].is_none());
-        per_digit.push(DigitQuality {
-            digit: "wrist".into(),
-            tip_error_mean_mm: None,
-            tip_error_p95_mm: None,
-            pinch_frames: 0,
-            pinches_closed_pct: None,
-            jerk_rad: mean(&jerks),
-            max_step_rad: max(&steps),
-        });
+        per_digit.push(wrist_quality(samples, dof_digit));
     }
     QualityReport {
         frames: samples.len(),
         tip_scale: scale,
         tip_error_mean_mm: mean(&all_errors).unwrap_or(0.0),
         tip_error_p95_mm: percentile(&all_errors, 0.95).unwrap_or(0.0),
-        pinch_frames,
-        pinch_gap_mean_mm: mean(&gaps).map(|g| g * 1e3),
-        pinches_closed_pct: closed,
+        pinch_frames: pinches.frames,
+        pinch_gap_mean_mm: mean(&pinches.gaps).map(|g| g * 1e3),
+        pinches_closed_pct: pinches.closed_pct,
+        pinch_closed_frames: pinches.closed,
+        tip_error_own_scale_mean_mm: mean(&own_errors),
+        tip_error_own_scale_p95_mm: percentile(&own_errors, 0.95),
+        flexion_correlation_mean: flexion.mean,
+        flexion_lag_frames: flexion.lag.map(|l| l.frames),
+        flexion_lag_s: flexion.lag.and_then(|l| l.seconds),
+        flexion_lag_correlation: flexion.lag.map(|l| l.correlation),
         jerk_rad: mean(&jerks).unwrap_or(0.0),
         max_step_rad: max(&steps).unwrap_or(0.0),
         limit_violation_frames: samples.iter().filter(|s| s.violation).count(),
@@ -186,5 +279,14 @@ mod tests {
         assert_eq!(percentile(&v, 1.0), Some(20.0));
         assert_eq!(percentile(&v, 0.0), Some(1.0));
         assert_eq!(percentile(&[], 0.5), None);
+    }
+
+    #[test]
+    fn pinch_stats_count_closed_frames_and_keep_unmeasured_ones_open() {
+        let gaps = [Some(0.01), Some(0.02), None, Some(0.0149)];
+        let stats = pinch_stats(gaps.iter());
+        assert_eq!((stats.frames, stats.closed), (4, 2));
+        assert_eq!(stats.closed_pct, Some(50.0));
+        assert_eq!(stats.gaps, [0.01, 0.02, 0.0149]);
     }
 }

@@ -1,20 +1,26 @@
-//! `pomdar eval`: retargeting quality on a recording's glove frames (the work is in
-//! [`crate::eval`]).
+//! `pomdar eval`: retargeting quality on recordings' glove frames (the work is in
+//! [`crate::eval`]): one recording, or an evaluation set (several files, or directories of
+//! them) with a table per recording and a summary.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use retarget::HandModel;
 
+use super::common::human_trial_files;
+use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{evaluate, table};
 use crate::mcap_log::TrialReader;
+use crate::progress_bar::{ProgressBar, ProgressStyle};
 use crate::station_setup::load_station_config;
 
 /// `pomdar eval` options.
 #[derive(Debug, Args)]
 pub struct EvalArgs {
-    /// The recording (MCAP) whose glove keypoints are retargeted.
-    pub input: PathBuf,
+    /// The recordings (MCAP) whose glove keypoints are retargeted, or directories searched
+    /// for them (an evaluation set, e.g. from `pomdar eval-set`).
+    #[arg(required = true, value_name = "RECORDING")]
+    pub inputs: Vec<PathBuf>,
     /// Station configuration: keypoint topic and format, retargeting settings (default: the
     /// built-in ETH lab preset, whose retargeting is the shipped default).
     #[arg(long, value_name = "FILE")]
@@ -24,7 +30,8 @@ pub struct EvalArgs {
     /// (identity: scale 1, no rotation).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
-    /// Print the report as JSON on stdout instead of the table.
+    /// Print the report as JSON on stdout instead of the tables (one recording: its report;
+    /// several: `{"recordings": [...], "summary": [...]}`).
     #[arg(long)]
     pub json: bool,
 }
@@ -32,12 +39,39 @@ pub struct EvalArgs {
 /// `pomdar eval`.
 pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
-    let reader = TrialReader::open(&args.input)?;
-    let output = evaluate(&reader, &config, HandModel::orca_v1_right())?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&output)?);
+    let single = args.inputs.len() == 1 && args.inputs[0].is_file();
+    let files = if single {
+        args.inputs.clone()
     } else {
-        print!("{}", table(&output));
+        human_trial_files(&args.inputs)?.files
+    };
+    let mut outputs = Vec::new();
+    let style = match single {
+        true => ProgressStyle::Silent,
+        false => ProgressStyle::redraw_on_terminal(ProgressStyle::Lines { every: 1 }),
+    };
+    let mut progress = ProgressBar::new(style);
+    for (done, path) in files.iter().enumerate() {
+        progress.update(done, files.len(), &path.display().to_string());
+        let reader = TrialReader::open(path)?;
+        let output = evaluate(&reader, &config, HandModel::orca_v1_right())
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        if !args.json {
+            println!("{}", table(&output));
+        }
+        outputs.push(output);
+    }
+    progress.update(files.len(), files.len(), "recordings evaluated");
+    progress.finish();
+    if single && args.json {
+        println!("{}", serde_json::to_string_pretty(&outputs[0])?);
+        return Ok(());
+    }
+    let set = SetOutput::of(outputs);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&set)?);
+    } else if !single {
+        print!("{}", summary_table(&set));
     }
     Ok(())
 }

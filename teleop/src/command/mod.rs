@@ -8,6 +8,7 @@ pub mod calibrate;
 pub mod common;
 pub mod demo;
 pub mod eval;
+pub mod eval_set;
 pub mod ingress;
 pub mod mock_franka;
 pub mod mock_hand;

@@ -48,7 +48,13 @@ struct LivePathScore {
 }
 
 impl LivePathScore {
-    fn after_step(&mut self, input: &StationInput, station: &station::Station, fresh: bool) {
+    fn after_step(
+        &mut self,
+        input: &StationInput,
+        now_ns: i64,
+        station: &station::Station,
+        fresh: bool,
+    ) {
         self.fresh += u64::from(fresh);
         let StationInput::Keypoints(frame) = input else {
             return;
@@ -61,7 +67,12 @@ impl LivePathScore {
             Some(command) => {
                 // A frame the recorder cannot measure (collapsed palm) is left out, as the
                 // retargeter-alone figures leave it out, and counted.
-                if self.recorder.push(&frame.points, &command.q).is_err() {
+                let t_s = now_ns as f64 * 1e-9;
+                if self
+                    .recorder
+                    .push_at(t_s, &frame.points, &command.q)
+                    .is_err()
+                {
                     self.not_measured += 1;
                 }
             }
@@ -92,7 +103,7 @@ pub fn live_path(
         if fresh {
             score.step_us.push(started.elapsed().as_secs_f64() * 1e6);
         }
-        score.after_step(&timed.input, station, fresh);
+        score.after_step(&timed.input, timed.now_ns, station, fresh);
         started = Instant::now();
     });
     Ok(LivePathReport {

@@ -10,15 +10,18 @@
 
 use std::time::Instant;
 
-use nalgebra::Point3;
 use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter};
 use serde::Serialize;
 
 use crate::station_setup::{describe, load_profile};
 pub use error::EvalError;
 use live_path::{LivePathReport, live_path};
+use variants::TimedFrame;
 mod error;
+pub mod eval_set;
 pub mod live_path;
+pub mod summary;
+pub mod variants;
 
 use crate::mcap_log::{LoggedMessage, TrialReader};
 use crate::resim::{keypoints, layout_for};
@@ -53,19 +56,20 @@ pub struct EvalOutput {
     pub live_path: LivePathReport,
 }
 
-/// The quality of the station's retargeting configured by `config` on `reader`'s keypoints.
-pub fn evaluate(
+/// The distinct keypoint frames of `reader` on the configured keypoint topic, by log time
+/// (a frame equal to the one before it is a re-publishing, not a new frame), and the number
+/// of keypoint messages read.
+pub fn distinct_frames(
     reader: &TrialReader,
     config: &StationConfig,
-    model: HandModel,
-) -> Result<EvalOutput, EvalError> {
+) -> Result<(Vec<TimedFrame>, usize), EvalError> {
     let input = &config.input;
     let mut messages: Vec<&LoggedMessage> = reader
         .messages()
         .filter(|m| m.topic == input.keypoints_topic)
         .collect();
     messages.sort_by_key(|m| m.log_time_ns); // stable: file order within equal times
-    let mut frames: Vec<(i64, Vec<Point3<f64>>)> = Vec::new();
+    let mut frames: Vec<TimedFrame> = Vec::new();
     for message in &messages {
         let points = keypoints(message, input.keypoints_format)
             .map_err(|source| EvalError::Keypoints {
@@ -73,8 +77,11 @@ pub fn evaluate(
                 source,
             })?
             .points();
-        if frames.last().is_none_or(|(_, last)| *last != points) {
-            frames.push((message.log_time_ns, points));
+        if frames.last().is_none_or(|last| last.points != points) {
+            frames.push(TimedFrame {
+                t_ns: message.log_time_ns,
+                points,
+            });
         }
     }
     if frames.is_empty() {
@@ -83,8 +90,18 @@ pub fn evaluate(
             topic: input.keypoints_topic.clone(),
         });
     }
+    Ok((frames, messages.len()))
+}
+
+/// The quality of the station's retargeting configured by `config` on `reader`'s keypoints.
+pub fn evaluate(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+) -> Result<EvalOutput, EvalError> {
+    let (frames, message_count) = distinct_frames(reader, config)?;
     let mut retarget_config = config.retarget.clone();
-    retarget_config.layout = layout_for(config, frames.first().map(|(_, p)| p.len()));
+    retarget_config.layout = layout_for(config, frames.first().map(|f| f.points.len()));
     let layout = retarget_config.layout;
     let profile = match &config.calibration_profile {
         Some(path) => Some((path, load_profile(path, &model, layout)?)),
@@ -108,13 +125,15 @@ pub fn evaluate(
     let mut time_us = Samples::default();
     let mut rejected = 0;
     let mut previous_ns = None;
-    for (t_ns, points) in &frames {
+    let origin_ns = frames.first().map_or(0, |f| f.t_ns);
+    let t_s = |t_ns: i64| (t_ns - origin_ns) as f64 * 1e-9;
+    for TimedFrame { t_ns, points } in &frames {
         let dt_s = previous_ns.map_or(first_dt_s, |p: i64| (t_ns - p) as f64 * 1e-9);
         let started = Instant::now();
         let solved = retargeter.retarget(points, dt_s);
         let elapsed_us = started.elapsed().as_secs_f64() * 1e6;
         match solved {
-            Ok(solution) if recorder.push(points, &solution.q).is_ok() => {
+            Ok(solution) if recorder.push_at(t_s(*t_ns), points, &solution.q).is_ok() => {
                 time_us.push(elapsed_us);
                 previous_ns = Some(*t_ns);
             }
@@ -125,7 +144,7 @@ pub fn evaluate(
     Ok(EvalOutput {
         live_path,
         input: reader.path().display().to_string(),
-        messages: messages.len(),
+        messages: message_count,
         distinct_frames: frames.len(),
         rejected_frames: rejected,
         layout: layout.name().to_string(),
@@ -192,7 +211,36 @@ pub fn table(o: &EvalOutput) -> String {
         opt(o.time_per_frame_us_p50, 1),
         opt(o.time_per_frame_us_p99, 1)
     );
-    out + &live_path_lines(o)
+    out + &scale_free_lines(q) + &live_path_lines(o)
+}
+
+/// The metrics that do not reward a smaller hand: per digit, the tip error after the digit's
+/// own scale and the flexion correlation; the lag.
+fn scale_free_lines(q: &QualityReport) -> String {
+    let mut out = format!(
+        "\n  without the global scale: tip error after each digit's own scale mean {} mm, flexion \
+         correlation mean {}, lag {} frames ({} s)\n  {:<8} {:>10} {:>14} {:>12} {:>14}\n",
+        opt(q.tip_error_own_scale_mean_mm, 1),
+        opt(q.flexion_correlation_mean, 3),
+        q.flexion_lag_frames.map_or("-".into(), |k| k.to_string()),
+        opt(q.flexion_lag_s, 3),
+        "",
+        "own scale",
+        "own-scale mm",
+        "flexion r",
+        "pinch closed"
+    );
+    for d in q.per_digit.iter().filter(|d| d.tip_own_scale.is_some()) {
+        out += &format!(
+            "  {:<8} {:>10} {:>14} {:>12} {:>14}\n",
+            d.digit,
+            opt(d.tip_own_scale, 3),
+            opt(d.tip_error_own_scale_mean_mm, 1),
+            opt(d.flexion_correlation, 3),
+            format!("{}/{}", d.pinch_closed_frames, d.pinch_frames)
+        );
+    }
+    out
 }
 
 /// The live path against the retargeter alone.

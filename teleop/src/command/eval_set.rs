@@ -1,0 +1,63 @@
+//! `pomdar eval-set`: an evaluation set of transformed copies of real recordings (the work
+//! is in [`crate::eval::eval_set`]).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::common::human_trial_files;
+use crate::atomic_file::write_atomically;
+use crate::eval::eval_set::build_set;
+use crate::station_setup::load_station_config;
+
+/// `pomdar eval-set` options.
+#[derive(Debug, Args)]
+pub struct EvalSetArgs {
+    /// The real recordings (MCAP) the set is made from, or directories searched for them.
+    #[arg(required = true, value_name = "RECORDING")]
+    pub sources: Vec<PathBuf>,
+    /// The set's directory (created if needed; an existing recording in it is not replaced).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Seed of the noise and dropped frames.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub seed: u64,
+    /// Station configuration: the keypoint topic and format read and written (default: the
+    /// built-in ETH lab preset).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+}
+
+/// `pomdar eval-set`.
+pub fn eval_set(args: EvalSetArgs) -> anyhow::Result<()> {
+    let config = load_station_config(args.config.as_deref(), None)?;
+    let sources = human_trial_files(&args.sources)?.files;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.out.display()))?;
+    let set = build_set(&sources, &config, &args.out, args.seed)?;
+    for r in &set {
+        println!(
+            "{}  {} frames, {}  ({} ← {})",
+            r.path.display(),
+            r.frames,
+            r.layout,
+            r.variants.join(" + "),
+            r.source.display()
+        );
+    }
+    let manifest = args.out.join("set.json");
+    write_atomically(&manifest, serde_json::to_string_pretty(&set)?)?;
+    eprintln!(
+        "wrote {} recordings from {} sources and {}; evaluate with: pomdar eval {} {}",
+        set.len(),
+        sources.len(),
+        manifest.display(),
+        args.sources
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(" "),
+        args.out.display()
+    );
+    Ok(())
+}
