@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use msgs::Float32MultiArray;
+use msgs::{Float32MultiArray, JointState};
 use pomdar_tests::interop::reference_file;
 use pomdar_tests::pomdar_binary::run_pomdar as pomdar;
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, RetargetConfig, Retargeter};
@@ -265,4 +265,71 @@ fn check_live_path(json: &Value) {
         "live-path tip error {live_tip} mm vs {tip} mm"
     );
     assert_eq!(number(live, "frames"), number(json, "frames"));
+}
+
+/// Another retargeter's recorded commands (`pomdar eval --commands`), checked on the station's
+/// own: the reference recording's keypoints with the joint targets `pomdar resim` computes
+/// from them score exactly as `pomdar eval`'s live path.
+#[test]
+fn recorded_commands_score_as_the_live_path() {
+    let Some(input) = reference_file("rokoko_orca_2024-11-20.mcap") else {
+        return;
+    };
+    let dir = pomdar_tests::scratch_dir("eval_commands");
+    let resim = dir.join("resim.mcap");
+    let out = pomdar(&[
+        "resim",
+        input.to_str().unwrap(),
+        "--out",
+        resim.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "pomdar resim failed");
+    let combined = dir.join("keypoints_and_commands.mcap");
+    let mut writer = TrialWriter::create(&combined, TrialWriterOptions::default()).unwrap();
+    let glove = teleop::mcap_log::TrialReader::open(&input).unwrap();
+    for m in glove.messages_on("/ingress/mano") {
+        let message: Float32MultiArray = m.decode().unwrap();
+        writer
+            .write("/ingress/mano", m.log_time_ns, m.publish_time_ns, &message)
+            .unwrap();
+    }
+    let station = teleop::mcap_log::TrialReader::open(&resim).unwrap();
+    let mut commands = 0;
+    for m in station.messages_on("/pomdar/hand/joint_targets") {
+        let message: JointState = m.decode().unwrap();
+        writer
+            .write(
+                "/other/joint_states",
+                m.log_time_ns,
+                m.publish_time_ns,
+                &message,
+            )
+            .unwrap();
+        commands += 1;
+    }
+    writer.finish().unwrap();
+    assert_eq!(commands, 727);
+    let output = pomdar(&[
+        "eval",
+        combined.to_str().unwrap(),
+        "--commands",
+        "/other/joint_states",
+        "--json",
+    ]);
+    assert!(output.status.success(), "pomdar eval --commands failed");
+    let scored: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let live = eval_json(&input)["live_path"].clone();
+    assert_eq!(number(&scored, "frames"), number(&live, "frames"));
+    for key in [
+        "tip_error_mean_mm",
+        "jerk_rad",
+        "max_step_rad",
+        "pinches_closed_pct",
+    ] {
+        let (a, b) = (number(&scored, key), number(&live, key));
+        assert!(
+            (a - b).abs() < 1e-9,
+            "{key}: {a} from the recorded commands, {b} live"
+        );
+    }
 }

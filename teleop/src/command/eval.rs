@@ -8,6 +8,7 @@ use clap::Args;
 use retarget::HandModel;
 
 use super::common::human_trial_files;
+use crate::eval::external::{evaluate_commands, external_table};
 use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{evaluate, table};
 use crate::mcap_log::TrialReader;
@@ -30,6 +31,11 @@ pub struct EvalArgs {
     /// (identity: scale 1, no rotation).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// Score the `sensor_msgs/JointState` commands another retargeter recorded on this topic
+    /// (the command in force at each distinct keypoint frame) instead of the station's own
+    /// retargeting; joint names as the model's, a `right_`/`left_` prefix dropped.
+    #[arg(long, value_name = "TOPIC")]
+    pub commands: Option<String>,
     /// Print the report as JSON on stdout instead of the tables (one recording: its report;
     /// several: `{"recordings": [...], "summary": [...]}`).
     #[arg(long)]
@@ -39,6 +45,9 @@ pub struct EvalArgs {
 /// `pomdar eval`.
 pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
+    if let Some(topic) = &args.commands {
+        return eval_commands(&args, &config, topic);
+    }
     let single = args.inputs.len() == 1 && args.inputs[0].is_file();
     let files = if single {
         args.inputs.clone()
@@ -55,7 +64,7 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
         progress.update(done, files.len(), &path.display().to_string());
         let reader = TrialReader::open(path)?;
         let output = evaluate(&reader, &config, HandModel::orca_v1_right())
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            .map_err(|e| in_file(path, &e))?;
         if !args.json {
             println!("{}", table(&output));
         }
@@ -74,4 +83,42 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
         print!("{}", summary_table(&set));
     }
     Ok(())
+}
+
+/// `pomdar eval --commands TOPIC`: another retargeter's recorded commands, per recording.
+fn eval_commands(
+    args: &EvalArgs,
+    config: &station::StationConfig,
+    topic: &str,
+) -> anyhow::Result<()> {
+    let files = human_trial_files(&args.inputs)?.files;
+    let mut outputs = Vec::new();
+    for path in &files {
+        let reader = TrialReader::open(path)?;
+        let output = evaluate_commands(&reader, config, HandModel::orca_v1_right(), topic)
+            .map_err(|e| in_file(path, &e))?;
+        if !args.json {
+            println!("{}", external_table(&output));
+        }
+        outputs.push(output);
+    }
+    if args.json {
+        let json = match &outputs[..] {
+            [one] => serde_json::to_string_pretty(one)?,
+            all => serde_json::to_string_pretty(all)?,
+        };
+        println!("{json}");
+    }
+    Ok(())
+}
+
+/// An evaluation error naming its recording (once: some errors name it already).
+fn in_file(path: &std::path::Path, error: &crate::eval::EvalError) -> anyhow::Error {
+    let text = error.to_string();
+    let name = path.display().to_string();
+    if text.starts_with(&name) {
+        anyhow::anyhow!("{text}")
+    } else {
+        anyhow::anyhow!("{name}: {text}")
+    }
 }

@@ -43,6 +43,14 @@ pub enum EvalError {
         #[source]
         source: retarget::Error,
     },
+    /// A recorded command names a joint the model lacks.
+    #[error("command joint {name:?} is not a joint of the model ({known})")]
+    UnknownJoint {
+        /// The joint named.
+        name: String,
+        /// The model's joints.
+        known: String,
+    },
     /// The live path: the recording cannot be re-simulated.
     #[error(transparent)]
     LivePath(#[from] ResimError),

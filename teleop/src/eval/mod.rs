@@ -19,6 +19,7 @@ use live_path::{LivePathReport, live_path};
 use variants::TimedFrame;
 mod error;
 pub mod eval_set;
+pub mod external;
 pub mod live_path;
 pub mod summary;
 pub mod variants;
@@ -176,7 +177,19 @@ pub fn table(o: &EvalOutput) -> String {
         o.profile.as_deref().unwrap_or("none"),
         q.tip_scale
     );
+    out += &quality_lines(q);
     out += &format!(
+        "\n  time per frame: p50 {} µs, p99 {} µs\n",
+        opt(o.time_per_frame_us_p50, 1),
+        opt(o.time_per_frame_us_p99, 1)
+    );
+    out + &live_path_lines(o)
+}
+
+/// The metrics as table lines: overall and per digit, the pinch gap and limit violations,
+/// then the metrics without the global scale.
+pub fn quality_lines(q: &QualityReport) -> String {
+    let mut out = format!(
         "  {:<8} {:>13} {:>12} {:>8} {:>8} {:>11} {:>13}\n",
         "", "tip mean mm", "tip p95 mm", "pinches", "closed", "jerk rad", "max step rad"
     );
@@ -204,14 +217,11 @@ pub fn table(o: &EvalOutput) -> String {
         );
     }
     out += &format!(
-        "\n  pinch gap (robot thumb to pinched fingertip) mean {} mm; limit violations: {} frames\n  \
-         time per frame: p50 {} µs, p99 {} µs\n",
+        "\n  pinch gap (robot thumb to pinched fingertip) mean {} mm; limit violations: {} frames\n",
         opt(q.pinch_gap_mean_mm, 1),
         q.limit_violation_frames,
-        opt(o.time_per_frame_us_p50, 1),
-        opt(o.time_per_frame_us_p99, 1)
     );
-    out + &scale_free_lines(q) + &live_path_lines(o)
+    out + &scale_free_lines(q)
 }
 
 /// The metrics that do not reward a smaller hand: per digit, the tip error after the digit's
