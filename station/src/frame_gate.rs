@@ -4,9 +4,12 @@
 //!
 //! Checks, in order: point count for the layout; finite coordinates; bone lengths (distance
 //! between consecutive points of each digit chain, and wrist to each digit base) within
-//! `[min_bone_m, max_bone_m]`; no point moving more than `max_jump_m` relative to the wrist
-//! since the last accepted frame (the arm may move the whole hand freely; a finger may not
-//! teleport). Before these, frames stamped by their sender before the newest accepted one are
+//! `[min_bone_m, max_bone_m]`; no point moving more than `max_jump_m` per `jump_interval_ms`
+//! relative to the wrist since the last accepted frame (the arm may move the whole hand
+//! freely; a finger may not teleport). The allowance grows with the senders' time since that
+//! frame (up to [`MAX_JUMP_INTERVALS`] intervals): a glove that drops a frame, or a frame
+//! rejected for a moment, does not make every later frame look like a jump, which held the
+//! last command for 168 of 647 frames of a recording with 10 % of its frames dropped. Before these, frames stamped by their sender before the newest accepted one are
 //! turned away as late ([`source_order`](crate::source_order); the hand control applies it).
 
 use nalgebra::Point3;
@@ -23,9 +26,13 @@ pub struct GateConfig {
     pub min_bone_m: f64,
     /// Longest plausible bone (wrist to a digit base included), metres.
     pub max_bone_m: f64,
-    /// Largest plausible motion of any point relative to the wrist between accepted frames,
+    /// Largest plausible motion of any point relative to the wrist in `jump_interval_ms`,
     /// metres.
     pub max_jump_m: f64,
+    /// The interval `max_jump_m` is allowed in, milliseconds of the senders' clock (about one
+    /// glove frame); a frame further from the last accepted one is allowed proportionally
+    /// more, up to [`MAX_JUMP_INTERVALS`] intervals.
+    pub jump_interval_ms: u64,
     /// A frame whose source stamp is at most this much older than the newest accepted frame's
     /// is late (rejected, `out_of_order`); older still means the sender's clock jumped back
     /// (followed). Milliseconds; less than `watchdog.disengage_timeout_ms`.
@@ -38,6 +45,7 @@ impl Default for GateConfig {
             min_bone_m: 0.004,
             max_bone_m: 0.16,
             max_jump_m: 0.12,
+            jump_interval_ms: 50,
             reorder_window_ms: 250,
         }
     }
@@ -59,6 +67,13 @@ impl GateConfig {
                 "gate.max_jump_m",
                 self.max_jump_m,
                 "in (0, 1]",
+            ));
+        }
+        if !(1..=1000).contains(&self.jump_interval_ms) {
+            return Err(ConfigError::out_of_range(
+                "gate.jump_interval_ms",
+                self.jump_interval_ms,
+                "in 1..=1000",
             ));
         }
         if !(1..=10_000).contains(&self.reorder_window_ms) {
@@ -131,7 +146,13 @@ pub struct FrameGate {
     layout: KeypointLayout,
     config: GateConfig,
     last: Option<Vec<Point3<f64>>>,
+    /// The senders' stamp of the last accepted frame, when given.
+    last_ns: Option<i64>,
 }
+
+/// Most intervals of `max_jump_m` a frame is allowed (a stall longer than this is judged as
+/// if it were this long).
+pub const MAX_JUMP_INTERVALS: f64 = 10.0;
 
 impl FrameGate {
     /// A gate for `layout`.
@@ -140,6 +161,7 @@ impl FrameGate {
             layout,
             config,
             last: None,
+            last_ns: None,
         }
     }
 
@@ -151,18 +173,39 @@ impl FrameGate {
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).
     pub fn reset(&mut self) {
         self.last = None;
+        self.last_ns = None;
     }
 
-    /// Judge `points`; a `New` frame becomes the reference for the next one.
+    /// Judge `points` as one interval after the last accepted frame; a `New` frame becomes
+    /// the reference for the next one.
     pub fn judge(&mut self, points: &[Point3<f64>]) -> Verdict {
-        let verdict = self.check(points);
+        self.judge_at(points, None)
+    }
+
+    /// Judge `points` stamped `source_ns` by their sender: the jump allowance grows with the
+    /// time since the last accepted frame. A `New` frame becomes the reference for the next.
+    pub fn judge_at(&mut self, points: &[Point3<f64>], source_ns: Option<i64>) -> Verdict {
+        let verdict = self.check(points, self.jump_allowance_m(source_ns));
         if verdict == Verdict::New {
             self.last = Some(points.to_vec());
+            self.last_ns = source_ns;
         }
         verdict
     }
 
-    fn check(&self, points: &[Point3<f64>]) -> Verdict {
+    /// The jump allowed for a frame stamped `source_ns`, metres.
+    fn jump_allowance_m(&self, source_ns: Option<i64>) -> f64 {
+        let interval_ns = self.config.jump_interval_ms as f64 * 1e6;
+        let intervals = match (source_ns, self.last_ns) {
+            (Some(now), Some(last)) => {
+                ((now - last) as f64 / interval_ns).clamp(1.0, MAX_JUMP_INTERVALS)
+            }
+            _ => 1.0,
+        };
+        self.config.max_jump_m * intervals
+    }
+
+    fn check(&self, points: &[Point3<f64>], max_jump_m: f64) -> Verdict {
         let layout = self.layout;
         if points.len() != layout.len() {
             return Verdict::Rejected(Rejection::WrongSize);
@@ -196,7 +239,7 @@ impl FrameGate {
             let jumped = points
                 .iter()
                 .zip(last)
-                .any(|(p, q)| ((p - wrist) - (q - last_wrist)).norm() > self.config.max_jump_m);
+                .any(|(p, q)| ((p - wrist) - (q - last_wrist)).norm() > max_jump_m);
             if jumped {
                 return Verdict::Rejected(Rejection::Jump);
             }
@@ -251,5 +294,32 @@ mod tests {
             .collect();
         gate.reset();
         assert_eq!(gate.judge(&giant), Verdict::Rejected(Rejection::BoneLength));
+    }
+
+    #[test]
+    fn the_jump_allowance_grows_with_the_time_since_the_last_accepted_frame() {
+        const MS: i64 = 1_000_000;
+        let mut gate = FrameGate::new(KeypointLayout::Lab22, GateConfig::default());
+        let frame = hand();
+        let moved = |dz: f64| {
+            let mut f = frame.clone();
+            f[9] += Vector3::new(0.0, 0.0, dz);
+            f
+        };
+        assert_eq!(gate.judge_at(&frame, Some(0)), Verdict::New);
+        // 13 cm in one 40 ms frame: a teleport.
+        assert_eq!(
+            gate.judge_at(&moved(0.13), Some(40 * MS)),
+            Verdict::Rejected(Rejection::Jump)
+        );
+        // The same 13 cm two frames after the last accepted one (one dropped): 0.12 m × 80/50.
+        assert_eq!(gate.judge_at(&moved(0.13), Some(80 * MS)), Verdict::New);
+        // The allowance: one interval for a stamp going back (a sender's clock jump) or
+        // none given, the time since the last accepted frame otherwise, at most 10 intervals.
+        let allowance = |ns| gate.jump_allowance_m(ns);
+        assert!((allowance(Some(0)) - 0.12).abs() < 1e-12);
+        assert!((allowance(None) - 0.12).abs() < 1e-12);
+        assert!((allowance(Some(80 * MS + 100 * MS)) - 0.24).abs() < 1e-12);
+        assert!((allowance(Some(10_000 * MS)) - 1.2).abs() < 1e-12);
     }
 }

@@ -174,7 +174,9 @@ impl HandControl {
             self.count_rejection(Rejection::OutOfOrder);
             return Verdict::Rejected(Rejection::OutOfOrder);
         }
-        let verdict = self.gate.judge(&frame.points);
+        // A clock jump makes the stamps incomparable: judged as one interval then.
+        let stamp_ns = (stamp != StampOrder::ClockJump).then_some(frame.source_ns);
+        let verdict = self.gate.judge_at(&frame.points, stamp_ns);
         match verdict {
             Verdict::New => {
                 self.accept_stamp(&frame, stamp, received_ns);
