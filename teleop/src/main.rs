@@ -88,7 +88,11 @@ enum Command {
     /// within 2 cm of a fingertip) and the share the robot closes under 15 mm, jerk (mean
     /// absolute third difference per joint and frame), the largest per-frame joint step,
     /// frames outside the joint limits, and the time per frame. Any layout the station
-    /// accepts.
+    /// accepts. Then the metrics without the global scale (a smaller-looking hand does not
+    /// score better): per finger the tip error after that finger's own scale, the correlation
+    /// of human and robot flexion (palm-centre-to-tip distance), pinches closed with their
+    /// frame counts, and the lag (the shift that best aligns robot to human flexion).
+    /// --commands TOPIC scores another retargeter's recorded JointState commands instead.
     ///
     /// Examples:
     ///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
