@@ -85,7 +85,10 @@ pub fn read_study_trial(path: &Path, catalog: &TaskCatalog) -> Result<StudyTrial
     let (frames, dropped_frames) = keypoint_frames(&reader, &record, layout)?;
     Ok(StudyTrial::Used {
         motion: TrialMotion {
-            participant: record.user.clone().unwrap_or_else(|| "(unnamed)".into()),
+            participant: record
+                .user
+                .clone()
+                .unwrap_or_else(|| scoring::UNNAMED_PARTICIPANT.into()),
             task: record.task.clone(),
             trial: file_label(path),
             layout,

@@ -3,6 +3,9 @@
 
 use serde::Serialize;
 
+use super::chart_frame::{
+    AXIS_TITLE_PX, HEIGHT_PX, MARGIN_PX, NOTE_PX, TICK_LEN_PX, TICK_PX, TITLE_PX, WIDTH_PX,
+};
 use super::label_placement::{Rect, place_label};
 use super::palette::series_color;
 use super::primitives::{Anchor, Drawing, Point, Rgba, Style, Text};
@@ -34,17 +37,9 @@ pub struct DofChart {
     pub points: Vec<DofPoint>,
 }
 
-const WIDTH_PX: f64 = 800.0;
-const HEIGHT_PX: f64 = 560.0;
-const MARGIN_PX: f64 = 24.0;
-const TITLE_PX: f64 = 20.0;
-const NOTE_PX: f64 = 13.0;
-const TICK_PX: f64 = 13.0;
-const AXIS_TITLE_PX: f64 = 15.0;
 const POINT_LABEL_PX: f64 = 14.0;
 const POINT_RADIUS_PX: f64 = 6.5;
 const ERROR_CAP_HALF_PX: f64 = 6.0;
-const TICK_LEN_PX: f64 = 5.0;
 
 /// The plot area and the data-to-pixel mapping.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -16,6 +16,7 @@
 //! stroke font (`glyphs`, `stroke_font`) because tiny-skia has none. Everything is
 //! deterministic: the same chart gives the same bytes.
 
+mod chart_frame;
 mod dof_chart;
 mod error;
 mod glyphs;

@@ -9,6 +9,9 @@ use serde::Serialize;
 
 pub use linear_axis::LinearAxis;
 
+use super::chart_frame::{
+    AXIS_TITLE_PX, HEIGHT_PX, MARGIN_PX, NOTE_PX, TICK_LEN_PX, TICK_PX, TITLE_PX, WIDTH_PX,
+};
 use super::label_placement::Rect;
 use super::palette::SERIES_COLORS;
 use super::primitives::{Anchor, Drawing, Point, Rgba, Style, Text};
@@ -43,15 +46,7 @@ pub struct PcaChart {
 /// The most series a scatter tells apart: colours × marker styles.
 pub const MAX_SCATTER_SERIES: usize = SERIES_COLORS.len() * MARKER_STYLES;
 
-const WIDTH_PX: f64 = 800.0;
-const HEIGHT_PX: f64 = 560.0;
-const MARGIN_PX: f64 = 24.0;
-const TITLE_PX: f64 = 20.0;
-const NOTE_PX: f64 = 13.0;
-const TICK_PX: f64 = 13.0;
-const AXIS_TITLE_PX: f64 = 15.0;
 const POINT_RADIUS_PX: f64 = 4.5;
-const TICK_LEN_PX: f64 = 5.0;
 
 /// The plot area and the data-to-pixel mapping.
 #[derive(Debug, Clone, Copy, PartialEq)]

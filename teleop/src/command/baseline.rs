@@ -11,7 +11,7 @@ use scoring::{
     compute_baseline, render_study_markdown, render_study_text,
 };
 
-use super::common::human_trial_files;
+use super::common::mcap_files_under;
 use super::score::EXIT_SOME_REJECTED;
 use crate::atomic_file::write_atomically;
 use crate::score::load_trial::load_trial_log;
@@ -79,7 +79,7 @@ fn read_records(
     paths: &[PathBuf],
     inputs: &ScoringInputs,
 ) -> anyhow::Result<(Vec<TrialRecord>, Vec<FileProblem>)> {
-    let found = human_trial_files(paths)?;
+    let found = mcap_files_under(paths)?;
     let results = process_files(
         &found.files,
         |path| {

@@ -79,10 +79,10 @@ pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
     rx
 }
 
-/// The `.mcap` trial files under `paths` for a command that reads human trials (`pomdar
-/// baseline`, `pomdar study-report`): `.part` files skipped with a note; an error when there is
-/// nothing to read.
-pub(crate) fn human_trial_files(
+/// The `.mcap` files under `paths` (files, or directories searched recursively) for the
+/// commands that read many recordings (`pomdar baseline`, `study-report`, `eval`, `eval-set`):
+/// `.part` files skipped with a note; an error when there is nothing to read.
+pub(crate) fn mcap_files_under(
     paths: &[std::path::PathBuf],
 ) -> anyhow::Result<crate::score::trial_files::TrialFiles> {
     let found = crate::score::trial_files::collect_trial_files(paths);

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::Args;
 use retarget::HandModel;
 
-use super::common::human_trial_files;
+use super::common::mcap_files_under;
 use crate::eval::external::{evaluate_commands, external_table};
 use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{evaluate, table};
@@ -52,7 +52,7 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let files = if single {
         args.inputs.clone()
     } else {
-        human_trial_files(&args.inputs)?.files
+        mcap_files_under(&args.inputs)?.files
     };
     let mut outputs = Vec::new();
     let style = match single {
@@ -91,7 +91,7 @@ fn eval_commands(
     config: &station::StationConfig,
     topic: &str,
 ) -> anyhow::Result<()> {
-    let files = human_trial_files(&args.inputs)?.files;
+    let files = mcap_files_under(&args.inputs)?.files;
     let mut outputs = Vec::new();
     for path in &files {
         let reader = TrialReader::open(path)?;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::human_trial_files;
+use super::common::mcap_files_under;
 use crate::atomic_file::write_atomically;
 use crate::eval::eval_set::build_set;
 use crate::station_setup::load_station_config;
@@ -31,7 +31,7 @@ pub struct EvalSetArgs {
 /// `pomdar eval-set`.
 pub fn eval_set(args: EvalSetArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), None)?;
-    let sources = human_trial_files(&args.sources)?.files;
+    let sources = mcap_files_under(&args.sources)?.files;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.out.display()))?;
     let set = build_set(&sources, &config, &args.out, args.seed)?;

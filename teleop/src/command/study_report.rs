@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::Args;
 use study::{StrategyAnalysis, StrategySettings, TrialMotion, analyse, strategy_figure};
 
-use super::common::human_trial_files;
+use super::common::mcap_files_under;
 use super::score::EXIT_SOME_REJECTED;
 use crate::atomic_file::write_atomically;
 use crate::score::ScoreFileError;
@@ -48,7 +48,7 @@ struct ReadTrials {
 }
 
 fn read_trials(args: &StudyReportArgs, inputs: &ScoringInputs) -> anyhow::Result<ReadTrials> {
-    let found = human_trial_files(&args.paths)?;
+    let found = mcap_files_under(&args.paths)?;
     let results = process_files(
         &found.files,
         |path| read_study_trial(path, &inputs.catalog).map_err(|e| e.to_string()),
