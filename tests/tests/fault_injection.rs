@@ -175,21 +175,27 @@ async fn dropouts_shorter_than_the_hold_timeout_change_nothing_longer_ones_hold_
         assert!(medium.iter().all(|s| s != "disengaged"), "{medium:?}");
         // The hand repeats its last command through the gap; once held (timeout + one 40 ms tick)
         // the command is stamped with the station's clock, not the last frame's source time.
+        // The last frame was sent 20 ms before `stopped`; its command is heard on the next
+        // 40 ms tick after delivery, so the gap is judged from `settled` (before the timeout).
+        let settled = stopped + 100 * MS;
         let last_fresh = heard
             .targets
             .iter()
-            .rfind(|(t, _)| *t <= stopped + 20 * MS)
+            .rfind(|(t, _)| *t <= settled)
             .unwrap()
             .1
             .clone();
         let in_gap: Vec<&JointState> = heard
             .targets
             .iter()
-            .filter(|(t, _)| *t > stopped + 20 * MS && *t <= resumed)
+            .filter(|(t, _)| *t > settled && *t <= resumed)
             .map(|(_, m)| m)
             .collect();
         assert!(in_gap.len() >= 8, "{} targets in the gap", in_gap.len());
-        assert!(in_gap.iter().all(|m| m.position == last_fresh.position));
+        assert!(
+            in_gap.iter().all(|m| m.position == last_fresh.position),
+            "the hand's command changed in the gap"
+        );
         let held: Vec<&&JointState> = in_gap
             .iter()
             .filter(|m| stamp_ns(m) > stopped + 150 * MS)
@@ -198,7 +204,7 @@ async fn dropouts_shorter_than_the_hold_timeout_change_nothing_longer_ones_hold_
         let arm_in_gap: Vec<_> = heard
             .arm
             .iter()
-            .filter(|(t, _)| *t > stopped + 20 * MS && *t <= resumed)
+            .filter(|(t, _)| *t > settled && *t <= resumed)
             .map(|(_, m)| m.pose)
             .collect();
         assert!(!arm_in_gap.is_empty());
