@@ -64,10 +64,9 @@ fn unit_or_zero(v: &Vector3<f64>) -> Vector3<f64> {
 /// - palm → tip `i`: target `t = h_i`, weight `w_pt`;
 /// - palm → mid point `i`: target `t = m_i`, weight `w_pm` (keeps flexion on the human's
 ///   branch: a straight-ish finger reaches the same tip with its PIP bent either way);
-/// - thumb → finger `k`: the human vector `h` with weight `w_tt`, plus a pinch term
-///   `β_k w_pinch ‖r − gap · ĥ‖²`, `β_k` the pinch activation of the human thumb–finger
-///   distance: together target `t = (1 − s) h + s · gap · ĥ`, weight `w_tt + β_k w_pinch`,
-///   `s = β_k w_pinch / (w_tt + β_k w_pinch)`;
+/// - thumb → finger `k`: with `β_k` the pinch activation of the human thumb–finger distance,
+///   target `ĥ · ((1 − β_k)‖h‖ + β_k · gap)` (the human vector with no pinch, the closed gap
+///   at a full one), weight `w_tt + β_k w_pinch`;
 /// - finger `a` → finger `b`: likewise with `β = max(β_a, β_b)`, weight `w_sep` and goal
 ///   `ĥ · max(‖h‖, separation)`: a finger next to a pinching one keeps its distance.
 pub fn key_vector_targets(
@@ -102,19 +101,16 @@ pub fn key_vector_targets(
     for a in 0..5 {
         for b in a + 1..5 {
             let h = human.tips[b] - human.tips[a];
-            // The pinch (thumb pairs) and separation (finger pairs) terms add
-            // `β w_extra ‖r − goal‖²` to `w_tt ‖r − h‖²`; the sum is one quadratic with the
-            // blended target below and weight `w_tt + β w_extra`.
-            let (activation, extra, goal) = if a == 0 {
-                (beta[b], p.weight, unit_or_zero(&h) * p.closed_gap_m)
-            } else {
-                let activation = beta[a].max(beta[b]);
-                (
-                    activation,
-                    p.separation_weight,
-                    unit_or_zero(&h) * h.norm().max(p.separation_m),
-                )
-            };
+            if a == 0 {
+                out[k] = thumb_pair(b, h, beta[b], config);
+                k += 1;
+                continue;
+            }
+            // The separation term adds `β w_sep ‖r − goal‖²` to `w_tt ‖r − h‖²`; the sum is one
+            // quadratic with the blended target below and weight `w_tt + β w_sep`.
+            let activation = beta[a].max(beta[b]);
+            let extra = p.separation_weight;
+            let goal = unit_or_zero(&h) * h.norm().max(p.separation_m);
             let weight = w.tip_to_tip + activation * extra;
             let blend = if weight > 0.0 {
                 activation * extra / weight
@@ -141,6 +137,25 @@ pub fn key_vector_targets(
         k += 1;
     }
     out
+}
+
+/// The thumb → finger key vector at pinch activation `beta` of a human vector `h`: the
+/// distance aimed for slides from the human's to the closed gap, `(1 − β)‖h‖ + β · gap`, along
+/// the human direction, and the weight grows from `w_tt` to `w_tt + w_pinch` (a pinch weight
+/// of 0 turns the pinch off).
+fn thumb_pair(to: usize, h: Vector3<f64>, beta: f64, config: &RetargetConfig) -> KeyVector {
+    let p = &config.pinch;
+    let target = if beta > 0.0 && p.weight > 0.0 {
+        unit_or_zero(&h) * ((1.0 - beta) * h.norm() + beta * p.closed_gap_m)
+    } else {
+        h // no pinch (or the pinch term off): the human vector itself
+    };
+    KeyVector {
+        from: Some(Finger::Thumb.index()),
+        to,
+        target,
+        weight: config.weights.tip_to_tip + beta * p.weight,
+    }
 }
 
 /// Huber function of a residual norm.
@@ -236,10 +251,9 @@ mod tests {
         let config = RetargetConfig::default();
         let v = key_vector_targets(&human, &config);
         let thumb_index = v.iter().find(|k| k.from == Some(0) && k.to == 1).unwrap();
-        // Blend s = 10 / (0.5 + 10) of the way from the human vector to the closed gap.
-        let s = config.pinch.weight / (config.weights.tip_to_tip + config.pinch.weight);
-        let expected = 0.005 * (1.0 - s) + config.pinch.closed_gap_m * s;
-        assert!((thumb_index.target.norm() - expected).abs() < 1e-12);
+        // A full pinch aims at the closed gap, along the human direction.
+        assert!((thumb_index.target.norm() - config.pinch.closed_gap_m).abs() < 1e-12);
+        assert!(thumb_index.target.x > 0.0);
         assert_eq!(
             thumb_index.weight,
             config.weights.tip_to_tip + config.pinch.weight

@@ -96,14 +96,17 @@
 //!
 //! - `ρ` is the Huber function with threshold `δ` (`huber_delta_m`, 2 cm): quadratic for small
 //!   residuals, linear beyond, so one bad keypoint pulls with bounded force.
-//! - Tip → tip targets blend the human vector `h = p̂_j − p̂_i` with a pinch goal. For thumb →
-//!   finger `k`, the activation `β_k = smoothstep((release − d_k)/(release − engage))` of the
-//!   raw human thumb–finger distance `d_k` (1 below `engage_m`, 0 above `release_m`, C¹ in
-//!   between: no snapping) adds `β_k w_pinch ‖r − gap · ĥ‖²`, which pulls the robot pair to
-//!   `closed_gap_m`. For finger pairs, `β = max(β_a, β_b)` adds
-//!   `β w_sep ‖r − ĥ · max(‖h‖, separation_m)‖²`, keeping a pinching finger's neighbours away.
-//!   Each pair is one quadratic: weight `w_ij = w_tt + β w_extra`, target
-//!   `t_ij = (1 − σ) h + σ · goal`, `σ = β w_extra / w_ij` ([`energy::key_vector_targets`]).
+//! - Tip → tip targets start from the human vector `h = p̂_j − p̂_i`. For thumb → finger `k`,
+//!   the activation `β_k = smoothstep((release − d_k)/(release − engage))` of the raw human
+//!   thumb–finger distance `d_k` (1 below `engage_m`, 0 above `release_m`, C¹ in between: no
+//!   snapping) slides the distance aimed for from the human's to `closed_gap_m`: target
+//!   `ĥ ((1 − β_k)‖h‖ + β_k · gap)`, weight `w_tt + β_k w_pinch`. For finger pairs,
+//!   `β = max(β_a, β_b)` adds `β w_sep ‖r − ĥ · max(‖h‖, separation_m)‖²`, keeping a pinching
+//!   finger's neighbours away: one quadratic of weight `w_ij = w_tt + β w_sep`, target
+//!   `(1 − σ) h + σ · goal`, `σ = β w_sep / w_ij` ([`energy::key_vector_targets`]).
+//! - Before the energy sees them, the palm-frame tips and mid points pass a speed-adaptive
+//!   low-pass ([`one_euro`], `[input_filter]`): hard at rest, where glove noise is all there
+//!   is, nearly transparent for a finger moving fast; the pinch distances pass unfiltered.
 //! - `λ` (`regularisation.previous_command`) smooths without the lag of an output filter;
 //!   `μ` (`regularisation.rest_posture`) keeps abduction joints near a rest posture when the
 //!   key vectors leave them free.
@@ -113,7 +116,11 @@
 //!   `λ' = λ + λ_s x / (1 + x)` (`smoothing.previous_command`). A frame the robot reproduces
 //!   (`ē ≈ 0`) is tracked without lag; one it cannot (glove noise, a hand outside the robot's
 //!   range, where the optimum is ill determined and noise moves it most) is pulled toward the
-//!   previous command. The command depends only on `q₋`, the frame and `dt`: no hidden state.
+//!   previous command. The extra pull is released for fast motion: multiplied by
+//!   `1 / (1 + (v / v₀)²)`, `v` the fastest key point's speed as the input filter estimates it
+//!   and `v₀` `smoothing.release_speed_m_s`, so a closing pinch is not held back. The command
+//!   depends on `q₋`, the frame, `dt` and the input filter's state ([`Retargeter::reset`]
+//!   clears both).
 //!
 //! Units: residuals in metres, weights dimensionless per m², `λ`, `μ` per rad².
 //!
@@ -152,6 +159,7 @@ pub mod keypoint_layout;
 mod model_build;
 mod model_file;
 pub mod model_spec;
+pub mod one_euro;
 mod palm_frame;
 pub mod qp_step;
 pub mod quality;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
 use crate::keypoint_layout::KeypointLayout;
+use crate::one_euro::InputFilterConfig;
 
 /// Everything the retargeter needs besides the hand model and the calibration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -26,6 +27,8 @@ pub struct RetargetConfig {
     pub huber_delta_m: f64,
     /// Regularisers.
     pub regularisation: Regularisation,
+    /// Speed-adaptive low-pass (1€) on the human key points before the energy.
+    pub input_filter: InputFilterConfig,
     /// Extra pull toward the previous command on frames the robot cannot reproduce.
     pub smoothing: SmoothingConfig,
     /// Per-frame solver settings.
@@ -87,8 +90,8 @@ pub struct Regularisation {
 /// Each frame is first solved with `regularisation.previous_command`; with `ē` the mean
 /// palm → fingertip residual of that solve and `x = (ē / residual_m)²`, it is solved again
 /// from the same previous command with the pull raised by `smoothing.previous_command ·
-/// x / (1 + x)`.
-/// The command still depends only on the previous command and the frame (no hidden state).
+/// x / (1 + x) / (1 + (v / release_speed_m_s)²)`, `v` the fastest human key point's speed
+/// (the input filter's estimate): fast motion is followed without the pull's lag.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SmoothingConfig {
@@ -97,6 +100,9 @@ pub struct SmoothingConfig {
     pub previous_command: f64,
     /// Mean fingertip residual at which half of the extra weight applies, metres.
     pub residual_m: f64,
+    /// Speed of the fastest human key point (the input filter's estimate) at which the extra
+    /// weight halves, m/s: fast motion is followed without lag. 0 ignores the speed.
+    pub release_speed_m_s: f64,
 }
 
 /// Per-frame Gauss–Newton settings.
@@ -140,6 +146,7 @@ impl Default for RetargetConfig {
             pinch: PinchConfig::default(),
             huber_delta_m: 0.02,
             regularisation: Regularisation::default(),
+            input_filter: InputFilterConfig::default(),
             smoothing: SmoothingConfig::default(),
             solver: SolverConfig::default(),
             rest_posture_rad: BTreeMap::from([
@@ -167,8 +174,8 @@ impl Default for KeyVectorWeights {
 impl Default for PinchConfig {
     fn default() -> Self {
         PinchConfig {
-            weight: 10.0,
-            engage_m: 0.015,
+            weight: 15.0,
+            engage_m: 0.022,
             release_m: 0.04,
             closed_gap_m: 0.005,
             separation_weight: 2.0,
@@ -190,8 +197,9 @@ impl Default for Regularisation {
 impl Default for SmoothingConfig {
     fn default() -> Self {
         SmoothingConfig {
-            previous_command: 3e-2,
+            previous_command: 0.05,
             residual_m: 0.01,
+            release_speed_m_s: 0.2,
         }
     }
 }
@@ -201,8 +209,8 @@ impl Default for SolverConfig {
         SolverConfig {
             steps_per_frame: 2,
             step_tolerance_rad: 1e-4,
-            max_joint_speed_rad_s: 7.0,
-            max_rate_dt_s: 0.04,
+            max_joint_speed_rad_s: 8.9,
+            max_rate_dt_s: 0.0333,
             qp_max_iterations: 50,
             qp_method: QpMethod::ActiveSet,
         }
@@ -267,9 +275,29 @@ impl RetargetConfig {
         )?;
         range("regularisation.rest_posture", r.rest_posture, 0.0, 10.0)?;
         range("regularisation.damping", r.damping, 1e-12, 1.0)?;
+        let f = &self.input_filter;
+        range("input_filter.min_cutoff_hz", f.min_cutoff_hz, 0.0, 100.0)?;
+        range(
+            "input_filter.speed_gain_hz_s_per_m",
+            f.speed_gain_hz_s_per_m,
+            0.0,
+            1e4,
+        )?;
+        range(
+            "input_filter.derivative_cutoff_hz",
+            f.derivative_cutoff_hz,
+            0.01,
+            100.0,
+        )?;
         let sm = &self.smoothing;
         range("smoothing.previous_command", sm.previous_command, 0.0, 10.0)?;
         range("smoothing.residual_m", sm.residual_m, 1e-4, 1.0)?;
+        range(
+            "smoothing.release_speed_m_s",
+            sm.release_speed_m_s,
+            0.0,
+            10.0,
+        )?;
         let s = &self.solver;
         range(
             "solver.steps_per_frame",

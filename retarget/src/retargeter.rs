@@ -35,6 +35,7 @@ use crate::forward_kinematics::FkState;
 use crate::hand_model::HandModel;
 use crate::hand_model::LinkId;
 use crate::human_key_vectors::human_key_vectors;
+use crate::one_euro::KeyPointFilter;
 use crate::qp_step::{BoxQp, QpSolver};
 use crate::retarget_config::RetargetConfig;
 
@@ -130,6 +131,8 @@ pub struct Retargeter {
     prior: f64,
     /// The previous command, kept for the smoothing's second solve (no allocation per frame).
     previous: Vec<f64>,
+    /// The speed-adaptive filter of the human key points.
+    filter: KeyPointFilter,
 }
 
 impl Retargeter {
@@ -203,6 +206,7 @@ impl Retargeter {
             command: neutral.clone(),
             previous: neutral.clone(),
             prior: config.regularisation.previous_command,
+            filter: KeyPointFilter::new(config.input_filter.clone()),
             neutral,
             free,
             rest,
@@ -216,6 +220,7 @@ impl Retargeter {
     pub fn set_calibration(&mut self, transform: CalibrationTransform) -> Result<(), Error> {
         transform.validate()?;
         self.transform = transform;
+        self.filter.reset(); // its history was in the old transform's frame
         Ok(())
     }
 
@@ -269,9 +274,11 @@ impl Retargeter {
         Ok(())
     }
 
-    /// Forget the last command and start the next frame from the neutral pose.
+    /// Forget the last command and the input filter's history: the next frame starts from
+    /// the neutral pose.
     pub fn reset(&mut self) {
         self.command.copy_from_slice(&self.neutral);
+        self.filter.reset();
     }
 
     /// Retarget one frame of keypoints (layout from the configuration, metres), `dt_s`
@@ -282,17 +289,23 @@ impl Retargeter {
             return Err(Error::InvalidTimeStep { dt_s });
         }
         let human = human_key_vectors(self.config.layout, keypoints, &self.transform)?;
+        let human = self.filter.apply(&human, dt_s);
         let targets = key_vector_targets(&human, &self.config);
         let base = self.config.regularisation.previous_command;
         let smoothing = &self.config.smoothing;
         let (extra, residual_m) = (smoothing.previous_command, smoothing.residual_m);
+        let release_speed = smoothing.release_speed_m_s;
         if extra <= 0.0 {
             return Ok(self.solve(&targets, dt_s, base));
         }
         self.previous.copy_from_slice(&self.command);
         let first = self.solve(&targets, dt_s, base);
         let x = (first.tip_error_m / residual_m).powi(2);
-        let prior = base + extra * x / (1.0 + x);
+        let release = match release_speed {
+            0.0 => 1.0,
+            v_s => 1.0 / (1.0 + (self.filter.fastest_speed_m_s() / v_s).powi(2)),
+        };
+        let prior = base + extra * x / (1.0 + x) * release;
         if prior <= base {
             return Ok(first);
         }
