@@ -24,6 +24,21 @@ pub struct HumanKeyVectors {
     pub pinch_distances_m: [f64; 4],
 }
 
+impl HumanKeyVectors {
+    /// The tips and mid points a share `t` (0..=1) of the way toward `other`'s; the pinch
+    /// distances stay this frame's.
+    pub fn toward(&self, other: &HumanKeyVectors, t: f64) -> HumanKeyVectors {
+        let lerp = |a: &[Vector3<f64>; 5], b: &[Vector3<f64>; 5]| {
+            std::array::from_fn(|i| a[i] + t * (b[i] - a[i]))
+        };
+        HumanKeyVectors {
+            tips: lerp(&self.tips, &other.tips),
+            mids: lerp(&self.mids, &other.mids),
+            pinch_distances_m: self.pinch_distances_m,
+        }
+    }
+}
+
 /// Check a frame of keypoints against its layout: count and finiteness.
 pub fn validate_keypoints(layout: KeypointLayout, points: &[Point3<f64>]) -> Result<(), Error> {
     if points.len() != layout.len() {

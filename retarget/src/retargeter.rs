@@ -288,27 +288,33 @@ impl Retargeter {
         if !(dt_s.is_finite() && dt_s > 0.0) {
             return Err(Error::InvalidTimeStep { dt_s });
         }
-        let human = human_key_vectors(self.config.layout, keypoints, &self.transform)?;
-        let human = self.filter.apply(&human, dt_s);
-        let targets = key_vector_targets(&human, &self.config);
+        let raw = human_key_vectors(self.config.layout, keypoints, &self.transform)?;
+        let filtered = self.filter.apply(&raw, dt_s);
         let base = self.config.regularisation.previous_command;
         let smoothing = &self.config.smoothing;
         let (extra, residual_m) = (smoothing.previous_command, smoothing.residual_m);
         let release_speed = smoothing.release_speed_m_s;
-        if extra <= 0.0 {
+        let filter_on = self.config.input_filter.enabled();
+        let targets = key_vector_targets(&raw, &self.config);
+        if extra <= 0.0 && !filter_on {
             return Ok(self.solve(&targets, dt_s, base));
         }
         self.previous.copy_from_slice(&self.command);
         let first = self.solve(&targets, dt_s, base);
+        // How far the robot is from reproducing the frame: 0 for a reachable one (tracked
+        // as it is), toward 1 for one it cannot reproduce (smoothed).
         let x = (first.tip_error_m / residual_m).powi(2);
+        let unreproduced = x / (1.0 + x);
         let release = match release_speed {
             0.0 => 1.0,
             v_s => 1.0 / (1.0 + (self.filter.fastest_speed_m_s() / v_s).powi(2)),
         };
-        let prior = base + extra * x / (1.0 + x) * release;
-        if prior <= base {
+        let prior = base + extra * unreproduced * release;
+        let blend = if filter_on { unreproduced } else { 0.0 };
+        if prior <= base && blend <= 0.0 {
             return Ok(first);
         }
+        let targets = key_vector_targets(&raw.toward(&filtered, blend), &self.config);
         self.command.copy_from_slice(&self.previous);
         let mut second = self.solve(&targets, dt_s, prior);
         second.steps += first.steps;
