@@ -86,7 +86,7 @@ const COLD_DT_S: f64 = 1.0;
 const COLD_PRIOR: f64 = 1e-4;
 
 /// The station's configuration changed so one frame converges from neutral, without the
-/// pinch blend (see the module documentation).
+/// pinch blend, the smoothing or the input filter (see the module documentation).
 pub fn cold_solve_config(config: &RetargetConfig) -> RetargetConfig {
     let mut cold = config.clone();
     cold.regularisation.previous_command = COLD_PRIOR;
@@ -96,6 +96,9 @@ pub fn cold_solve_config(config: &RetargetConfig) -> RetargetConfig {
     cold.solver.max_rate_dt_s = COLD_DT_S;
     cold.pinch.weight = 0.0;
     cold.pinch.separation_weight = 0.0;
+    // One static frame from neutral: no pull back toward neutral, no input history.
+    cold.smoothing.previous_command = 0.0;
+    cold.input_filter.min_cutoff_hz = 0.0;
     cold
 }
 
