@@ -25,11 +25,11 @@ pub struct HumanKeyVectors {
 }
 
 impl HumanKeyVectors {
-    /// The tips and mid points a share `t` (0..=1) of the way toward `other`'s; the pinch
-    /// distances stay this frame's.
-    pub fn toward(&self, other: &HumanKeyVectors, t: f64) -> HumanKeyVectors {
+    /// Each digit's tip and mid point a share `t[digit]` (0..=1) of the way toward `other`'s;
+    /// the pinch distances stay this frame's.
+    pub fn toward(&self, other: &HumanKeyVectors, t: [f64; 5]) -> HumanKeyVectors {
         let lerp = |a: &[Vector3<f64>; 5], b: &[Vector3<f64>; 5]| {
-            std::array::from_fn(|i| a[i] + t * (b[i] - a[i]))
+            std::array::from_fn(|i| a[i] + t[i] * (b[i] - a[i]))
         };
         HumanKeyVectors {
             tips: lerp(&self.tips, &other.tips),

@@ -5,8 +5,14 @@
 //! `f_c = min_cutoff + gain · |v̂|`, `v̂` the point's velocity low-passed at
 //! `derivative_cutoff`. A hand at rest (where glove noise is all there is) is smoothed
 //! hard; a finger closing on a pinch passes almost unfiltered, so fast motion gains no lag.
-//! The smoothing factor of a step `dt` is `α = 1 / (1 + 1 / (2π f_c dt))`; a long gap in the
-//! input gives α ≈ 1 (the filter follows the new frame, nothing stale is replayed).
+//! The smoothing factor of a step `dt` is `α = 1 / (1 + 1 / (2π f_c dt))`.
+//!
+//! **The filter counts frames, not seconds.** Every frame is one step of [`FRAME_DT_S`] (the
+//! cutoffs and speeds are quoted at that frame interval, 30 frames per second), whatever the
+//! measured time between frames: jitter of the glove stream or the network never changes a
+//! command, and a log re-simulated or replayed frame by frame gives the live commands exactly.
+//! A gap longer than [`GAP_RESET_S`] starts the filter afresh on the new frame (nothing stale
+//! is smoothed in).
 
 use std::f64::consts::TAU;
 
@@ -15,13 +21,20 @@ use serde::{Deserialize, Serialize};
 
 use crate::human_key_vectors::HumanKeyVectors;
 
+/// The time step of one frame, seconds: the filter's cutoffs and speeds are per this interval.
+pub const FRAME_DT_S: f64 = 1.0 / 30.0;
+
+/// A gap between frames longer than this (seconds) restarts the filter on the new frame.
+pub const GAP_RESET_S: f64 = 0.25;
+
 /// Settings of the input filter (`[input_filter]` in the retargeting configuration).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct InputFilterConfig {
-    /// Cutoff at rest, Hz; 0 turns the filter off.
+    /// Cutoff at rest, Hz (at [`FRAME_DT_S`] per frame); 0 turns the filter off.
     pub min_cutoff_hz: f64,
-    /// Cutoff added per m/s of a point's speed, Hz·s/m.
+    /// Cutoff added per m/s of a point's speed (its displacement per frame over
+    /// [`FRAME_DT_S`]), Hz·s/m.
     pub speed_gain_hz_s_per_m: f64,
     /// Cutoff of the speed estimate, Hz.
     pub derivative_cutoff_hz: f64,
@@ -128,8 +141,13 @@ impl KeyPointFilter {
         })
     }
 
-    /// Filter one frame's key vectors, `dt_s` (> 0) after the previous frame.
+    /// Filter one frame's key vectors, `dt_s` after the previous frame (only a gap longer than
+    /// [`GAP_RESET_S`] matters: it restarts the filter).
     pub fn apply(&mut self, human: &HumanKeyVectors, dt_s: f64) -> HumanKeyVectors {
+        if dt_s > GAP_RESET_S {
+            self.state = None;
+        }
+        let dt_s = FRAME_DT_S;
         let Some(state) = &mut self.state else {
             self.state = Some(FilterState {
                 tips: human.tips.map(OneEuroPoint::at),
@@ -228,10 +246,24 @@ mod tests {
     }
 
     #[test]
-    fn a_long_gap_follows_the_new_frame() {
-        let mut f = OneEuroPoint::at(Vector3::zeros());
-        let y = f.update(scalar(0.05), 5.0, &config());
-        assert!((y.x - 0.05).abs() < 0.002, "{y}");
+    fn jitter_in_the_frame_timing_changes_nothing_and_a_long_gap_restarts() {
+        let frame = |k: usize| HumanKeyVectors {
+            tips: [Vector3::new(0.01, 0.08 + 0.002 * (k % 3) as f64, 0.0); 5],
+            mids: [Vector3::new(0.01, 0.05, 0.001 * k as f64); 5],
+            pinch_distances_m: [0.05; 4],
+        };
+        let mut steady = KeyPointFilter::new(config());
+        let mut jittery = KeyPointFilter::new(config());
+        for k in 0..40 {
+            let jitter = if k % 2 == 0 { 0.012 } else { 0.055 };
+            assert_eq!(
+                steady.apply(&frame(k), 0.033),
+                jittery.apply(&frame(k), jitter)
+            );
+        }
+        let after_gap = frame(7);
+        assert_ne!(steady.apply(&after_gap, 0.2), after_gap);
+        assert_eq!(jittery.apply(&after_gap, 0.3), after_gap);
     }
 
     #[test]

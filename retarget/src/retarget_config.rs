@@ -197,9 +197,9 @@ impl Default for Regularisation {
 impl Default for SmoothingConfig {
     fn default() -> Self {
         SmoothingConfig {
-            previous_command: 0.05,
+            previous_command: 0.03,
             residual_m: 0.01,
-            release_speed_m_s: 0.2,
+            release_speed_m_s: 0.3,
         }
     }
 }
@@ -209,8 +209,8 @@ impl Default for SolverConfig {
         SolverConfig {
             steps_per_frame: 2,
             step_tolerance_rad: 1e-4,
-            max_joint_speed_rad_s: 8.9,
-            max_rate_dt_s: 0.0333,
+            max_joint_speed_rad_s: 12.0,
+            max_rate_dt_s: 0.0247,
             qp_max_iterations: 50,
             qp_method: QpMethod::ActiveSet,
         }

@@ -29,12 +29,13 @@ use crate::calibration_transform::CalibrationTransform;
 use crate::embodiment::EmbodimentCatalog;
 use crate::energy::{
     KEY_VECTORS, KeyVector, POINTS, accumulate_key_vectors, key_vector_energy, key_vector_targets,
+    pinch_activation,
 };
 use crate::error::Error;
 use crate::forward_kinematics::FkState;
 use crate::hand_model::HandModel;
 use crate::hand_model::LinkId;
-use crate::human_key_vectors::human_key_vectors;
+use crate::human_key_vectors::{HumanKeyVectors, human_key_vectors};
 use crate::one_euro::KeyPointFilter;
 use crate::qp_step::{BoxQp, QpSolver};
 use crate::retarget_config::RetargetConfig;
@@ -314,7 +315,8 @@ impl Retargeter {
         if prior <= base && blend <= 0.0 {
             return Ok(first);
         }
-        let targets = key_vector_targets(&raw.toward(&filtered, blend), &self.config);
+        let smoothed = raw.toward(&filtered, self.filter_shares(&raw, blend));
+        let targets = key_vector_targets(&smoothed, &self.config);
         self.command.copy_from_slice(&self.previous);
         let mut second = self.solve(&targets, dt_s, prior);
         second.steps += first.steps;
@@ -323,6 +325,18 @@ impl Retargeter {
         second.qp_clarabel += first.qp_clarabel;
         second.qp_time_s += first.qp_time_s;
         Ok(second)
+    }
+
+    /// How much of the filtered key points each digit takes: `blend`, less on a pinching pair
+    /// (the thumb and the finger it closes on follow the glove as it is, so a pinch is aimed
+    /// where the fingers are now).
+    fn filter_shares(&self, raw: &HumanKeyVectors, blend: f64) -> [f64; 5] {
+        let p = &self.config.pinch;
+        let beta = raw
+            .pinch_distances_m
+            .map(|d| pinch_activation(d, p.engage_m, p.release_m));
+        let thumb = beta.iter().copied().fold(0.0, f64::max);
+        std::array::from_fn(|i| blend * (1.0 - if i == 0 { thumb } else { beta[i - 1] }))
     }
 
     /// Fingertips of the robot at `q`, in the robot palm frame, metres.

@@ -341,14 +341,17 @@ async fn burst(
 }
 
 /// The timer burst test checks which frame a command was computed from, so the joint-speed
-/// limit is lifted: with a tick's time step the solution then depends on the frame and the
-/// previous command only (see `station_dds.rs`, joint targets equal the in-process
-/// retargeter). On every-frame control the frames of a burst are microseconds apart and the
-/// speed limit binds whatever its value, so there the stamps and the count say it.
+/// limit, the input filter and the smoothing's speed release (whose history is every frame the
+/// station took before) are lifted: the solution then depends on the frame and the previous command only (see
+/// `station_dds.rs`, joint targets equal the in-process retargeter). On every-frame control
+/// the frames of a burst are microseconds apart and the speed limit binds whatever its value,
+/// so there the stamps and the count say it.
 fn burst_config(mode: ControlMode) -> StationConfig {
     let mut config = config(mode);
     config.retarget.solver.max_joint_speed_rad_s = 100.0;
     config.retarget.solver.max_rate_dt_s = 1.0;
+    config.retarget.input_filter.min_cutoff_hz = 0.0;
+    config.retarget.smoothing.release_speed_m_s = 0.0;
     config
 }
 
