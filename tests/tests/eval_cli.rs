@@ -190,6 +190,8 @@ fn an_evaluation_set_from_the_reference_recording() {
         set.to_str().unwrap(),
         "--seed",
         "3",
+        "--synthetic-users",
+        "1",
     ]);
     assert!(built.status.success(), "pomdar eval-set failed");
     let listed: Value =
@@ -204,11 +206,12 @@ fn an_evaluation_set_from_the_reference_recording() {
             .as_u64()
             .unwrap()
     };
-    assert_eq!(listed.as_array().unwrap().len(), 6);
+    assert_eq!(listed.as_array().unwrap().len(), 7);
     assert_eq!(frames("21pt"), 727);
     assert_eq!(frames("rate120hz"), 3601, "30 s at 120 Hz");
     assert_eq!(frames("rate30hz"), 901);
     assert!((600..700).contains(&frames("noise2mm-drop10")));
+    assert_eq!(frames("jitter"), 750, "a synthetic user: 30 s at 25 Hz");
 
     let output = pomdar(&[
         "eval",
@@ -219,12 +222,28 @@ fn an_evaluation_set_from_the_reference_recording() {
     assert!(output.status.success(), "pomdar eval over the set failed");
     let json: Value = serde_json::from_slice(&output.stdout).unwrap();
     let rows = json["summary"].as_array().unwrap();
-    assert_eq!(rows.len(), 7, "the original and its six copies");
+    assert_eq!(
+        rows.len(),
+        8,
+        "the original, its six copies and a synthetic user"
+    );
     let row = |name: &str| {
         rows.iter()
             .find(|r| r["recording"].as_str().unwrap().ends_with(name))
             .unwrap_or_else(|| panic!("no {name} row"))
     };
+    // The synthetic user (never tuned on) pinches for real: the robot closes them.
+    let synthetic = rows
+        .iter()
+        .find(|r| r["recording"].as_str().unwrap().contains("synthetic-1-"))
+        .unwrap();
+    assert_eq!(synthetic["layout"], "lab21", "{synthetic}");
+    assert!(synthetic["live"]["pinch_frames"].as_u64().unwrap() > 50);
+    let closed = synthetic["live"]["pinches_closed_pct"].as_f64().unwrap();
+    assert!(
+        closed >= 90.0,
+        "synthetic user: {closed} % of pinches closed"
+    );
     let (original, dropped) = (row("11-20.mcap"), row("-21pt.mcap"));
     assert_eq!(dropped["layout"], "lab21");
     for path in ["alone", "live"] {
@@ -252,7 +271,7 @@ fn an_evaluation_set_from_the_reference_recording() {
     }
     let table = pomdar(&["eval", input.to_str().unwrap(), set.to_str().unwrap()]);
     let text = String::from_utf8(table.stdout).unwrap();
-    assert!(text.contains("evaluation set: 7 recordings") && text.contains("worst"));
+    assert!(text.contains("evaluation set: 8 recordings") && text.contains("worst"));
 }
 
 /// The live path (the station re-simulated, the command in force at each distinct frame) is

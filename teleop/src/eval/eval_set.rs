@@ -11,6 +11,7 @@ use msgs::Float32MultiArray;
 use serde::Serialize;
 use station::StationConfig;
 
+use super::synthetic_users::{self, synthetic_user};
 use super::variants::{TimedFrame, Variant, standard_variants};
 use super::{EvalError, distinct_frames};
 use crate::mcap_log::{LogError, TrialReader, TrialWriter, TrialWriterOptions};
@@ -61,6 +62,15 @@ pub enum SetError {
         #[source]
         source: msgs::Error,
     },
+    /// A synthetic user cannot be simulated.
+    #[error("synthetic user {user}: {source}")]
+    Synthetic {
+        /// The user's number.
+        user: u64,
+        /// What went wrong.
+        #[source]
+        source: retarget::Error,
+    },
     /// A recording of the set cannot be written.
     #[error("{path}: {source}")]
     Write {
@@ -99,12 +109,14 @@ fn write_recording(path: &Path, topic: &str, frames: &[TimedFrame]) -> Result<()
     Ok(())
 }
 
-/// Builds the set from `sources` into `out` (created if needed); `seed` makes the noise.
+/// Builds the set from `sources` into `out` (created if needed), with `synthetic` simulated
+/// users besides; `seed` makes the noise and the users.
 pub fn build_set(
     sources: &[PathBuf],
     config: &StationConfig,
     out: &Path,
     seed: u64,
+    synthetic: u64,
 ) -> Result<Vec<SetRecording>, SetError> {
     let mut written = Vec::new();
     for (n, source) in sources.iter().enumerate() {
@@ -139,5 +151,33 @@ pub fn build_set(
             });
         }
     }
+    for k in 1..=synthetic {
+        written.push(write_synthetic_user(config, out, seed, k)?);
+    }
     Ok(written)
+}
+
+/// Simulates synthetic user `k` and writes their recording into `out`.
+fn write_synthetic_user(
+    config: &StationConfig,
+    out: &Path,
+    seed: u64,
+    k: u64,
+) -> Result<SetRecording, SetError> {
+    let user = synthetic_user(seed, k).map_err(|source| SetError::Synthetic { user: k, source })?;
+    let path = out.join(format!("{}.mcap", user.name));
+    write_recording(&path, &config.input.keypoints_topic, &user.frames)?;
+    Ok(SetRecording {
+        path,
+        source: PathBuf::from("synthetic"),
+        variants: vec![format!(
+            "hand {:.2}x, glove turned {:+.1} deg, {:.0} mm jitter, {:.0} Hz",
+            user.scale,
+            user.turn_deg,
+            synthetic_users::JITTER_M * 1e3,
+            synthetic_users::RATE_HZ
+        )],
+        layout: synthetic_users::LAYOUT.name().into(),
+        frames: user.frames.len(),
+    })
 }

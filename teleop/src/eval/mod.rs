@@ -22,6 +22,7 @@ pub mod eval_set;
 pub mod external;
 pub mod live_path;
 pub mod summary;
+pub mod synthetic_users;
 pub mod variants;
 
 use crate::mcap_log::{LoggedMessage, TrialReader};
