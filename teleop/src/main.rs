@@ -106,7 +106,9 @@ enum Command {
     /// other users and gloves: a smaller hand (0.85×) with the glove turned 15°, a larger hand
     /// (1.2×) turned −12°, a noisy glove (2 mm per coordinate) dropping 10 % of its frames,
     /// 30 Hz and 120 Hz (re-sampled linearly), and, for the lab's 22 points, its 21-point
-    /// layout. One MCAP per copy in --out and set.json listing them; the sources are not
+    /// layout. Besides, --synthetic-users (4 by default) users of the project's simulated
+    /// glove, whose pinches are real contacts of the simulated hand and on whom nothing was
+    /// tuned. One MCAP per recording in --out and set.json listing them; the sources are not
     /// copied (evaluate them beside the set).
     ///
     /// Example:
