@@ -104,9 +104,11 @@
 //!   `β = max(β_a, β_b)` adds `β w_sep ‖r − ĥ · max(‖h‖, separation_m)‖²`, keeping a pinching
 //!   finger's neighbours away: one quadratic of weight `w_ij = w_tt + β w_sep`, target
 //!   `(1 − σ) h + σ · goal`, `σ = β w_sep / w_ij` ([`energy::key_vector_targets`]).
-//! - Before the energy sees them, the palm-frame tips and mid points pass a speed-adaptive
-//!   low-pass ([`one_euro`], `[input_filter]`): hard at rest, where glove noise is all there
-//!   is, nearly transparent for a finger moving fast; the pinch distances pass unfiltered.
+//! - The palm-frame tips and mid points also pass a speed-adaptive low-pass ([`one_euro`],
+//!   `[input_filter]`, counted in frames): hard at rest, where glove noise is all there is,
+//!   nearly transparent for a finger moving fast. The second solve below takes the filtered
+//!   points in the share `x / (1 + x)` of its residual (none for a pinching thumb and finger);
+//!   the pinch distances are never filtered.
 //! - `λ` (`regularisation.previous_command`) smooths without the lag of an output filter;
 //!   `μ` (`regularisation.rest_posture`) keeps abduction joints near a rest posture when the
 //!   key vectors leave them free.

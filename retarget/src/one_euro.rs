@@ -90,11 +90,6 @@ impl OneEuroPoint {
         self.value
     }
 
-    /// The filtered value.
-    pub fn value(&self) -> Vector3<f64> {
-        self.value
-    }
-
     /// The low-passed speed, m/s (or units/s).
     pub fn speed(&self) -> f64 {
         self.speed.norm()
@@ -174,6 +169,14 @@ mod tests {
         Vector3::new(x, 0.0, 0.0)
     }
 
+    fn still_hand() -> HumanKeyVectors {
+        HumanKeyVectors {
+            tips: [Vector3::new(0.01, 0.08, 0.0); 5],
+            mids: [Vector3::new(0.01, 0.05, 0.0); 5],
+            pinch_distances_m: [0.05; 4],
+        }
+    }
+
     fn config() -> InputFilterConfig {
         InputFilterConfig::default()
     }
@@ -223,11 +226,7 @@ mod tests {
 
     #[test]
     fn the_fastest_key_point_sets_the_speed() {
-        let human = HumanKeyVectors {
-            tips: [Vector3::new(0.01, 0.08, 0.0); 5],
-            mids: [Vector3::new(0.01, 0.05, 0.0); 5],
-            pinch_distances_m: [0.05; 4],
-        };
+        let human = still_hand();
         let mut filter = KeyPointFilter::new(config());
         filter.apply(&human, 0.04);
         assert_eq!(filter.fastest_speed_m_s(), 0.0);
@@ -268,11 +267,7 @@ mod tests {
 
     #[test]
     fn the_first_frame_passes_and_an_off_filter_changes_nothing() {
-        let human = HumanKeyVectors {
-            tips: [Vector3::new(0.01, 0.08, 0.0); 5],
-            mids: [Vector3::new(0.01, 0.05, 0.0); 5],
-            pinch_distances_m: [0.05; 4],
-        };
+        let human = still_hand();
         let mut on = KeyPointFilter::new(config());
         assert_eq!(on.apply(&human, 0.04), human);
         let mut moved = human;
