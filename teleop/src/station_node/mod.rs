@@ -6,5 +6,6 @@ pub mod operator;
 pub mod recorder;
 pub mod ros_node;
 pub mod station_log;
+pub mod tap;
 
 pub use error::NodeError;
