@@ -3,12 +3,11 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use retarget::HandModel;
 use tokio::sync::mpsc;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::common::{HandSourceArgs, NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
-use crate::station_node::ros_node::{OperatorCommand, run_station};
+use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
 
 /// `pomdar station` options.
@@ -28,6 +27,9 @@ pub struct StationArgs {
     /// (identity: scale 1, no rotation).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// The hand (default: the built-in ORCA v1 right hand).
+    #[command(flatten)]
+    pub hand: HandSourceArgs,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -62,13 +64,20 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
                 ),
             ]),
         });
-    let summary = run_station(
+    let source = args.hand.source();
+    let model = source.load()?;
+    let hooks = StationHooks {
+        robot_description: source.robot_description()?,
+        ..StationHooks::default()
+    };
+    let summary = run_station_observed(
         config,
-        HandModel::orca_v1_right(),
+        model,
         StationClock::new(),
         shutdown,
         rx,
         recording,
+        hooks,
     )
     .await?;
     eprintln!(
