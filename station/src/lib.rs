@@ -32,11 +32,13 @@ pub mod config_error;
 pub mod convert;
 pub mod frame_gate;
 pub mod hand_control;
+pub mod joint_names;
 pub mod network_config;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
 pub mod ros_tools;
+pub mod ros_tools_config;
 pub mod source_order;
 #[allow(clippy::module_inception)]
 pub mod station;

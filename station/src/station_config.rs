@@ -12,7 +12,7 @@ use crate::config_error::ConfigError;
 use crate::frame_gate::GateConfig;
 use crate::network_config::{NetworkConfig, QosConfig};
 use crate::policy_output::PolicyOutputConfig;
-use crate::ros_tools::RosToolsConfig;
+use crate::ros_tools_config::RosToolsConfig;
 use crate::watchdog::WatchdogConfig;
 
 /// The whole station configuration.

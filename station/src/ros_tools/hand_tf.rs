@@ -7,7 +7,7 @@ use nalgebra::Isometry3;
 use retarget::{FkState, HandModel, JointMotion, LinkId};
 
 use crate::convert::header;
-use crate::ros_tools::ros_tools_config::RosToolsConfig;
+use crate::ros_tools_config::RosToolsConfig;
 
 /// The hand's transform tree.
 #[derive(Debug, Clone, PartialEq)]

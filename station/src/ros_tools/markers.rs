@@ -239,7 +239,7 @@ fn ball(head: Header, diameter_m: f64) -> Marker {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ros_tools::ros_tools_config::RosToolsConfig;
+    use crate::ros_tools_config::RosToolsConfig;
 
     #[test]
     fn the_robots_own_keypoints_land_on_its_fingertips() {
