@@ -6,9 +6,10 @@ use clap::Args;
 use retarget::HandModel;
 use tokio::sync::mpsc;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::common::{NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
-use crate::station_node::ros_node::{OperatorCommand, run_station};
+use crate::station_node::operator::StationHooks;
+use crate::station_node::ros_node::{OperatorCommand, run_station_observed};
 use crate::station_setup::load_station_config;
 
 /// `pomdar station` options.
@@ -31,6 +32,9 @@ pub struct StationArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The live view.
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 /// `pomdar station`.
@@ -62,15 +66,28 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
                 ),
             ]),
         });
-    let summary = run_station(
+    let view = args.view.start().await?;
+    if let Some(view) = &view {
+        eprintln!("{}", view.announcement());
+    }
+    let hooks = StationHooks {
+        tap: view.as_ref().map(|v| v.tap.clone()),
+        ..StationHooks::default()
+    };
+    let summary = run_station_observed(
         config,
         HandModel::orca_v1_right(),
         StationClock::new(),
         shutdown,
         rx,
         recording,
+        hooks,
     )
-    .await?;
+    .await;
+    if let Some(view) = view {
+        view.stop().await;
+    }
+    let summary = summary?;
     eprintln!(
         "stopped: {} new frames, {} hand commands, {} arm targets, rejected {:?}",
         summary.counters.frames_new,

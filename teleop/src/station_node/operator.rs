@@ -30,6 +30,8 @@ pub struct StationHooks {
     pub status: Option<watch::Sender<Option<serde_json::Value>>>,
     /// Trial log starts and ends, and messages for the operator.
     pub events: Option<mpsc::UnboundedSender<StationEvent>>,
+    /// A copy of every message the station publishes or records, for the live view.
+    pub tap: Option<crate::station_node::tap::Tap>,
 }
 
 /// A station event for the process that runs it.
