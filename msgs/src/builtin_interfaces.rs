@@ -57,6 +57,25 @@ impl RosMessage for Time {
     };
 }
 
+/// `builtin_interfaces/msg/Duration`: a span of time as seconds plus nanoseconds (a marker's
+/// lifetime; zero means forever).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+pub struct Duration {
+    /// Whole seconds (may be negative).
+    pub sec: i32,
+    /// Nanoseconds added to `sec`, in `[0, 10⁹)` when well formed.
+    pub nanosec: u32,
+}
+
+impl RosMessage for Duration {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "builtin_interfaces",
+        name: "Duration",
+        text: "int32 sec\nuint32 nanosec\n",
+        dependencies: &[],
+    };
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

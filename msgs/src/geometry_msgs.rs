@@ -121,3 +121,62 @@ impl RosMessage for PoseArray {
         dependencies: &[&Header::DEFINITION, &Pose::DEFINITION],
     };
 }
+
+/// `geometry_msgs/msg/Vector3`: a free vector (a translation, a marker's scale).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Vector3 {
+    /// x component.
+    pub x: f64,
+    /// y component.
+    pub y: f64,
+    /// z component.
+    pub z: f64,
+}
+
+impl RosMessage for Vector3 {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "geometry_msgs",
+        name: "Vector3",
+        text: "float64 x\nfloat64 y\nfloat64 z\n",
+        dependencies: &[],
+    };
+}
+
+/// `geometry_msgs/msg/Transform`: a child frame's pose in its parent frame.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Transform {
+    /// The child frame's origin in the parent frame, metres.
+    pub translation: Vector3,
+    /// The child frame's orientation in the parent frame.
+    pub rotation: Quaternion,
+}
+
+impl RosMessage for Transform {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "geometry_msgs",
+        name: "Transform",
+        text: "Vector3 translation\nQuaternion rotation\n",
+        dependencies: &[&Vector3::DEFINITION, &Quaternion::DEFINITION],
+    };
+}
+
+/// `geometry_msgs/msg/TransformStamped`: frame `child_frame_id` in frame `header.frame_id` at
+/// `header.stamp` (one edge of the `/tf` tree).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct TransformStamped {
+    /// Stamp and parent frame.
+    pub header: Header,
+    /// The child frame.
+    pub child_frame_id: String,
+    /// The child frame in the parent frame.
+    pub transform: Transform,
+}
+
+impl RosMessage for TransformStamped {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "geometry_msgs",
+        name: "TransformStamped",
+        text: "std_msgs/Header header\nstring child_frame_id\nTransform transform\n",
+        dependencies: &[&Header::DEFINITION, &Transform::DEFINITION],
+    };
+}

@@ -11,7 +11,11 @@
 //! | [`builtin_interfaces`] | [`Time`] |
 //! | [`std_msgs`] | [`Header`], [`StringMsg`], [`MultiArrayDimension`], [`MultiArrayLayout`], [`Float32MultiArray`], [`Float64MultiArray`] |
 //! | [`geometry_msgs`] | [`Point`], [`Quaternion`], [`Pose`], [`PoseStamped`], [`PoseArray`] |
-//! | [`sensor_msgs`] | [`JointState`] |
+//! | [`sensor_msgs`] | [`JointState`], [`CompressedImage`] |
+//! | [`tf2_msgs`] | [`TFMessage`] (with `geometry_msgs` [`Vector3`], [`Transform`], [`TransformStamped`]) |
+//! | [`visualization_msgs`] | [`Marker`], [`MarkerArray`] (with `std_msgs` [`ColorRGBA`], `builtin_interfaces` [`Duration`]) |
+//! | [`diagnostic_msgs`] | [`DiagnosticArray`], [`DiagnosticStatus`], [`KeyValue`] |
+//! | [`std_srvs`] | `Trigger`: [`TriggerRequest`], [`TriggerResponse`] |
 //!
 //! Field order follows the ROS 2 (Humble/Jazzy) `.msg` files exactly: CDR is positional.
 //!
@@ -64,11 +68,15 @@
 pub mod builtin_interfaces;
 mod cdr;
 mod definition;
+pub mod diagnostic_msgs;
 mod error;
 pub mod geometry_msgs;
 mod point_matrix;
 pub mod sensor_msgs;
 pub mod std_msgs;
+pub mod std_srvs;
+pub mod tf2_msgs;
+pub mod visualization_msgs;
 
 #[cfg(test)]
 mod golden_tests;
@@ -79,12 +87,19 @@ mod round_trip_tests;
 #[cfg(test)]
 mod schema_tests;
 
-pub use builtin_interfaces::Time;
+pub use builtin_interfaces::{Duration, Time};
 pub use cdr::{CDR_BE_ID, CDR_LE_HEADER, CDR_LE_ID, from_cdr, to_cdr};
 pub use definition::{MsgDefinition, RosMessage, SCHEMA_SEPARATOR};
+pub use diagnostic_msgs::{DiagnosticArray, DiagnosticStatus, KeyValue};
 pub use error::Error;
-pub use geometry_msgs::{Point, Pose, PoseArray, PoseStamped, Quaternion};
-pub use sensor_msgs::JointState;
+pub use geometry_msgs::{
+    Point, Pose, PoseArray, PoseStamped, Quaternion, Transform, TransformStamped, Vector3,
+};
+pub use sensor_msgs::{CompressedImage, JointState};
+pub use std_msgs::ColorRGBA;
 pub use std_msgs::{
     Float32MultiArray, Float64MultiArray, Header, MultiArrayDimension, MultiArrayLayout, StringMsg,
 };
+pub use std_srvs::{TriggerRequest, TriggerResponse};
+pub use tf2_msgs::TFMessage;
+pub use visualization_msgs::{Marker, MarkerArray};

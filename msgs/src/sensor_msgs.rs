@@ -35,3 +35,23 @@ impl RosMessage for JointState {
         dependencies: &[&Header::DEFINITION],
     };
 }
+
+/// `sensor_msgs/msg/CompressedImage`: an encoded image (only as a marker's empty texture here).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct CompressedImage {
+    /// Stamp and frame.
+    pub header: Header,
+    /// `jpeg`, `png`, ….
+    pub format: String,
+    /// The encoded bytes.
+    pub data: Vec<u8>,
+}
+
+impl RosMessage for CompressedImage {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "sensor_msgs",
+        name: "CompressedImage",
+        text: "std_msgs/Header header\nstring format\nuint8[] data\n",
+        dependencies: &[&Header::DEFINITION],
+    };
+}

@@ -116,3 +116,25 @@ impl RosMessage for Float64MultiArray {
         dependencies: &[&MultiArrayLayout::DEFINITION],
     };
 }
+
+/// `std_msgs/msg/ColorRGBA`: a colour, each channel in `[0, 1]` (`a` = opacity).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct ColorRGBA {
+    /// Red.
+    pub r: f32,
+    /// Green.
+    pub g: f32,
+    /// Blue.
+    pub b: f32,
+    /// Opacity.
+    pub a: f32,
+}
+
+impl RosMessage for ColorRGBA {
+    const DEFINITION: MsgDefinition = MsgDefinition {
+        package: "std_msgs",
+        name: "ColorRGBA",
+        text: "float32 r\nfloat32 g\nfloat32 b\nfloat32 a\n",
+        dependencies: &[],
+    };
+}

@@ -121,6 +121,12 @@ impl NamedFrames {
 #[derive(Debug, Clone, PartialEq)]
 pub struct HandModel {
     pub(crate) name: String,
+    /// The URDF's prefix of joint and link names (`right_`), or empty.
+    pub(crate) name_prefix: String,
+    /// Per degree of freedom: its name as the robot's URDF spells it.
+    pub(crate) ros_dof_names: Vec<String>,
+    /// Per link: its name as the robot's URDF spells it (a `/tf` frame).
+    pub(crate) ros_link_names: Vec<String>,
     pub(crate) link_names: Vec<String>,
     /// Joints in topological order: a joint's parent link is posed before its child.
     pub(crate) joints: Vec<Joint>,
@@ -131,6 +137,24 @@ pub struct HandModel {
 }
 
 impl HandModel {
+    /// The prefix the robot's URDF gives its joint and link names (`right_` for ORCA v1
+    /// right; the import file's `strip_prefix`), or empty.
+    pub fn name_prefix(&self) -> &str {
+        &self.name_prefix
+    }
+
+    /// Each degree of freedom's name as the robot's URDF spells it (ORCA v1 right:
+    /// `right_thumb_mcp`, …): what `sensor_msgs/JointState` carries for robot_state_publisher.
+    pub fn ros_dof_names(&self) -> &[String] {
+        &self.ros_dof_names
+    }
+
+    /// Each link's name as the robot's URDF spells it (its `/tf` frame), in
+    /// [`HandModel::link_names`] order; the root keeps its own name (ORCA: `world`).
+    pub fn ros_link_names(&self) -> &[String] {
+        &self.ros_link_names
+    }
+
     /// The model's name.
     pub fn name(&self) -> &str {
         &self.name

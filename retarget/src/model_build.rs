@@ -68,8 +68,18 @@ pub(crate) fn build(
         chains[joint.child.0] = chain;
     }
 
+    let published = |name: &str, root: bool| match spec.source_names.get(name) {
+        Some(original) => original.clone(),
+        None if root => name.to_string(),
+        None => format!("{}{name}", spec.name_prefix),
+    };
     let model = HandModel {
         name: spec.name.clone(),
+        name_prefix: spec.name_prefix.clone(),
+        ros_dof_names: dofs.iter().map(|d| published(&d.name, false)).collect(),
+        ros_link_names: (tree.link_names.iter().enumerate())
+            .map(|(i, name)| published(name, i == 0))
+            .collect(),
         frames: named_frames(&spec.frames, &tree.link_id)?,
         link_names: tree.link_names,
         joints,

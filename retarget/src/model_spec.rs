@@ -4,12 +4,13 @@
 //!
 //! ```toml
 //! name = "my_hand"
+//! name_prefix = "right_"        # optional: the URDF's prefix of joint and link names
 //!
 //! [frames]                      # link names for the frames the station needs
 //! palm = "palm"                 # rigid palm link
-//! wrist = "wrist_pivot"         # a link whose origin is on the wrist axis (or the palm root)
+//! wrist = "wrist_jointbody"         # a link whose origin is on the wrist axis (or the palm root)
 //! thumb_base = "thumb_mp"       # origin at the thumb's first joint
-//! index_base = "index_abd_pivot" # origins at each finger's first (abduction) joint
+//! index_base = "index_abd_jointbody" # origins at each finger's first (abduction) joint
 //! middle_base = "..."
 //! ring_base = "..."
 //! little_base = "..."
@@ -47,6 +48,15 @@ use serde::{Deserialize, Serialize};
 pub struct ModelSpec {
     /// The model's name (`orca_v1_right`).
     pub name: String,
+    /// The prefix the robot's own URDF gives every joint and every link but the root
+    /// (ORCA v1 right: `right_`), added back to every name the station publishes
+    /// ([`HandModel::ros_dof_names`](crate::HandModel::ros_dof_names)). Empty: none.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name_prefix: String,
+    /// Published names of links and joints that differ from `name_prefix` + name (an
+    /// importer records a URDF's original names here); not part of the file format.
+    #[serde(skip)]
+    pub source_names: std::collections::BTreeMap<String, String>,
     /// Link names of the frames the station uses.
     pub frames: FrameSpec,
     /// The joints; the links are the ones they connect.

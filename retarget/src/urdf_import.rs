@@ -68,9 +68,16 @@ pub fn spec_from_urdf(urdf: &str, import: &UrdfImport) -> Result<(ModelSpec, Vec
         });
     }
     let links = robot.links.iter().map(|l| strip(&l.name)).collect();
+    let originals = robot.joints.iter().map(|j| &j.name);
+    let source_names = originals
+        .chain(robot.links.iter().map(|l| &l.name))
+        .map(|name| (strip(name), name.clone()))
+        .collect();
     Ok((
         ModelSpec {
             name: robot.name,
+            name_prefix: import.strip_prefix.clone(),
+            source_names,
             frames: import.frames.clone(),
             joints,
         },

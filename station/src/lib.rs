@@ -36,6 +36,7 @@ pub mod network_config;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
+pub mod ros_tools;
 pub mod source_order;
 #[allow(clippy::module_inception)]
 pub mod station;

@@ -70,7 +70,10 @@ impl OutputStage {
             arm_enabled: !config.output.arm_target_topic.is_empty(),
             arm_frame_id: config.output.arm_frame_id.clone(),
             policy,
-            joint_names: model.dof_names().map(str::to_string).collect(),
+            joint_names: crate::ros_tools::published_joint_names(
+                model,
+                config.output.joint_name_prefix.as_deref(),
+            ),
             previous_state: DriveState::Disengaged,
             arm_engage_pending: false,
         })

@@ -12,6 +12,7 @@ use crate::config_error::ConfigError;
 use crate::frame_gate::GateConfig;
 use crate::network_config::{NetworkConfig, QosConfig};
 use crate::policy_output::PolicyOutputConfig;
+use crate::ros_tools::RosToolsConfig;
 use crate::watchdog::WatchdogConfig;
 
 /// The whole station configuration.
@@ -36,6 +37,8 @@ pub struct StationConfig {
     pub retarget: RetargetConfig,
     /// Arm target mapping (task constraint, workspace, step caps).
     pub arm: ArmConfig,
+    /// What the lab's ROS tools see: `/tf`, markers, `/diagnostics`, services.
+    pub ros_tools: RosToolsConfig,
     /// The user's calibration profile (`pomdar calibrate` writes it). In a file, a relative
     /// path is relative to the configuration file's directory; unset: no calibration
     /// (identity transform).
@@ -64,6 +67,10 @@ pub struct InputConfig {
     pub wrist_topic: String,
     /// Arm end-effector pose feedback (`geometry_msgs/PoseStamped`); latched at engage.
     pub arm_feedback_topic: String,
+    /// The hand's measured joint state (`sensor_msgs/JointState`), recorded and compared
+    /// with the commands where the hand publishes one (the mock hand does; the ETH stack
+    /// publishes none today); empty: not read.
+    pub hand_state_topic: String,
     /// QoS of the glove topics: deep enough for the lab's 200 Hz republishing.
     pub qos: QosConfig,
 }
@@ -74,6 +81,10 @@ pub struct InputConfig {
 pub struct OutputConfig {
     /// Hand joint targets (`sensor_msgs/JointState`, URDF names and zeros, radians).
     pub joint_targets_topic: String,
+    /// Prefix of the published joint names; unset: the names the robot's URDF uses (the
+    /// model's import prefix, `right_` for the built-in ORCA v1 right), `""`: the model's bare
+    /// names (`thumb_mcp`).
+    pub joint_name_prefix: Option<String>,
     /// Arm target (`geometry_msgs/PoseStamped`); empty disables the arm.
     pub arm_target_topic: String,
     /// `frame_id` of the arm target.
@@ -132,6 +143,7 @@ impl Default for StationConfig {
             },
             retarget: RetargetConfig::default(),
             arm: ArmConfig::default(),
+            ros_tools: RosToolsConfig::default(),
             calibration_profile: None,
         }
     }
@@ -144,6 +156,7 @@ impl Default for InputConfig {
             keypoints_format: KeypointFormat::Float32MultiArray,
             wrist_topic: "/ingress/wrist".into(),
             arm_feedback_topic: "/franka/end_effector_pose".into(),
+            hand_state_topic: "/pomdar/hand/joint_states".into(),
             qos: QosConfig::best_effort(400),
         }
     }
@@ -153,6 +166,7 @@ impl Default for OutputConfig {
     fn default() -> Self {
         OutputConfig {
             joint_targets_topic: "/pomdar/hand/joint_targets".into(),
+            joint_name_prefix: None,
             arm_target_topic: "/franka/end_effector_pose_cmd".into(),
             arm_frame_id: "world".into(),
             status_topic: "/pomdar/status".into(),
@@ -233,6 +247,7 @@ impl StationConfig {
             ));
         }
         self.policy_output.validate()?;
+        self.ros_tools.validate()?;
         self.retarget.validate()?;
         self.arm.validate()?;
         self.network.validate()

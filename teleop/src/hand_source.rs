@@ -92,6 +92,14 @@ impl HandSource {
         }
     }
 
+    /// The robot's URDF text, for `/robot_description` (only a URDF source has one).
+    pub fn robot_description(&self) -> Result<Option<String>, HandSourceError> {
+        match self {
+            HandSource::Urdf { urdf, .. } => read(urdf).map(Some),
+            _ => Ok(None),
+        }
+    }
+
     /// One line saying where the model comes from.
     pub fn describe(&self) -> String {
         match self {

@@ -123,7 +123,8 @@ pub async fn run_session(
     };
     let config = &options.station;
     let targets = pose_targets(model)?;
-    let names: Vec<String> = model.dof_names().map(str::to_string).collect();
+    let prefix = config.output.joint_name_prefix.as_deref();
+    let names = station::ros_tools::published_joint_names(model, prefix);
 
     // The glove's keypoints in, the hand's pose out, on the station's topics.
     let context = config.network.context()?;

@@ -180,3 +180,34 @@ impl LiveView {
         }
     }
 }
+
+/// Where the hand model comes from (`--model`, or `--urdf` with `--import`; default the
+/// built-in ORCA v1 right hand).
+#[derive(Debug, Clone, clap::Args)]
+pub struct HandSourceArgs {
+    /// A model file in the project's TOML format (see `retarget::model_spec`).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["urdf", "import"])]
+    pub model: Option<std::path::PathBuf>,
+    /// The robot's URDF, instead of the built-in hand (needs --import); a station also
+    /// publishes it on /robot_description.
+    #[arg(long, value_name = "FILE", requires = "import")]
+    pub urdf: Option<std::path::PathBuf>,
+    /// The import file naming the URDF's frames (launch_configs/hands/*.toml).
+    #[arg(long, value_name = "FILE", requires = "urdf")]
+    pub import: Option<std::path::PathBuf>,
+}
+
+impl HandSourceArgs {
+    /// The hand these flags name.
+    pub fn source(&self) -> crate::hand_source::HandSource {
+        use crate::hand_source::HandSource;
+        match (&self.model, &self.urdf, &self.import) {
+            (Some(path), _, _) => HandSource::ModelFile(path.clone()),
+            (None, Some(urdf), Some(import)) => HandSource::Urdf {
+                urdf: urdf.clone(),
+                import: import.clone(),
+            },
+            _ => HandSource::BuiltinOrcaV1Right,
+        }
+    }
+}

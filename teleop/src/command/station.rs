@@ -3,13 +3,11 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use retarget::HandModel;
 use tokio::sync::mpsc;
 
-use super::common::{NodeArgs, ViewArgs, ctrl_c_shutdown};
+use super::common::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
-use crate::station_node::operator::StationHooks;
-use crate::station_node::ros_node::{OperatorCommand, run_station_observed};
+use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
 
 /// `pomdar station` options.
@@ -29,6 +27,9 @@ pub struct StationArgs {
     /// (identity: scale 1, no rotation).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// The hand (default: the built-in ORCA v1 right hand).
+    #[command(flatten)]
+    pub hand: HandSourceArgs,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -66,17 +67,20 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
                 ),
             ]),
         });
+    let source = args.hand.source();
+    let model = source.load()?;
     let view = args.view.start().await?;
     if let Some(view) = &view {
         eprintln!("{}", view.announcement());
     }
     let hooks = StationHooks {
+        robot_description: source.robot_description()?,
         tap: view.as_ref().map(|v| v.tap.clone()),
         ..StationHooks::default()
     };
     let summary = run_station_observed(
         config,
-        HandModel::orca_v1_right(),
+        model,
         StationClock::new(),
         shutdown,
         rx,

@@ -33,6 +33,7 @@ use crate::station_node::ros_node::{
 use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
 use station::arm::Constraint;
+use station::ros_tools::ServiceAction;
 
 use crate::console::health::{Health, StartLimits};
 use crate::console::keys::{Action, key_action, parse_action};
@@ -485,6 +486,7 @@ fn spawn_station(
             status: Some(status_tx),
             events: Some(events_tx),
             tap,
+            ..StationHooks::default()
         },
     ));
     let mut simulated = Vec::new();
@@ -746,9 +748,7 @@ impl TrialConsole {
             _ = self.wakeups.tick.tick() => {}
             Ok(()) = self.station.status_rx.changed() => self.status_changed(),
             Some(input) = self.operator.input_rx.recv() => self.input(input, &mut turn.actions),
-            Some(event) = self.station.events_rx.recv() => {
-                self.station_event(event, &mut turn.effects);
-            }
+            Some(event) = self.station.events_rx.recv() => self.station_event(event, turn),
             result = &mut self.station.task => return Err(station_stopped(result)),
             _ = self.wakeups.interrupt.recv() => turn.actions.push(Action::Interrupt),
             _ = self.wakeups.terminate.recv() => turn.actions.push(Action::Interrupt),
@@ -785,7 +785,8 @@ impl TrialConsole {
     }
 
     /// A trial log started, finished or failed, or a message from the station.
-    fn station_event(&mut self, event: StationEvent, effects: &mut Vec<Effect>) {
+    fn station_event(&mut self, event: StationEvent, turn: &mut Turn) {
+        let effects = &mut turn.effects;
         let flow = &mut self.session.flow;
         let inputs = &self.session.inputs;
         match event {
@@ -804,6 +805,13 @@ impl TrialConsole {
                 ))));
             }
             StationEvent::Message(text) => flow.say(text),
+            StationEvent::ServiceRequest(action) => turn.actions.push(match action {
+                ServiceAction::Engage => Action::Engage,
+                ServiceAction::Disengage => Action::Disengage,
+                ServiceAction::TrialStart => Action::Start,
+                ServiceAction::TrialStop => Action::Stop,
+                ServiceAction::TrialAbort => Action::Abort,
+            }),
         }
     }
 

@@ -5,12 +5,29 @@
 
 use msgs::RosMessage;
 use ros2_client::dds::rustdds::Topic;
+use ros2_client::qos::Durability;
 use ros2_client::{
-    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
-    Subscription,
+    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile, Server,
+    ServiceMapping, ServiceTypeName, Subscription,
 };
+use serde::{Deserialize, Serialize};
 
 use crate::ros::{QosConfig, QosProfileOf as _, RosError};
+
+/// A `std_srvs/srv/Trigger` request as ros2-client carries it (its `Message` marker on the
+/// `msgs` type, which knows nothing of ros2-client).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct TriggerRequest(pub msgs::TriggerRequest);
+
+impl ros2_client::Message for TriggerRequest {}
+
+/// A `std_srvs/srv/Trigger` response as ros2-client carries it.
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct TriggerResponse(pub msgs::TriggerResponse);
+
+impl ros2_client::Message for TriggerResponse {}
 
 /// A message with the times the station knows about it.
 #[derive(Debug, Clone, PartialEq)]
@@ -98,6 +115,46 @@ impl RosNode {
                 source,
             })?;
         Ok((handle, profile))
+    }
+
+    /// A reliable, transient-local publisher of `M` on `topic` keeping its last `depth`
+    /// messages for late subscribers (`/tf_static`, `/robot_description`: ROS's latched
+    /// topics).
+    pub fn latched_publisher<M: RosMessage>(
+        &mut self,
+        topic: &str,
+        depth: u32,
+    ) -> Result<Publisher<M>, RosError> {
+        let (handle, profile) = self.topic::<M>(topic, QosConfig::reliable(depth))?;
+        let profile = profile.durability(Durability::TransientLocal);
+        self.node
+            .create_publisher(&handle, Some(profile))
+            .map_err(|source| RosError::Publisher {
+                topic: topic.to_string(),
+                source,
+            })
+    }
+
+    /// A `std_srvs/srv/Trigger` server named `service` (topics `rq/<service>Request` and
+    /// `rr/<service>Reply`), carried as `mapping` says (the clients' RMW).
+    pub fn trigger_server(
+        &mut self,
+        service: &str,
+        mapping: ServiceMapping,
+    ) -> Result<Server<TriggerRequest, TriggerResponse>, RosError> {
+        let profile = QosConfig::reliable(10).profile();
+        self.node
+            .create_server(
+                mapping,
+                &topic_name(service)?,
+                &ServiceTypeName::new("std_srvs", "Trigger"),
+                profile.clone(),
+                profile,
+            )
+            .map_err(|source| RosError::Service {
+                service: service.to_string(),
+                source,
+            })
     }
 
     /// A publisher of `M` on `topic`.

@@ -123,6 +123,15 @@ pub enum RosError {
         #[source]
         source: CreateError,
     },
+    /// The service server could not be created.
+    #[error("cannot offer the service {service}: {source}")]
+    Service {
+        /// The service.
+        service: String,
+        /// ros2-client's error.
+        #[source]
+        source: CreateError,
+    },
     /// The discovery probe's sample counter task failed (panicked or was cancelled).
     #[error(transparent)]
     CounterTask {

@@ -7,7 +7,7 @@ mod error;
 mod participant;
 mod qos;
 
-pub use endpoint::{RosNode, Stamped};
+pub use endpoint::{RosNode, Stamped, TriggerRequest, TriggerResponse};
 pub use error::RosError;
 pub use participant::{NetworkContext, default_domain_id, domain_id};
 pub use qos::QosProfileOf;

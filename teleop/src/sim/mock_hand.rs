@@ -53,7 +53,7 @@ impl Default for MockHandConfig {
     fn default() -> Self {
         MockHandConfig {
             targets_topic: "/pomdar/hand/joint_targets".into(),
-            state_topic: "/pomdar/mock_hand/joint_states".into(),
+            state_topic: "/pomdar/hand/joint_states".into(),
             time_constant_s: 0.03,
             rate_hz: 100.0,
         }
@@ -80,7 +80,7 @@ pub async fn run_mock_hand(
     let targets_sub = node.subscription::<JointState>(&targets_topic, QosConfig::reliable(50))?;
     let state_pub = node.publisher::<JointState>(&state_topic, QosConfig::best_effort(10))?;
     let mut targets = Box::pin(targets_sub.async_stream());
-    let names: Vec<String> = model.dof_names().map(str::to_string).collect();
+    let names: Vec<String> = model.ros_dof_names().to_vec();
     let limits: Vec<_> = model.limits().collect();
     let mut state = model.zero_pose();
     let mut target = state.clone();
@@ -103,7 +103,7 @@ pub async fn run_mock_hand(
                 let mut ok = message.name.len() == message.position.len();
                 let mut next = target.clone();
                 for (name, value) in message.name.iter().zip(&message.position) {
-                    match model.dof_index(name) {
+                    match station::ros_tools::dof_of_published_name(&model, name, None) {
                         Some(i) if value.is_finite() => next[i] = limits[i].clamp(*value),
                         _ => ok = false,
                     }

@@ -5,6 +5,7 @@ mod error;
 pub mod operator;
 pub mod recorder;
 pub mod ros_node;
+mod ros_tools_node;
 pub mod station_log;
 pub mod tap;
 

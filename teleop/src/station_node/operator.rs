@@ -4,6 +4,7 @@
 use tokio::sync::{mpsc, watch};
 
 use crate::station_node::recorder::RecordingOptions;
+use crate::station_node::tap::Tap;
 
 /// What the operator (console, test, demo) tells a running station.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,8 +31,10 @@ pub struct StationHooks {
     pub status: Option<watch::Sender<Option<serde_json::Value>>>,
     /// Trial log starts and ends, and messages for the operator.
     pub events: Option<mpsc::UnboundedSender<StationEvent>>,
-    /// A copy of every message the station publishes or records, for the live view.
-    pub tap: Option<crate::station_node::tap::Tap>,
+    /// A copy of every message the station publishes, for a live viewer (`--view`).
+    pub tap: Option<Tap>,
+    /// The robot's URDF text, published on `/robot_description` (latched) when given.
+    pub robot_description: Option<String>,
 }
 
 /// A station event for the process that runs it.
@@ -57,6 +60,9 @@ pub enum StationEvent {
     },
     /// A warning or error for the operator.
     Message(String),
+    /// A ROS service asked for a trial action (start, stop, abort): the console carries it
+    /// out as the operator's own key (engage and disengage the station does itself).
+    ServiceRequest(station::ros_tools::ServiceAction),
 }
 
 impl StationHooks {
@@ -74,7 +80,9 @@ impl StationHooks {
                     eprintln!("error: cannot finish the trial log: {error}");
                 }
                 StationEvent::Message(text) => eprintln!("{text}"),
-                StationEvent::TrialStarted(_) | StationEvent::TrialFinished(_) => {}
+                StationEvent::TrialStarted(_)
+                | StationEvent::TrialFinished(_)
+                | StationEvent::ServiceRequest(_) => {}
             },
         }
     }

@@ -36,6 +36,9 @@ use crate::samples::Samples;
 use crate::station_node::error::NodeError;
 pub use crate::station_node::operator::{OperatorCommand, StationEvent, StationHooks};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
+use crate::station_node::ros_tools_node::{ServiceRequest, ToolEndpoints, ToolScene};
+
+mod tool_steps;
 use crate::station_setup::build_station;
 
 /// Totals when the station stops.
@@ -104,6 +107,7 @@ pub async fn run_station_observed(
     recording: Option<RecordingOptions>,
     hooks: StationHooks,
 ) -> Result<StationSummary, NodeError> {
+    let scene = ToolScene::new(&model, &config);
     let (station, description) = build_station(&config, model)?;
     if let Some(line) = description {
         hooks.send(StationEvent::Message(line));
@@ -112,10 +116,12 @@ pub async fn run_station_observed(
         Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
         None => None,
     };
-    let endpoints = Endpoints::open(&config)?;
+    let endpoints = Endpoints::open(&config, hooks.robot_description.is_some())?;
     let mut streams = endpoints.streams(&config);
     let mut node = StationNode {
         station,
+        scene,
+        last_points: Vec::new(),
         config: Arc::new(config),
         clock,
         recorder,
@@ -127,6 +133,7 @@ pub async fn run_station_observed(
         tip_error_mm: Samples::default(),
         recorded: Vec::new(),
     };
+    node.send_latched(&endpoints).await;
     loop {
         tokio::select! {
             _ = shutdown.changed() => {
@@ -136,6 +143,8 @@ pub async fn run_station_observed(
             Some(item) = streams.keypoints.next() => node.on_keypoints(item, &endpoints).await,
             Some(item) = streams.wrist.next() => node.on_wrist(item),
             Some(item) = streams.feedback.next() => node.on_feedback(item),
+            Some(item) = streams.hand_state.next() => node.on_hand_state(item),
+            Some(request) = streams.services.next() => node.on_service(request, &endpoints).await,
             _ = streams.tick.tick() => {
                 node.drive(StationInput::Control(ControlInput::Tick), &endpoints).await;
             }
@@ -158,6 +167,8 @@ struct Endpoints {
     keypoints: KeypointSubscription,
     wrist: Subscription<PoseStamped>,
     feedback: Subscription<PoseStamped>,
+    /// `/tf`, markers, diagnostics, the hand's state, the services.
+    tools: ToolEndpoints,
 }
 
 /// The keypoint subscription, in the configured format.
@@ -173,12 +184,14 @@ struct Streams<'a> {
     keypoints: BoxStream<'a, Received<KeypointMessage>>,
     wrist: BoxStream<'a, Received<PoseStamped>>,
     feedback: BoxStream<'a, Received<PoseStamped>>,
+    hand_state: BoxStream<'a, Received<JointState>>,
+    services: BoxStream<'a, ServiceRequest>,
     tick: tokio::time::Interval,
     status_tick: tokio::time::Interval,
 }
 
 impl Endpoints {
-    fn open(config: &StationConfig) -> Result<Endpoints, NodeError> {
+    fn open(config: &StationConfig, has_description: bool) -> Result<Endpoints, NodeError> {
         use crate::ros::NetworkContext as _;
         let context = config.network.context()?;
         let mut node = RosNode::new(&context, "/", "pomdar_station")?;
@@ -221,6 +234,7 @@ impl Endpoints {
             wrist: node.subscription(&config.input.wrist_topic, input_qos)?,
             feedback: node
                 .subscription(&config.input.arm_feedback_topic, QosConfig::best_effort(10))?,
+            tools: ToolEndpoints::open(&mut node, config, has_description)?,
             node,
         })
     }
@@ -242,6 +256,11 @@ impl Endpoints {
             keypoints,
             wrist: self.wrist.async_stream().boxed(),
             feedback: self.feedback.async_stream().boxed(),
+            hand_state: match &self.tools.hand_state {
+                Some(sub) => sub.async_stream().boxed(),
+                None => futures::stream::pending().boxed(),
+            },
+            services: self.tools.service_requests(),
             tick,
             status_tick: tokio::time::interval(Duration::from_secs_f64(
                 1.0 / config.output.status_rate_hz,
@@ -275,6 +294,10 @@ fn source_or(info: &MessageInfo, received_ns: i64) -> i64 {
 /// The node's state: the station, and what only the node knows.
 struct StationNode {
     station: Station,
+    /// What `/tf` and the markers are computed from.
+    scene: ToolScene,
+    /// The points of the last keypoint frame stepped (for its markers).
+    last_points: Vec<nalgebra::Point3<f64>>,
     /// Shared, so a step can borrow topic names while it records and counts.
     config: Arc<StationConfig>,
     clock: StationClock,
@@ -326,6 +349,7 @@ impl StationNode {
             points: message.points(),
             source_ns,
         };
+        self.last_points.clone_from(&frame.points);
         self.step_and_send(StationInput::Keypoints(frame), now, endpoints)
             .await;
     }
@@ -400,10 +424,16 @@ impl StationNode {
                 self.publish(publisher, &config.policy_output.topic, now, message)
                     .await;
             }
+            let fresh = outputs.fresh_frame_received_ns.is_some();
+            self.send_hand_tools(fresh, now, endpoints).await;
         }
         if let (Some(message), Some(publisher)) = (outputs.arm, &endpoints.arm) {
+            let frame = self.scene.arm_target_tf(&message);
             self.publish(publisher, &output.arm_target_topic, now, message)
                 .await;
+            if let (Some(tf), Some(publisher)) = (frame, &endpoints.tools.tf) {
+                self.publish(publisher, "/tf", now, tf).await;
+            }
         }
     }
 
@@ -417,6 +447,9 @@ impl StationNode {
     ) -> bool {
         if let Some(r) = self.recorder.as_mut() {
             r.output(topic, now, &message);
+        }
+        if let Some(tap) = &self.hooks.tap {
+            tap.send(topic, &message, now, false);
         }
         let sent = publisher.async_publish(message).await.is_ok();
         if !sent {
@@ -440,6 +473,10 @@ impl StationNode {
         let message = StringMsg {
             data: status.to_string(),
         };
+        if let Some(tap) = &self.hooks.tap {
+            tap.send(&self.config.output.status_topic, &message, now, false);
+        }
+        self.send_diagnostics(now, endpoints).await;
         if let Some(r) = self.recorder.as_mut() {
             r.output(&self.config.output.status_topic, now, &message);
             r.tick(now);
@@ -463,6 +500,7 @@ impl StationNode {
             fields.insert("last_step_ms".into(), json!(self.step_time.last()));
             fields.insert("listeners".into(), endpoints.listeners());
             fields.insert("node".into(), json!(self.faults));
+            fields.insert("hand_feedback".into(), self.scene.tracking_status(now));
         }
         status
     }
@@ -472,6 +510,7 @@ impl StationNode {
         match StationRecorder::start(options, &self.config, now) {
             Ok(r) => {
                 self.recorder = Some(r);
+                self.record_latched(now);
                 self.hooks
                     .send(StationEvent::TrialStarted(options.path.clone()));
             }
