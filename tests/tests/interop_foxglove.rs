@@ -3,10 +3,11 @@
 //! `@foxglove/rosmsg2-serialization`) connects to the view's WebSocket server, subscribes, and
 //! decodes every message with nothing but the schema the server advertised.
 //!
-//! - In process: a view fed through a station tap serves a latched message sent before the
-//!   client connected (replayed on subscribe) and a stream of live messages; the client sees
-//!   channels with message encoding `cdr`, schema encoding `ros2msg` and the ROS type as schema
-//!   name, and decodes to exactly the values sent, with their log times and no trailing bytes.
+//! - In process: a view fed through a station tap serves the ORCA hand's `/tf_static` and its
+//!   drawing (a MarkerArray), both latched and sent before the client connected (replayed on
+//!   subscribe), and a stream of `/tf` from the station's kinematics; the client sees channels
+//!   with message encoding `cdr`, schema encoding `ros2msg` and the ROS type as schema name,
+//!   and decodes to exactly the values sent, with their log times and no trailing bytes.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
@@ -15,58 +16,65 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use msgs::{JointState, Point, Pose, PoseArray, Quaternion, RosMessage};
+use msgs::{MarkerArray, RosMessage, TFMessage};
 use pomdar_tests::interop::{interop_js_script, interop_node, json_difference, json_lines};
+use retarget::HandModel;
 use serde_json::Value;
-use station::convert::header;
+use station::ros_tools::markers::hand_model_markers;
+use station::ros_tools::{HandTf, RosToolsConfig};
 use teleop::station_node::tap::Tap;
 use teleop::view::{ViewAddress, ViewServer};
 
 /// Log time of the first message (a fixed instant, so expected values are exact).
 const T0_NS: i64 = 1_764_000_000_000_000_000;
-const LIVE_TOPIC: &str = "/pomdar/hand/joint_targets";
-const LATCHED_TOPIC: &str = "/pomdar/markers/hand_model";
-/// Live messages the client must decode.
+const TF: &str = "/tf";
+const TF_STATIC: &str = "/tf_static";
+const HAND_MODEL: &str = "/pomdar/markers/hand_model";
+/// Live `/tf` messages the client must decode.
 const LIVE_COUNT: usize = 20;
 /// The client gives up after this long.
 const CLIENT_TIMEOUT_MS: u64 = 15_000;
 
-/// The latched message: something big enough to span many CDR alignments.
-fn latched_message() -> PoseArray {
-    PoseArray {
-        header: header(T0_NS - 5_000_000, "right_palm"),
-        poses: (0..17)
-            .map(|i| Pose {
-                position: Point {
-                    x: 0.01 * f64::from(i),
-                    y: -0.002 * f64::from(i),
-                    z: 1.0e-9,
-                },
-                orientation: Quaternion {
-                    x: 0.0,
-                    y: 0.0,
-                    z: (0.05 * f64::from(i)).sin(),
-                    w: (0.05 * f64::from(i)).cos(),
-                },
-            })
-            .collect(),
-    }
+/// The ORCA hand's transform tree and model, as the station builds them.
+struct Hand {
+    model: HandModel,
+    tree: HandTf,
 }
 
-/// Live message `k`: distinct values in every field.
-fn live_message(k: usize) -> JointState {
-    let k_f = k as f64;
-    JointState {
-        header: header(T0_NS + k as i64 * 10_000_000, "right_palm"),
-        name: vec!["index_mcp".into(), "thumb_abd".into(), "wrist".into()],
-        position: vec![0.01 * k_f, -0.5 + 1.0e-7 * k_f, 1.0 / 3.0],
-        velocity: vec![],
-        effort: vec![k_f - 0.125],
+impl Hand {
+    fn orca() -> Hand {
+        let model = HandModel::orca_v1_right();
+        let tree = HandTf::new(&model, &RosToolsConfig::default());
+        Hand { model, tree }
+    }
+
+    /// `/tf` number `k`: every moving link at a pose that differs in every joint from the
+    /// other messages', stamped at its log time.
+    fn tf(&self, k: usize) -> TFMessage {
+        let q: Vec<f64> = (0..self.model.dof())
+            .map(|j| 0.01 * (k as f64) + 0.001 * (j as f64))
+            .collect();
+        let state = self.model.forward_new(&q).unwrap();
+        self.tree.moving(&state, live_log_time_ns(k))
+    }
+
+    /// `/tf_static`: the fixed links (fingertips).
+    fn tf_static(&self) -> TFMessage {
+        let state = self
+            .model
+            .forward_new(&vec![0.0; self.model.dof()])
+            .unwrap();
+        self.tree.fixed(&state, T0_NS - 2_000_000)
+    }
+
+    /// The hand's drawing.
+    fn drawing(&self) -> MarkerArray {
+        hand_model_markers(&self.tree, &self.model, T0_NS - 2_000_000)
     }
 }
 
 fn live_log_time_ns(k: usize) -> i64 {
-    T0_NS + k as i64 * 10_000_000 + 1_000
+    T0_NS + k as i64 * 10_000_000
 }
 
 /// The client, started on `url` for `topics` (`TOPIC=N`), its stdout read in a thread.
@@ -145,11 +153,22 @@ fn decoded_on<'a>(lines: &'a [Value], topic: &str) -> Vec<&'a Value> {
     decoded
 }
 
+/// Every message the client decoded on `topic` equals `expected` (and has its log time).
+fn assert_latched(lines: &[Value], topic: &str, expected: &Value, log_time_ns: i64) {
+    let seen = decoded_on(lines, topic);
+    assert_eq!(seen.len(), 1, "{topic}: {seen:?}");
+    if let Some(d) = json_difference("", expected, &seen[0]["message"]) {
+        panic!("{topic} decodes differently: {d}");
+    }
+    assert_eq!(seen[0]["logTimeNs"], log_time_ns.to_string(), "{topic}");
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn foxglove_client_decodes_what_the_view_serves() {
     let Some(node) = interop_node() else {
         return;
     };
+    let hand = Hand::orca();
     let tap = Tap::new(256);
     let view = ViewServer::start(ViewAddress::loopback(0), tap.subscribe())
         .await
@@ -158,12 +177,14 @@ async fn foxglove_client_decodes_what_the_view_serves() {
     assert!(view.announcement().contains(&view.url()));
 
     // Latched before any viewer exists: replayed when the client subscribes.
-    let latched = latched_message();
-    tap.send(LATCHED_TOPIC, &latched, T0_NS - 1_000_000, true);
+    let (fixed, drawing) = (hand.tf_static(), hand.drawing());
+    tap.send(TF_STATIC, &fixed, T0_NS - 1_000_000, true);
+    tap.send(HAND_MODEL, &drawing, T0_NS - 1_000_000, true);
 
     let topics = [
-        format!("{LATCHED_TOPIC}=1"),
-        format!("{LIVE_TOPIC}={LIVE_COUNT}"),
+        format!("{TF_STATIC}=1"),
+        format!("{HAND_MODEL}=1"),
+        format!("{TF}={LIVE_COUNT}"),
     ];
     let mut client = Client::start(&node, &view.url(), &topics);
     // Live messages until the client has what it wants (it subscribes on the topic's first
@@ -171,54 +192,68 @@ async fn foxglove_client_decodes_what_the_view_serves() {
     let deadline = Instant::now() + Duration::from_millis(CLIENT_TIMEOUT_MS + 2_000);
     let mut sent = 0;
     while !client.exited() && Instant::now() < deadline {
-        tap.send(
-            LIVE_TOPIC,
-            &live_message(sent),
-            live_log_time_ns(sent),
-            false,
-        );
+        tap.send(TF, &hand.tf(sent), live_log_time_ns(sent), false);
         sent += 1;
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
     let lines = client.finish();
     let report = view.stop().await;
-    println!("sent {sent} live messages; view {report:?}");
+    println!("sent {sent} /tf messages; view {report:?}");
 
-    assert_advertised::<PoseArray>(&lines, LATCHED_TOPIC);
-    assert_advertised::<JointState>(&lines, LIVE_TOPIC);
-
-    let latched_seen = decoded_on(&lines, LATCHED_TOPIC);
-    assert_eq!(latched_seen.len(), 1, "{latched_seen:?}");
-    if let Some(d) = json_difference("", &as_json(&latched), &latched_seen[0]["message"]) {
-        panic!("the latched message decodes differently: {d}");
-    }
-    assert_eq!(latched_seen[0]["logTimeNs"], T0_NS - 1_000_000);
+    assert_advertised::<TFMessage>(&lines, TF_STATIC);
+    assert_advertised::<MarkerArray>(&lines, HAND_MODEL);
+    assert_advertised::<TFMessage>(&lines, TF);
+    assert_latched(&lines, TF_STATIC, &as_json(&fixed), T0_NS - 1_000_000);
+    assert_latched(&lines, HAND_MODEL, &as_json(&drawing), T0_NS - 1_000_000);
+    assert!(!fixed.transforms.is_empty() && !drawing.markers.is_empty());
 
     // Live: consecutive messages from where the subscription began, each exactly as sent.
-    let live_seen = decoded_on(&lines, LIVE_TOPIC);
+    let live_seen = decoded_on(&lines, TF);
     assert!(live_seen.len() >= LIVE_COUNT, "{} live", live_seen.len());
     let first = (0..sent)
-        .find(|&k| {
-            json_difference("", &as_json(&live_message(k)), &live_seen[0]["message"]).is_none()
-        })
-        .unwrap_or_else(|| panic!("the first live message is none sent: {}", live_seen[0]));
+        .find(|&k| json_difference("", &as_json(&hand.tf(k)), &live_seen[0]["message"]).is_none())
+        .unwrap_or_else(|| panic!("the first /tf decoded is none sent: {}", live_seen[0]));
     for (i, line) in live_seen.iter().enumerate() {
         let k = first + i;
-        if let Some(d) = json_difference("", &as_json(&live_message(k)), &line["message"]) {
-            panic!("live message {k} decodes differently: {d}");
+        if let Some(d) = json_difference("", &as_json(&hand.tf(k)), &line["message"]) {
+            panic!("/tf message {k} decodes differently: {d}");
         }
-        assert_eq!(line["logTimeNs"], live_log_time_ns(k), "live message {k}");
+        assert_eq!(
+            line["logTimeNs"],
+            live_log_time_ns(k).to_string(),
+            "/tf message {k}"
+        );
     }
+    // The URDF's link names, as RViz and Foxglove expect them.
+    let child_frames = |line: &Value| -> Vec<String> {
+        line["message"]["transforms"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t["child_frame_id"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let moving = child_frames(live_seen[0]);
+    assert!(moving.contains(&"right_thumb_mp".to_string()), "{moving:?}");
+    let fixed_frames = child_frames(decoded_on(&lines, TF_STATIC)[0]);
+    assert!(
+        fixed_frames.contains(&"right_index_fingertip".to_string()),
+        "{fixed_frames:?}"
+    );
 
     assert_eq!(report.counts.lagged, 0);
     assert_eq!(report.counts.type_mismatch, 0);
     assert_eq!(
-        report.counts.replayed, 1,
-        "one late subscriber to one latched topic"
+        report.counts.replayed, 2,
+        "one late subscriber to two latched topics"
     );
-    assert_eq!(report.counts.forwarded, sent as u64 + 1);
+    assert_eq!(report.counts.forwarded, sent as u64 + 2);
     assert_eq!(
         report.topics,
-        vec![LIVE_TOPIC.to_string(), LATCHED_TOPIC.to_string()]
+        vec![
+            HAND_MODEL.to_string(),
+            TF.to_string(),
+            TF_STATIC.to_string()
+        ]
     );
 }

@@ -7,8 +7,8 @@
 //
 // Prints JSON lines on stdout: one {"kind":"channel",...} per channel (topic, encodings, schema
 // name, message count from the file's statistics), then one {"kind":"message",...} per message
-// in log-time order (64-bit integers as numbers where exact, else strings; byte and number
-// arrays as arrays). Exits 1 naming the topic and log time of the first message it cannot
+// in log-time order (log and publish times as decimal strings of nanoseconds; 64-bit integers
+// in messages as numbers where exact, else strings; byte and number arrays as arrays). Exits 1 naming the topic and log time of the first message it cannot
 // decode, 2 on a usage error or an unreadable file.
 
 import { open } from "node:fs/promises";
@@ -124,8 +124,8 @@ async function main() {
     print({
       kind: "message",
       topic,
-      logTimeNs: plain(record.logTime),
-      publishTimeNs: plain(record.publishTime),
+      logTimeNs: record.logTime.toString(),
+      publishTimeNs: record.publishTime.toString(),
       sequence: record.sequence,
       message: plain(message),
     });

@@ -8,7 +8,8 @@
 //
 // Prints JSON lines on stdout: one {"kind":"advertise",...} per advertised channel, then one
 // {"kind":"message","topic":...,"message":{...}} per received message of the given topics
-// (64-bit integers as numbers where exact, else strings; byte and number arrays as arrays).
+// (log times as decimal strings of nanoseconds; 64-bit integers in messages as numbers where
+// exact, else strings; byte and number arrays as arrays).
 // Exits 0 once every topic has its N messages (TOPIC=N, else --count, default 1), 1 (naming the topics short) when the
 // timeout (default 10000 ms) passes first, 2 on a usage or connection error.
 
@@ -145,7 +146,7 @@ client.on("message", ({ subscriptionId, timestamp, data }) => {
     kind: "message",
     topic: sub.topic,
     schemaName: sub.schemaName,
-    logTimeNs: plain(timestamp),
+    logTimeNs: timestamp.toString(),
     trailingBytes: sub.reader.lastReadHadTrailingBytes(),
     message: plain(message),
   });
