@@ -8,20 +8,27 @@
 //!   subscribe), and a stream of `/tf` from the station's kinematics; the client sees channels
 //!   with message encoding `cdr`, schema encoding `ros2msg` and the ROS type as schema name,
 //!   and decodes to exactly the values sent, with their log times and no trailing bytes.
+//! - End to end: `pomdar demo --view 127.0.0.1:0` (the built binary, loopback DDS, its own
+//!   domain) prints where its view listens; the client decodes `/tf` with the hand's links
+//!   where the station's kinematics put them for the joint targets of the same step, the
+//!   fingertips on `/tf_static`, the glove keypoint markers, the hand's drawing (exactly the
+//!   station's) and `/diagnostics`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::io::Read;
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use msgs::{MarkerArray, RosMessage, TFMessage};
+use msgs::{DiagnosticArray, JointState, MarkerArray, RosMessage, TFMessage};
 use pomdar_tests::interop::{interop_js_script, interop_node, json_difference, json_lines};
+use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::station_harness::test_domain;
 use retarget::HandModel;
 use serde_json::Value;
 use station::ros_tools::markers::hand_model_markers;
-use station::ros_tools::{HandTf, RosToolsConfig};
+use station::ros_tools::{HandTf, RosToolsConfig, dof_of_published_name};
 use teleop::station_node::tap::Tap;
 use teleop::view::{ViewAddress, ViewServer};
 
@@ -256,4 +263,174 @@ async fn foxglove_client_decodes_what_the_view_serves() {
             TF_STATIC.to_string()
         ]
     );
+}
+
+const KEYPOINT_MARKERS: &str = "/pomdar/markers/keypoints";
+const DIAGNOSTICS: &str = "/diagnostics";
+const JOINT_TARGETS: &str = "/pomdar/hand/joint_targets";
+
+/// `pomdar demo --view 127.0.0.1:0`, and the view's URL from its stderr.
+fn start_demo(duration_s: f64) -> (Child, String) {
+    let binary = pomdar_binary().unwrap();
+    let mut demo = Command::new(binary)
+        .args(["demo", "--json", "--duration", &duration_s.to_string()])
+        .args(["--domain-id", &test_domain(0).to_string()])
+        .args(["--view", "127.0.0.1:0"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stderr = BufReader::new(demo.stderr.take().unwrap());
+    let (url_tx, url_rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in stderr.lines().map_while(Result::ok) {
+            eprintln!("demo: {line}");
+            if let Some(rest) = line.strip_prefix("live view: ") {
+                let url = rest
+                    .split_whitespace()
+                    .next()
+                    .unwrap_or_default()
+                    .to_string();
+                url_tx.send(url).ok();
+            }
+        }
+    });
+    let url = url_rx
+        .recv_timeout(Duration::from_secs(30))
+        .expect("pomdar demo printed no `live view: ws://...` line");
+    assert!(url.starts_with("ws://127.0.0.1:"), "{url}");
+    (demo, url)
+}
+
+/// Nanoseconds of a decoded `builtin_interfaces/Time`.
+fn stamp_ns(stamp: &Value) -> i64 {
+    stamp["sec"].as_i64().unwrap() * 1_000_000_000 + stamp["nanosec"].as_i64().unwrap()
+}
+
+/// The decoded message as this project's type.
+fn typed<M: serde::de::DeserializeOwned>(line: &Value) -> M {
+    serde_json::from_value(line["message"].clone()).unwrap()
+}
+
+/// Every `/tf` of the hand (not the arm target's) is where the station's kinematics put the
+/// links for the joint targets published in the same step (same log time); returns how many
+/// were checked.
+fn assert_tf_follows_the_joint_targets(lines: &[Value], hand: &Hand) -> usize {
+    let targets: std::collections::HashMap<&str, JointState> = decoded_on(lines, JOINT_TARGETS)
+        .into_iter()
+        .map(|l| (l["logTimeNs"].as_str().unwrap(), typed(l)))
+        .collect();
+    let mut checked = 0;
+    for line in decoded_on(lines, TF) {
+        let tf: TFMessage = typed(line);
+        if tf
+            .transforms
+            .iter()
+            .any(|t| t.child_frame_id == "pomdar_arm_target")
+        {
+            continue;
+        }
+        let Some(target) = targets.get(line["logTimeNs"].as_str().unwrap()) else {
+            continue;
+        };
+        let mut q = vec![f64::NAN; hand.model.dof()];
+        for (name, position) in target.name.iter().zip(&target.position) {
+            let dof = dof_of_published_name(&hand.model, name, None)
+                .unwrap_or_else(|| panic!("joint target for unknown joint {name}"));
+            q[dof] = *position;
+        }
+        let state = hand.model.forward_new(&q).unwrap();
+        let stamp = tf.transforms[0].header.stamp.to_nanos();
+        let expected = hand.tree.moving(&state, stamp);
+        assert_eq!(tf.transforms.len(), expected.transforms.len());
+        for (got, want) in tf.transforms.iter().zip(&expected.transforms) {
+            assert_eq!(got.header, want.header);
+            assert_eq!(got.child_frame_id, want.child_frame_id);
+            let (g, w) = (&got.transform, &want.transform);
+            let close = [
+                (g.translation.x, w.translation.x),
+                (g.translation.y, w.translation.y),
+                (g.translation.z, w.translation.z),
+                (g.rotation.x, w.rotation.x),
+                (g.rotation.y, w.rotation.y),
+                (g.rotation.z, w.rotation.z),
+                (g.rotation.w, w.rotation.w),
+            ]
+            .iter()
+            .all(|(a, b)| (a - b).abs() < 1e-12);
+            assert!(close, "{}: {g:?} != {w:?}", got.child_frame_id);
+        }
+        checked += 1;
+    }
+    checked
+}
+
+#[test]
+fn pomdar_demo_serves_the_hand_to_a_foxglove_client() {
+    let Some(node) = interop_node() else {
+        return;
+    };
+    let hand = Hand::orca();
+    let (mut demo, url) = start_demo(6.0);
+    let topics = [
+        format!("{TF}=40"),
+        format!("{TF_STATIC}=1"),
+        format!("{HAND_MODEL}=1"),
+        format!("{KEYPOINT_MARKERS}=20"),
+        format!("{DIAGNOSTICS}=2"),
+        format!("{JOINT_TARGETS}=20"),
+    ];
+    let lines = Client::start(&node, &url, &topics).finish();
+    let status = demo.wait().unwrap();
+    assert!(status.success(), "pomdar demo: {status}");
+
+    assert_advertised::<TFMessage>(&lines, TF);
+    assert_advertised::<TFMessage>(&lines, TF_STATIC);
+    assert_advertised::<MarkerArray>(&lines, HAND_MODEL);
+    assert_advertised::<MarkerArray>(&lines, KEYPOINT_MARKERS);
+    assert_advertised::<DiagnosticArray>(&lines, DIAGNOSTICS);
+
+    let checked = assert_tf_follows_the_joint_targets(&lines, &hand);
+    println!("{checked} /tf messages checked against the joint targets of their step");
+    assert!(
+        checked >= 10,
+        "only {checked} /tf messages matched a joint target"
+    );
+
+    // The latched ones, exactly the station's at their stamp.
+    let fixed: TFMessage = typed(decoded_on(&lines, TF_STATIC)[0]);
+    let stamp = fixed.transforms[0].header.stamp.to_nanos();
+    let zero = hand
+        .model
+        .forward_new(&vec![0.0; hand.model.dof()])
+        .unwrap();
+    assert_eq!(fixed, hand.tree.fixed(&zero, stamp));
+    assert!(
+        fixed
+            .transforms
+            .iter()
+            .any(|t| t.child_frame_id == "right_index_fingertip")
+    );
+    let drawing = decoded_on(&lines, HAND_MODEL)[0];
+    let stamp = stamp_ns(&drawing["message"]["markers"][0]["header"]["stamp"]);
+    if let Some(d) = json_difference(
+        "",
+        &as_json(&hand_model_markers(&hand.tree, &hand.model, stamp)),
+        &drawing["message"],
+    ) {
+        panic!("the hand's drawing decodes differently: {d}");
+    }
+
+    // The glove's keypoints, drawn in the hand's frames.
+    for line in decoded_on(&lines, KEYPOINT_MARKERS) {
+        let markers: MarkerArray = typed(line);
+        assert!(!markers.markers.is_empty(), "{line}");
+        for m in &markers.markers {
+            assert!(!m.header.frame_id.is_empty(), "{m:?}");
+        }
+        let points: usize = markers.markers.iter().map(|m| m.points.len()).sum();
+        assert!(points >= 10, "{points} points in {line}");
+    }
+    let diagnostics: DiagnosticArray = typed(decoded_on(&lines, DIAGNOSTICS)[0]);
+    assert!(!diagnostics.status.is_empty());
 }
