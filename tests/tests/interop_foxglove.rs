@@ -12,7 +12,8 @@
 //!   domain) prints where its view listens; the client decodes `/tf` with the hand's links
 //!   where the station's kinematics put them for the joint targets of the same step, the
 //!   fingertips on `/tf_static`, the glove keypoint markers, the hand's drawing (exactly the
-//!   station's) and `/diagnostics`.
+//!   station's) and `/diagnostics`; Foxglove's MCAP reader (`read_mcap.mjs`) decodes every
+//!   message of every channel of the run's log, these new ones included.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
@@ -22,13 +23,17 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use msgs::{DiagnosticArray, JointState, MarkerArray, RosMessage, TFMessage};
-use pomdar_tests::interop::{interop_js_script, interop_node, json_difference, json_lines};
+use pomdar_tests::interop::{
+    foxglove_mcap_reader, interop_js_script, interop_node, json_difference, json_lines,
+};
 use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::station_harness::test_domain;
+use pomdar_tests::{files_with_extension, scratch_dir};
 use retarget::HandModel;
 use serde_json::Value;
 use station::ros_tools::markers::hand_model_markers;
 use station::ros_tools::{HandTf, RosToolsConfig, dof_of_published_name};
+use teleop::mcap_log::TrialReader;
 use teleop::station_node::tap::Tap;
 use teleop::view::{ViewAddress, ViewServer};
 
@@ -269,13 +274,15 @@ const KEYPOINT_MARKERS: &str = "/pomdar/markers/keypoints";
 const DIAGNOSTICS: &str = "/diagnostics";
 const JOINT_TARGETS: &str = "/pomdar/hand/joint_targets";
 
-/// `pomdar demo --view 127.0.0.1:0`, and the view's URL from its stderr.
-fn start_demo(duration_s: f64) -> (Child, String) {
+/// `pomdar demo --view 127.0.0.1:0 --out DIR`, and the view's URL from its stderr.
+fn start_demo(duration_s: f64, out: &Path) -> (Child, String) {
     let binary = pomdar_binary().unwrap();
     let mut demo = Command::new(binary)
         .args(["demo", "--json", "--duration", &duration_s.to_string()])
         .args(["--domain-id", &test_domain(0).to_string()])
         .args(["--view", "127.0.0.1:0"])
+        .arg("--out")
+        .arg(out)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -371,7 +378,8 @@ fn pomdar_demo_serves_the_hand_to_a_foxglove_client() {
         return;
     };
     let hand = Hand::orca();
-    let (mut demo, url) = start_demo(6.0);
+    let out = scratch_dir("interop-foxglove-demo");
+    let (mut demo, url) = start_demo(6.0, &out);
     let topics = [
         format!("{TF}=40"),
         format!("{TF_STATIC}=1"),
@@ -433,4 +441,41 @@ fn pomdar_demo_serves_the_hand_to_a_foxglove_client() {
     }
     let diagnostics: DiagnosticArray = typed(decoded_on(&lines, DIAGNOSTICS)[0]);
     assert!(!diagnostics.status.is_empty());
+
+    let logs = files_with_extension(&out, "mcap").unwrap();
+    assert_eq!(logs.len(), 1, "{logs:?}");
+    assert_foxglove_reads_the_log(&logs[0]);
+}
+
+/// Foxglove's MCAP reader decodes every message of every channel of `log` with the schema
+/// stored in it, as many per topic as ours reads, the ROS tools' topics among them.
+fn assert_foxglove_reads_the_log(log: &Path) {
+    let ours = TrialReader::open(log).unwrap();
+    let lines = foxglove_mcap_reader(log).expect("node checked above");
+    for topic in ours.topics() {
+        let channel: Vec<&Value> = lines
+            .iter()
+            .filter(|l| l["kind"] == "channel" && l["topic"] == topic.topic.as_str())
+            .collect();
+        assert_eq!(channel.len(), 1, "{}: {channel:?}", topic.topic);
+        assert_eq!(channel[0]["schemaName"], topic.type_name.as_str());
+        let decoded = lines
+            .iter()
+            .filter(|l| l["kind"] == "message" && l["topic"] == topic.topic.as_str())
+            .count() as u64;
+        assert_eq!(decoded, topic.message_count, "{}", topic.topic);
+    }
+    for (topic, type_name) in [
+        (TF, TFMessage::ros_type_name()),
+        (TF_STATIC, TFMessage::ros_type_name()),
+        (HAND_MODEL, MarkerArray::ros_type_name()),
+        (KEYPOINT_MARKERS, MarkerArray::ros_type_name()),
+        (DIAGNOSTICS, DiagnosticArray::ros_type_name()),
+    ] {
+        let info = ours
+            .topic(topic)
+            .unwrap_or_else(|| panic!("{}: no {topic}", log.display()));
+        assert_eq!(info.type_name, type_name);
+        assert!(info.message_count > 0, "{topic}");
+    }
 }
