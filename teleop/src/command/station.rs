@@ -73,11 +73,17 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     if let Some(view) = &view {
         eprintln!("{}", view.announcement());
     }
+    let (status_tx, status_rx) = tokio::sync::watch::channel(None);
     let hooks = StationHooks {
         robot_description: source.robot_description()?,
+        status: Some(status_tx),
         tap: view.as_ref().map(|v| v.tap.clone()),
         ..StationHooks::default()
     };
+    tokio::spawn(say_what_it_waits_for(
+        status_rx,
+        config.input.keypoints_topic.clone(),
+    ));
     let summary = run_station_observed(
         config,
         model,
@@ -100,4 +106,32 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
         summary.counters.rejected
     );
     Ok(())
+}
+
+/// Until the first glove frame arrives, say every two seconds what the station waits for (an
+/// operator cannot tell a station waiting for its glove from a hung one); then say once that
+/// frames arrive.
+async fn say_what_it_waits_for(
+    mut status: tokio::sync::watch::Receiver<Option<serde_json::Value>>,
+    topic: String,
+) {
+    let started = std::time::Instant::now();
+    let mut last_said = None::<std::time::Instant>;
+    while status.changed().await.is_ok() {
+        let Some(document) = status.borrow_and_update().clone() else {
+            continue;
+        };
+        if document["input_age_ms"].is_number() {
+            let rate = document["input_rate_hz"].as_f64().unwrap_or(0.0);
+            eprintln!("glove frames arriving on {topic} ({rate:.1} /s)");
+            return;
+        }
+        if last_said.is_none_or(|t| t.elapsed().as_secs_f64() >= 2.0) {
+            eprintln!(
+                "waiting for glove keypoints on {topic}: none for {:.0} s (is the ingress running, on this ROS_DOMAIN_ID and network?)",
+                started.elapsed().as_secs_f64()
+            );
+            last_said = Some(std::time::Instant::now());
+        }
+    }
 }

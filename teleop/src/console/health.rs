@@ -55,6 +55,45 @@ pub struct Health {
     pub arm_listeners: Option<u64>,
     /// What went wrong without stopping the station, counted since it started.
     pub faults: Faults,
+    /// The hand's measured state against the command in force, when the hand publishes one.
+    pub hand_tracking: Option<HandTracking>,
+}
+
+/// The hand's measured state against the command in force (the status's `hand_feedback`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct HandTracking {
+    /// Largest |command − measured| over the joints in the last measured state, degrees.
+    pub max_error_deg: Option<f64>,
+    /// The joint with that error.
+    pub worst_joint: Option<String>,
+    /// Age of the last measured state, ms.
+    pub age_ms: Option<f64>,
+}
+
+impl HandTracking {
+    /// The tracking part of a status, `None` when the hand has sent no measured state.
+    pub fn from_status(status: &Value) -> Option<HandTracking> {
+        let feedback = status.get("hand_feedback")?;
+        if feedback.get("states").and_then(Value::as_u64).unwrap_or(0) == 0 {
+            return None;
+        }
+        Some(HandTracking {
+            max_error_deg: feedback.get("max_error_deg").and_then(Value::as_f64),
+            worst_joint: (feedback.get("worst_joint").and_then(Value::as_str)).map(str::to_string),
+            age_ms: feedback.get("age_ms").and_then(Value::as_f64),
+        })
+    }
+
+    /// One line for the console: the worst joint's error and how fresh the measurement is.
+    pub fn line(&self) -> String {
+        let age = self
+            .age_ms
+            .map_or(String::new(), |a| format!(", measured {a:.0} ms ago"));
+        match (self.max_error_deg, &self.worst_joint) {
+            (Some(error), Some(joint)) => format!("max {error:.1}° ({joint}){age}"),
+            _ => format!("measured, no command yet{age}"),
+        }
+    }
 }
 
 /// The station's fault counts (its status's `node` and `totals`), since it started.
@@ -127,6 +166,7 @@ impl Health {
             hand_listeners: status.pointer("/listeners/hand").and_then(Value::as_u64),
             arm_listeners: status.pointer("/listeners/arm").and_then(Value::as_u64),
             faults: Faults::from_status(status),
+            hand_tracking: HandTracking::from_status(status),
         }
     }
 
@@ -276,6 +316,21 @@ mod tests {
             stale
                 .refuse_start(&limits, 0)
                 .is_some_and(|r| r.contains("stale"))
+        );
+    }
+
+    #[test]
+    fn hand_tracking_is_read_from_the_status_only_once_the_hand_has_reported() {
+        let silent = json!({"hand_feedback": {"states": 0, "max_error_deg": null}});
+        assert_eq!(Health::from_status(&silent, 0).hand_tracking, None);
+        let status = json!({"hand_feedback": {
+            "states": 12, "max_error_deg": 3.25, "worst_joint": "right_index_mcp", "age_ms": 8.0
+        }});
+        let tracking = Health::from_status(&status, 0).hand_tracking.unwrap();
+        assert_eq!(tracking.max_error_deg, Some(3.25));
+        assert_eq!(
+            tracking.line(),
+            "max 3.2° (right_index_mcp), measured 8 ms ago"
         );
     }
 }

@@ -342,8 +342,9 @@ fn health_lines(
     if health.received_ns.is_none() {
         return vec![("station".into(), "starting…".into(), Level::Warn)];
     }
-    let lines = all_health_lines(health, limits, now_ns);
+    let mut lines = all_health_lines(health, limits, now_ns);
     if limits.drives_robot {
+        lines.push(hand_tracking_line(health));
         return lines;
     }
     // A human study: the glove is all there is.
@@ -356,6 +357,23 @@ fn health_lines(
         ("mode".into(), "human study: no robot".into(), Level::Ok),
     );
     glove
+}
+
+/// Commanded against measured, where the hand publishes its joint state.
+fn hand_tracking_line(health: &Health) -> (String, String, Level) {
+    let Some(tracking) = &health.hand_tracking else {
+        return (
+            "tracking".into(),
+            "no measured hand state".into(),
+            Level::Ok,
+        );
+    };
+    let level = match (tracking.max_error_deg, tracking.age_ms) {
+        (_, Some(age)) if age > 500.0 => Level::Warn,
+        (Some(error), _) if error > 10.0 => Level::Warn,
+        _ => Level::Ok,
+    };
+    ("tracking".into(), tracking.line(), level)
 }
 
 fn all_health_lines(
