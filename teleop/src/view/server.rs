@@ -16,6 +16,9 @@ use crate::station_node::tap::TappedMessage;
 /// at the station's rates this is a few seconds of every topic).
 const BACKLOG_PER_VIEWER: usize = 1024;
 
+/// How long stopping waits for the viewers' connections to close.
+const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(2);
+
 /// A running live view: a Foxglove WebSocket server with one channel per tapped topic.
 ///
 /// It takes the tap's messages in its own task: the station only ever copies a message into
@@ -112,7 +115,11 @@ impl ViewServer {
         self.stop.send(()).ok();
         let (mut counts, topics) = self.forwarder.await.unwrap_or_default();
         counts.replayed = self.latched.replayed();
-        self.handle.stop().wait().await;
+        // A viewer that stopped reading must not hold up the command's exit: past the grace
+        // period the remaining client tasks are dropped (aborted).
+        tokio::time::timeout(STOP_GRACE, self.handle.stop().wait())
+            .await
+            .ok();
         ViewReport { counts, topics }
     }
 }
