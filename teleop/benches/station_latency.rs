@@ -48,6 +48,7 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
             glove,
             live: false,
             out: None,
+            tap: None,
         }))
         .unwrap()
         .summary;

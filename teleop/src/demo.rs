@@ -19,8 +19,10 @@ use crate::sim::mock_hand::MockHandReport;
 use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
 use crate::sim::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
 use crate::station_node::NodeError;
+use crate::station_node::operator::StationHooks;
 use crate::station_node::recorder::RecordingOptions;
-use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station};
+use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station_observed};
+use crate::station_node::tap::Tap;
 use crate::station_setup::SetupError;
 use station::StationConfig;
 use station::arm::Constraint;
@@ -75,6 +77,8 @@ pub struct DemoOptions {
     pub live: bool,
     /// Record the station's run to `DIR/demo-<unix seconds>.mcap`.
     pub out: Option<std::path::PathBuf>,
+    /// A copy of what the station sends, for the live view (`--view`).
+    pub tap: Option<Tap>,
 }
 
 /// The machine-readable summary (`--json`).
@@ -263,13 +267,18 @@ impl DemoNodes {
         let (robot_stop, robot_stop_rx) = watch::channel(false);
         let robot = spawn_mock_robot(station, &model, clock, &robot_stop_rx)?;
         let recording = demo_recording(options.out.as_deref(), clock)?;
-        let station = tokio::spawn(run_station(
+        let hooks = StationHooks {
+            tap: options.tap.clone(),
+            ..StationHooks::default()
+        };
+        let station = tokio::spawn(run_station_observed(
             station.clone(),
             model,
             clock,
             shutdown_rx,
             operator_rx,
             recording,
+            hooks,
         ));
         let (glove_stop, glove_stop_rx) = watch::channel(false);
         let glove = tokio::spawn(run_sim_glove(

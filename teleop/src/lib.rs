@@ -29,3 +29,4 @@ pub mod station_setup;
 pub mod study_logs;
 pub mod tui;
 pub mod utc_date;
+pub mod view;

@@ -193,3 +193,66 @@ pub fn assert_readers_decode_as_we_do(report: &Value, ours: &TrialReader) {
         }
     }
 }
+
+/// Node.js for the JavaScript interop scripts (`tests/interop/js/`: Foxglove's WebSocket client,
+/// MCAP reader and ROS 2 decoders, installed from npm by `tests/interop/setup_node.sh`), or
+/// `None` with a printed skip notice where node or the packages are missing. Panics instead
+/// when the `CI` environment variable is set (`.ci/run` installs them first).
+pub fn interop_node() -> Option<PathBuf> {
+    let js = workspace_root().join("tests/interop/js");
+    let installed = js.join("node_modules/.installed-package-lock.json");
+    let node = std::env::var_os("PATH").and_then(|path| {
+        std::env::split_paths(&path)
+            .map(|dir| dir.join("node"))
+            .find(|candidate| candidate.is_file())
+    });
+    let missing = match (&node, installed.is_file()) {
+        (Some(node), true) => return Some(node.clone()),
+        (None, _) => "node is not on PATH".to_string(),
+        (Some(_), false) => format!("{} not found", installed.display()),
+    };
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "CI must run tests/interop/setup_node.sh first ({missing})"
+    );
+    eprintln!("SKIPPED: JavaScript interop tools ({missing}; run tests/interop/setup_node.sh)");
+    None
+}
+
+/// The path of `tests/interop/js/NAME`.
+pub fn interop_js_script(name: &str) -> PathBuf {
+    workspace_root().join("tests/interop/js").join(name)
+}
+
+/// The JSON lines a script printed; panics naming the script and the line that is not JSON.
+pub fn json_lines(script: &str, stdout: &[u8]) -> Vec<Value> {
+    String::from_utf8_lossy(stdout)
+        .lines()
+        .filter(|line| !line.trim().is_empty())
+        .map(|line| {
+            serde_json::from_str(line).unwrap_or_else(|e| {
+                panic!("{script} printed a line that is not JSON ({e}): {line}")
+            })
+        })
+        .collect()
+}
+
+/// Foxglove's MCAP reader and ROS 2 decoders on `path` (`tests/interop/js/read_mcap.mjs`): one
+/// `{"kind":"channel",...}` per channel, then one `{"kind":"message","topic",...,"message"}`
+/// per message in log-time order. Panics with the script's output when it fails. `None` where
+/// node or the packages are not installed (see [`interop_node`]).
+pub fn foxglove_mcap_reader(path: &Path) -> Option<Vec<Value>> {
+    let node = interop_node()?;
+    let output = std::process::Command::new(node)
+        .arg(interop_js_script("read_mcap.mjs"))
+        .arg(path)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run read_mcap.mjs: {e}"));
+    assert!(
+        output.status.success(),
+        "read_mcap.mjs failed on {}: {}",
+        path.display(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    Some(json_lines("read_mcap.mjs", &output.stdout))
+}

@@ -117,6 +117,7 @@ async fn sim_glove_station_mock_hand_and_arm() {
         glove: SimGloveConfig::default(),
         live: false,
         out: Some(out_dir.clone()),
+        tap: None,
     })
     .await
     .unwrap();

@@ -102,6 +102,85 @@ pub(crate) fn mcap_files_under(
     Ok(found)
 }
 
+/// `--view [ADDR:]PORT`, shared by the commands that run a station.
+#[derive(Debug, Clone, Args)]
+pub struct ViewArgs {
+    /// Serve a live 3D view of the station (hand links on /tf, glove keypoints beside the
+    /// robot's fingertips, the hand's drawing, diagnostics) on this port for the Foxglove app
+    /// (Open connection → Foxglove WebSocket, ws://ADDR:PORT); no ROS needed on the viewing
+    /// machine. PORT alone listens on 127.0.0.1 only; give 0.0.0.0:PORT to let other hosts
+    /// connect; port 0 picks a free one (printed). A slow viewer loses old messages and never
+    /// slows the station.
+    #[arg(long, value_name = "[ADDR:]PORT")]
+    pub view: Option<crate::view::ViewAddress>,
+}
+
+/// A running live view and the tap the station feeds it through.
+#[derive(Debug)]
+#[cfg_attr(not(feature = "view"), allow(dead_code))] // never started without the feature
+pub(crate) struct LiveView {
+    /// Give this to the station's hooks.
+    pub(crate) tap: crate::station_node::tap::Tap,
+    #[cfg(feature = "view")]
+    server: crate::view::ViewServer,
+}
+
+#[cfg(feature = "view")]
+/// Messages the tap holds for a live view that falls behind, before the oldest are dropped
+/// (several seconds of every topic at the station's rates).
+const TAP_CAPACITY: usize = 4096;
+
+impl ViewArgs {
+    /// Start the live view if `--view` was given.
+    pub(crate) async fn start(&self) -> anyhow::Result<Option<LiveView>> {
+        let Some(address) = self.view else {
+            return Ok(None);
+        };
+        start_view(address).await.map(Some)
+    }
+}
+
+#[cfg(feature = "view")]
+async fn start_view(address: crate::view::ViewAddress) -> anyhow::Result<LiveView> {
+    let tap = crate::station_node::tap::Tap::new(TAP_CAPACITY);
+    let server = crate::view::ViewServer::start(address, tap.subscribe()).await?;
+    Ok(LiveView { tap, server })
+}
+
+#[cfg(not(feature = "view"))]
+async fn start_view(address: crate::view::ViewAddress) -> anyhow::Result<LiveView> {
+    anyhow::bail!(
+        "--view {address}: this pomdar was built without the live view; rebuild with `cargo build --release -p teleop --features view`"
+    )
+}
+
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
+impl LiveView {
+    /// The line to show on start: where to point the Foxglove app.
+    pub(crate) fn announcement(&self) -> String {
+        #[cfg(feature = "view")]
+        return self.server.announcement();
+        #[cfg(not(feature = "view"))]
+        String::new()
+    }
+
+    /// Stop the view after the station (a no-op without the `view` feature, which never
+    /// starts one).
+    pub(crate) async fn stop(self) {
+        #[cfg(feature = "view")]
+        {
+            let report = self.server.stop().await;
+            if report.counts.lagged > 0 {
+                eprintln!(
+                    "live view: fell behind and dropped {} of {} messages",
+                    report.counts.lagged,
+                    report.counts.lagged + report.counts.forwarded
+                );
+            }
+        }
+    }
+}
+
 /// Where the hand model comes from (`--model`, or `--urdf` with `--import`; default the
 /// built-in ORCA v1 right hand).
 #[derive(Debug, Clone, clap::Args)]

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use retarget::human_hand::MotionKind;
 
-use super::common::MotionArg;
+use super::common::{MotionArg, ViewArgs};
 use crate::demo::{DemoOptions, run_demo};
 use crate::ros::default_domain_id;
 use crate::sim::sim_glove_node::SimGloveConfig;
@@ -40,6 +40,9 @@ pub struct DemoArgs {
     /// (identity: scale 1, no rotation).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// The live view.
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 /// `pomdar demo`.
@@ -70,6 +73,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             glove.motion, glove.rate_hz, args.duration
         );
     }
+    let view = args.view.start().await?;
+    if let Some(view) = &view {
+        eprintln!("{}", view.announcement());
+    }
     let outcome = run_demo(DemoOptions {
         duration_s: args.duration,
         domain_id,
@@ -77,8 +84,13 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         glove,
         live: !args.json,
         out: args.out.clone(),
+        tap: view.as_ref().map(|v| v.tap.clone()),
     })
-    .await?;
+    .await;
+    if let Some(view) = view {
+        view.stop().await;
+    }
+    let outcome = outcome?;
     let recorded = outcome.recorded.clone();
     let summary = outcome.summary;
     if args.json {

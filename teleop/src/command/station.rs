@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use tokio::sync::mpsc;
 
-use super::common::{HandSourceArgs, NodeArgs, ctrl_c_shutdown};
+use super::common::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
@@ -33,6 +33,9 @@ pub struct StationArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The live view.
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 /// `pomdar station`.
@@ -66,10 +69,15 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
         });
     let source = args.hand.source();
     let model = source.load()?;
+    let view = args.view.start().await?;
+    if let Some(view) = &view {
+        eprintln!("{}", view.announcement());
+    }
     let (status_tx, status_rx) = tokio::sync::watch::channel(None);
     let hooks = StationHooks {
         robot_description: source.robot_description()?,
         status: Some(status_tx),
+        tap: view.as_ref().map(|v| v.tap.clone()),
         ..StationHooks::default()
     };
     tokio::spawn(say_what_it_waits_for(
@@ -85,7 +93,11 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
         recording,
         hooks,
     )
-    .await?;
+    .await;
+    if let Some(view) = view {
+        view.stop().await;
+    }
+    let summary = summary?;
     eprintln!(
         "stopped: {} new frames, {} hand commands, {} arm targets, rejected {:?}",
         summary.counters.frames_new,

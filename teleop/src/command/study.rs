@@ -94,6 +94,8 @@ impl StudyArgs {
             simulate_motion: motion,
             simulate_hand_scale: self.simulate_hand_scale,
             node: self.node.clone(),
+            // The human study drives no robot: nothing to view.
+            view: crate::command::common::ViewArgs { view: None },
         }
     }
 

@@ -19,7 +19,7 @@ use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
-use crate::command::common::{MotionArg, NodeArgs};
+use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
 use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
 use crate::score::report_files::write_report_files;
@@ -111,6 +111,9 @@ pub struct TrialArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The live view.
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 /// How the trial console runs: shared by `pomdar trial` and `pomdar study`.
@@ -244,9 +247,14 @@ pub async fn run_session(
     let mut info = session_info(args, &plan, &config, &dir, &inputs, task, limits)?;
     info.setup.splice(0..0, study);
 
-    // The station (and, with --simulate, the glove and the robot).
+    // The live view, then the station (and, with --simulate, the glove and the robot).
+    let view = args.view.start().await?;
+    if let Some(view) = &view {
+        flow.say(view.announcement());
+    }
     let clock = StationClock::new();
-    let station = spawn_station(args, &config, &model, clock)?;
+    let tap = view.as_ref().map(|v| v.tap.clone());
+    let station = spawn_station(args, &config, &model, clock, tap)?;
     let operator = OperatorSide::open(args.console.plain, script)?;
     let mut console = TrialConsole {
         operator,
@@ -265,7 +273,11 @@ pub async fn run_session(
         end: ConsoleEnd::default(),
     };
     console.run().await?;
-    console.finish().await
+    let end = console.finish().await;
+    if let Some(view) = view {
+        view.stop().await;
+    }
+    end
 }
 
 /// The names and ranges of the flags.
@@ -457,6 +469,7 @@ fn spawn_station(
     config: &StationConfig,
     model: &HandModel,
     clock: StationClock,
+    tap: Option<crate::station_node::tap::Tap>,
 ) -> anyhow::Result<StationHandles> {
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (operator_tx, operator_rx) = mpsc::unbounded_channel();
@@ -472,6 +485,7 @@ fn spawn_station(
         StationHooks {
             status: Some(status_tx),
             events: Some(events_tx),
+            tap,
             ..StationHooks::default()
         },
     ));
