@@ -64,7 +64,11 @@ fn eth_lab_is_the_lab_nodes_table() {
         );
         assert_eq!(row.ref_deg, 0.0);
         assert!(!row.verified, "{}", row.joint);
-        assert!(!row.note.is_empty(), "{}: every row says where it stands", row.joint);
+        assert!(
+            !row.note.is_empty(),
+            "{}: every row says where it stands",
+            row.joint
+        );
         assert_mapped_range(&model, row, offset);
     }
     // index_abd at URDF zero is 14.5° of the lab's model, sent in radians.
