@@ -49,7 +49,7 @@ pub fn table_text(
     for line in before {
         text.push_str(&format!("{line}\n"));
     }
-    let mut table_lines = serialized.lines();
+    let mut table_lines = serialized.trim_end().lines();
     if let Some(first) = table_lines.next() {
         text.push_str(&format!("{first}\n"));
     }
