@@ -52,7 +52,8 @@ enum Command {
     Station(command::station::StationArgs),
     /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
     SimGlove(command::sim_glove::SimGloveArgs),
-    /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state.
+    /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state
+    /// (and with --policy-config, a policy output topic through the inverse of its table).
     MockHand(command::mock_hand::MockHandArgs),
     /// A mock Franka: follows pose commands at limited speed, publishes its pose.
     MockFranka(command::mock_franka::MockFrankaArgs),
