@@ -6,6 +6,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+use std::path::Path;
 use std::sync::{Arc, Mutex};
 
 use pomdar_tests::pomdar_binary::run_pomdar;
@@ -39,19 +40,40 @@ fn watched(stdout: &str) -> Vec<(String, String, f64)> {
         .collect()
 }
 
-#[test]
-fn every_joint_confirmed_writes_the_verified_table_and_the_mock_hand_moved_as_named() {
-    let (path, config) = preset("eth_lab.toml");
+/// `pomdar hand-check` on `config_path` with `script`, fast motion, on loopback `domain`.
+fn hand_check(config_path: &Path, out: &Path, script: &Path, domain: u16) -> std::process::Output {
+    run_pomdar(&[
+        "hand-check",
+        "--config",
+        path_arg(config_path),
+        "--out",
+        path_arg(out),
+        "--user",
+        "tester",
+        "--script",
+        path_arg(script),
+        "--move-s",
+        "1",
+        "--hold-s",
+        "0.3",
+        "--settle-s",
+        "1.5",
+        "--domain-id",
+        &domain.to_string(),
+        "--interface",
+        "127.0.0.1",
+    ])
+}
+
+/// Run `pomdar hand-check` while the mock hand, in process, follows the consumer topic through
+/// the inverse of `config`'s table, recording its measured states.
+fn with_mock_hand(
+    config: &StationConfig,
+    domain: u16,
+    run: impl FnOnce() -> std::process::Output,
+) -> (std::process::Output, MockHandReport) {
     let model = HandModel::orca_v1_right();
     let table = PolicyOutput::new(&model, &config.policy_output).unwrap();
-    let neutral = neutral_pose(&model, &table).unwrap();
-    let dir = scratch_dir("hand-check");
-    let out = dir.join("eth_lab_verified.toml");
-    let script = dir.join("all_yes.script");
-    std::fs::write(&script, "wait asking 30\nyes\n".repeat(17)).unwrap();
-    let domain = test_domain(0);
-
-    // The mock hand, in process, following the consumer topic through the table's inverse.
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -60,7 +82,7 @@ fn every_joint_confirmed_writes_the_verified_table_and_the_mock_hand_moved_as_na
     let report = Arc::new(Mutex::new(MockHandReport::default()));
     let (stop, stopped) = tokio::sync::watch::channel(false);
     let mock = runtime.spawn(run_mock_hand(
-        model.clone(),
+        model,
         MockHandConfig {
             targets_topic: "/pomdar/hand_check_test/unused".into(),
             policy: Some(PolicyInput {
@@ -75,29 +97,68 @@ fn every_joint_confirmed_writes_the_verified_table_and_the_mock_hand_moved_as_na
         report.clone(),
         stopped,
     ));
-    let output = run_pomdar(&[
-        "hand-check",
-        "--config",
-        path_arg(&path),
-        "--out",
-        path_arg(&out),
-        "--user",
-        "tester",
-        "--script",
-        path_arg(&script),
-        "--move-s",
-        "1",
-        "--hold-s",
-        "0.3",
-        "--settle-s",
-        "1.5",
-        "--domain-id",
-        &domain.to_string(),
-        "--interface",
-        "127.0.0.1",
-    ]);
+    let output = run();
     stop.send(true).unwrap();
     runtime.block_on(mock).unwrap().unwrap();
+    let report = report.lock().unwrap().clone();
+    (output, report)
+}
+
+/// Each joint the check named moved its step the named way (in the URDF's sense), the others
+/// held still.
+fn assert_moved_as_named(stdout: &str, report: &MockHandReport, neutral: &[f64]) {
+    let model = HandModel::orca_v1_right();
+    assert!(
+        report.policy_targets > 100 && report.policy_rejected == 0,
+        "{} followed, {} rejected",
+        report.policy_targets,
+        report.policy_rejected
+    );
+    let settled = report
+        .states
+        .iter()
+        .position(|q| q.iter().zip(neutral).all(|(a, b)| (a - b).abs() < 1e-3))
+        .expect("the mock hand reached the neutral pose");
+    let states = &report.states[settled..];
+    let moves = watched(stdout);
+    assert_eq!(moves.len(), 17, "{stdout}");
+    for (name, sentence, step) in moves {
+        let dof = model.dof_index(&name).unwrap();
+        assert_eq!(sentence, direction_sentence(&name, step), "{name}");
+        let deviation = |q: &Vec<f64>| (q[dof] - neutral[dof]).abs();
+        let peak = states
+            .iter()
+            .max_by(|a, b| deviation(a).total_cmp(&deviation(b)))
+            .unwrap();
+        let moved = peak[dof] - neutral[dof];
+        assert!(
+            moved * step > 0.0 && (moved - step).abs() < 0.2 * step.abs(),
+            "{name}: moved {moved:+.3} rad, named {step:+.3}"
+        );
+        for (other, (a, b)) in peak.iter().zip(neutral).enumerate() {
+            if other != dof {
+                assert!(
+                    (a - b).abs() < 0.01,
+                    "{name} moving: dof {other} at {a} (neutral {b})"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_joint_confirmed_writes_the_verified_table_and_the_mock_hand_moved_as_named() {
+    let (path, config) = preset("eth_lab.toml");
+    let model = HandModel::orca_v1_right();
+    let table = PolicyOutput::new(&model, &config.policy_output).unwrap();
+    let neutral = neutral_pose(&model, &table).unwrap();
+    let dir = scratch_dir("hand-check");
+    let out = dir.join("eth_lab_verified.toml");
+    let script = dir.join("all_yes.script");
+    std::fs::write(&script, "wait asking 30\nyes\n".repeat(17)).unwrap();
+    let domain = test_domain(0);
+    let (output, report) =
+        with_mock_hand(&config, domain, || hand_check(&path, &out, &script, domain));
     assert!(output.status.success(), "hand-check failed");
     let stdout = String::from_utf8(output.stdout).unwrap();
     assert!(stdout.contains("joint 6 of 17: index_abd"), "{stdout}");
@@ -124,46 +185,7 @@ fn every_joint_confirmed_writes_the_verified_table_and_the_mock_hand_moved_as_na
     }
     assert_eq!(written.control, config.control);
     assert!(!dir.join("eth_lab_verified.toml.part").exists());
-
-    // The mock hand: each named joint moved its step the named way, the others held.
-    let report = report.lock().unwrap();
-    assert!(
-        report.policy_targets > 100 && report.policy_rejected == 0,
-        "{report:?}"
-    );
-    let settled = report
-        .states
-        .iter()
-        .position(|q| q.iter().zip(&neutral).all(|(a, b)| (a - b).abs() < 1e-3))
-        .expect("the mock hand reached the neutral pose");
-    let states = &report.states[settled..];
-    let moves = watched(&stdout);
-    assert_eq!(moves.len(), 17, "{stdout}");
-    for (name, sentence, step) in moves {
-        let dof = model.dof_index(&name).unwrap();
-        assert_eq!(sentence, direction_sentence(&name, step), "{name}");
-        let peak = states
-            .iter()
-            .max_by(|a, b| {
-                (a[dof] - neutral[dof])
-                    .abs()
-                    .total_cmp(&(b[dof] - neutral[dof]).abs())
-            })
-            .unwrap();
-        let moved = peak[dof] - neutral[dof];
-        assert!(
-            moved * step > 0.0 && (moved - step).abs() < 0.2 * step.abs(),
-            "{name}: moved {moved:+.3} rad, named {step:+.3}"
-        );
-        for (other, (a, b)) in peak.iter().zip(&neutral).enumerate() {
-            if other != dof {
-                assert!(
-                    (a - b).abs() < 0.01,
-                    "{name} moving: dof {other} at {a} (neutral {b})"
-                );
-            }
-        }
-    }
+    assert_moved_as_named(&stdout, &report, &neutral);
 }
 
 #[test]
@@ -178,28 +200,8 @@ fn a_joint_left_unconfirmed_writes_nothing_and_names_the_joints() {
         "wait asking 30\nyes\nwait asking 30\nno\nwait offer_flip 5\nquit\n",
     )
     .unwrap();
-    let domain = test_domain(1).to_string();
-    let output = run_pomdar(&[
-        "hand-check",
-        "--config",
-        path_arg(&path),
-        "--out",
-        path_arg(&out),
-        "--user",
-        "tester",
-        "--script",
-        path_arg(&script),
-        "--move-s",
-        "1",
-        "--hold-s",
-        "0",
-        "--settle-s",
-        "0.5",
-        "--domain-id",
-        &domain,
-        "--interface",
-        "127.0.0.1",
-    ]);
+    let domain = test_domain(1);
+    let output = hand_check(&path, &out, &script, domain);
     assert!(!output.status.success());
     assert!(!out.exists() && !dir.join("orca_core_verified.toml.part").exists());
     let stderr = String::from_utf8(output.stderr).unwrap();
@@ -211,25 +213,7 @@ fn a_joint_left_unconfirmed_writes_nothing_and_names_the_joints() {
     );
     // A script that ends before the check does is a stop, too.
     std::fs::write(&script, "wait asking 30\nyes\n").unwrap();
-    let output = run_pomdar(&[
-        "hand-check",
-        "--config",
-        path_arg(&path),
-        "--out",
-        path_arg(&out),
-        "--user",
-        "tester",
-        "--script",
-        path_arg(&script),
-        "--move-s",
-        "1",
-        "--settle-s",
-        "0.5",
-        "--domain-id",
-        &domain,
-        "--interface",
-        "127.0.0.1",
-    ]);
+    let output = hand_check(&path, &out, &script, domain);
     assert!(!output.status.success() && !out.exists());
     let stdout = String::from_utf8(output.stdout).unwrap();
     assert!(stdout.contains("the script has ended"), "{stdout}");

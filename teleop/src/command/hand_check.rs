@@ -41,7 +41,7 @@ pub struct HandCheckArgs {
     /// Seconds held at the end of the step.
     #[arg(long, default_value_t = Motion::default().hold_s)]
     pub hold_s: f64,
-    /// Seconds to go to and hold the neutral pose first.
+    /// Seconds to go to and hold the neutral pose first (at least --move-s).
     #[arg(long, default_value_t = Motion::default().settle_s)]
     pub settle_s: f64,
     /// Commands a second on the consumer's topic.

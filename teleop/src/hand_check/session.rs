@@ -40,7 +40,8 @@ pub struct Motion {
     pub move_s: f64,
     /// Seconds held at the far end.
     pub hold_s: f64,
-    /// Seconds to go to (and hold) the neutral pose first.
+    /// Seconds to go to (and hold) the neutral pose first; at least `move_s` (the ramp to a
+    /// neutral pose moved by a flip takes that long).
     pub settle_s: f64,
 }
 
@@ -222,7 +223,7 @@ impl HandCheck {
             "hand check of {}: {} joints; going to the neutral pose ({:.1} s)",
             check.config.consumer,
             check.joints.len(),
-            motion.settle_s
+            motion.settle_s.max(motion.move_s)
         ));
         Ok(check)
     }
@@ -282,7 +283,10 @@ impl HandCheck {
     pub fn tick(&mut self, now_s: f64) {
         let elapsed = now_s - self.since_s;
         match self.phase {
-            Phase::Settling if elapsed >= self.motion.settle_s => self.start_move(now_s),
+            // At least the ramp's time (after a flip the neutral pose may have moved).
+            Phase::Settling if elapsed >= self.motion.settle_s.max(self.motion.move_s) => {
+                self.start_move(now_s);
+            }
             Phase::Moving if elapsed >= 2.0 * self.motion.move_s + self.motion.hold_s => {
                 self.phase = Phase::Asking;
                 self.since_s = now_s;
