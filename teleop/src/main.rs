@@ -204,7 +204,7 @@ enum Command {
     /// its URDF limits and the consumer's range), then each joint in the table's order moves
     /// a small step (--step-rad, at most 0.15 rad) slowly (--move-s each way, at least 1 s),
     /// holds, and comes back, sent at --rate-hz through the table on the consumer's topic,
-    /// while the others hold still. The terminal shows the progress ("joint 5 of 17:
+    /// while the others hold still. The terminal shows the progress ("joint 6 of 17:
     /// index_abd") and what the operator should see ("the index finger moves towards the
     /// middle finger"), then asks. Answers, typed on stdin (one a line) or from --script:
     ///   yes (y)     it moved as named: the next joint
@@ -236,7 +236,7 @@ enum Command {
     /// topic through the inverse of the table.
     ///
     /// Examples:
-    ///   pomdar hand-check --config launch_configs/station/eth_lab.toml --user ana --out launch_configs/station/eth_lab_verified.toml
+    ///   pomdar hand-check --config launch_configs/station/eth_lab.toml --user ana --out lab/eth_lab_verified.toml
     ///   pomdar hand-check --config launch_configs/station/orca_core.toml --user ana --out /tmp/orca.toml --script check.script
     #[command(verbatim_doc_comment)]
     HandCheck(command::hand_check::HandCheckArgs),
