@@ -212,6 +212,8 @@ pub enum Verification {
         consumer: String,
         /// The joints not checked, in slot order.
         joints: Vec<String>,
+        /// How many rows the table has.
+        of: usize,
     },
 }
 
@@ -236,20 +238,29 @@ impl Verification {
             Verification::Unverified {
                 consumer: consumer.to_string(),
                 joints: open,
+                of: joints.len(),
             }
         }
     }
 
-    /// One line: `eth_hand_control — unverified: wrist, thumb_mcp`.
+    /// One line: `eth_hand_control — unverified: wrist, thumb_mcp`, or `… — unverified (all 17
+    /// joints)`.
     pub fn line(&self) -> String {
         match self {
             Verification::NoTable => "no table (offsets_rad only), unverified".to_string(),
             Verification::Verified { consumer, by, at } => {
                 format!("{consumer} — verified by {by} on {at}")
             }
-            Verification::Unverified { consumer, joints } => {
-                format!("{consumer} — unverified: {}", joints.join(", "))
+            Verification::Unverified {
+                consumer,
+                joints,
+                of,
+            } if joints.len() == *of => {
+                format!("{consumer} — unverified (all {of} joints)")
             }
+            Verification::Unverified {
+                consumer, joints, ..
+            } => format!("{consumer} — unverified: {}", joints.join(", ")),
         }
     }
 
@@ -344,6 +355,10 @@ mod tests {
     #[test]
     fn verification_lists_the_joints_not_checked() {
         let mut rows = table();
+        assert_eq!(
+            Verification::of("eth", &rows, "", "").line(),
+            "eth — unverified (all 17 joints)"
+        );
         assert_eq!(
             Verification::of("x", &[], "", "").line(),
             "no table (offsets_rad only), unverified"

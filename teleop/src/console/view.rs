@@ -530,6 +530,7 @@ mod tests {
             hand_convention: Some(Verification::Unverified {
                 consumer: "eth_hand_control".into(),
                 joints: vec!["wrist".into(), "thumb_mcp".into()],
+                of: 17,
             }),
         };
         (
