@@ -32,6 +32,9 @@ pub mod config_error;
 pub mod convert;
 pub mod frame_gate;
 pub mod hand_control;
+pub mod hand_convention;
+#[cfg(test)]
+mod hand_convention_presets;
 pub mod joint_names;
 pub mod network_config;
 pub mod output_stage;

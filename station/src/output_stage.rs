@@ -172,7 +172,8 @@ impl OutputStage {
     }
 }
 
-fn policy_array(values: Vec<f32>) -> Float32MultiArray {
+/// A policy output array of `values` (one dimension, `joints`).
+pub fn policy_array(values: Vec<f32>) -> Float32MultiArray {
     Float32MultiArray {
         layout: MultiArrayLayout {
             dim: vec![MultiArrayDimension {

@@ -12,6 +12,7 @@ pub mod command;
 pub mod console;
 pub mod demo;
 pub mod eval;
+pub mod hand_check;
 pub mod hand_source;
 pub mod ingress;
 pub mod launch_config;

@@ -91,3 +91,37 @@ fn a_broken_baseline_is_reported_with_file_and_task() {
         "{err}"
     );
 }
+
+/// Every station preset's policy output resolves on the ORCA hand (a table's ranges reachable
+/// through its signs and offsets); a shipped table names its consumer and provenance, and no
+/// shipped row claims a check on a hand (`pomdar hand-check` writes verified copies).
+#[test]
+fn every_station_presets_policy_output_resolves_and_no_shipped_table_claims_a_check() {
+    let model = retarget::HandModel::orca_v1_right();
+    let dir = workspace_root().join("launch_configs/station");
+    let mut tables = Vec::new();
+    for path in files_with_extension(&dir, "toml").unwrap() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let config = station::StationConfig::from_toml_str(&text).unwrap();
+        let policy = &config.policy_output;
+        if let Err(e) = station::policy_output::PolicyOutput::new(&model, policy) {
+            panic!("{}: {e}", path.display());
+        }
+        if policy.joints.is_empty() {
+            continue;
+        }
+        assert!(
+            !policy.consumer.is_empty() && !policy.provenance.is_empty(),
+            "{}",
+            path.display()
+        );
+        assert!(
+            policy.joints.iter().all(|r| !r.verified) && policy.verified_by.is_empty(),
+            "{}: a shipped table claims a check on a hand",
+            path.display()
+        );
+        tables.push(policy.consumer.clone());
+    }
+    tables.sort();
+    assert_eq!(tables, ["eth_hand_control", "orca_core"]);
+}

@@ -9,6 +9,7 @@ pub mod common;
 pub mod demo;
 pub mod eval;
 pub mod eval_set;
+pub mod hand_check;
 pub mod ingress;
 pub mod mock_franka;
 pub mod mock_hand;

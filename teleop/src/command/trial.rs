@@ -441,6 +441,8 @@ fn session_info(
         task,
         baseline_s,
         limits,
+        hand_convention: (!config.policy_output.topic.is_empty())
+            .then(|| config.policy_output.verification()),
     })
 }
 

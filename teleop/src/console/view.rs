@@ -3,6 +3,7 @@
 //! ([`super::plain_output`]).
 
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
+use station::hand_convention::Verification;
 
 use super::health::{Faults, Health, StartLimits};
 use super::manifest::{Manifest, ManifestTrial};
@@ -100,6 +101,9 @@ pub struct SessionInfo {
     pub baseline_s: Option<f64>,
     /// Trial start limits.
     pub limits: StartLimits,
+    /// Whether the hand's command conventions (the policy output table) were checked on the
+    /// hand; `None` when the station sends no policy output.
+    pub hand_convention: Option<Verification>,
 }
 
 /// One frame of the console.
@@ -201,7 +205,7 @@ impl ConsoleView {
             title: title(info, &flow.manifest),
             instruction: instruction(&info.task, info.limits.drives_robot),
             setup: info.setup.clone(),
-            health: health_lines(health, &info.limits, now_ns),
+            health: with_convention(health_lines(health, &info.limits, now_ns), info),
             banner,
             detail,
             results: result_lines(flow, info),
@@ -332,6 +336,23 @@ fn result_lines(flow: &TrialFlow, info: &SessionInfo) -> Vec<String> {
         None => format!("recorded trials: 0/{} done", manifest.trials_planned),
     });
     results
+}
+
+/// The health rows, with the hand convention's when the station drives a robot: `eth_hand_control
+/// — unverified: wrist, …` (warning) or `… — verified by ana on …`.
+fn with_convention(
+    mut rows: Vec<(String, String, Level)>,
+    info: &SessionInfo,
+) -> Vec<(String, String, Level)> {
+    if let (true, Some(v)) = (info.limits.drives_robot, &info.hand_convention) {
+        let level = if v.is_verified() {
+            Level::Ok
+        } else {
+            Level::Warn
+        };
+        rows.push(("hand convention".into(), v.line(), level));
+    }
+    rows
 }
 
 fn health_lines(
@@ -524,6 +545,11 @@ mod tests {
             setup: vec![],
             baseline_s: None,
             limits: StartLimits::default(),
+            hand_convention: Some(Verification::Unverified {
+                consumer: "eth_hand_control".into(),
+                joints: vec!["wrist".into(), "thumb_mcp".into()],
+                of: 17,
+            }),
         };
         (
             TrialFlow::new(manifest, spec.correctness, 1.0, StartLimits::default()),
@@ -565,6 +591,11 @@ mod tests {
                 .iter()
                 .any(|(k, _, level)| k == "drive" && *level == Level::Warn)
         );
+        assert!(view.health.contains(&(
+            "hand convention".to_string(),
+            "eth_hand_control — unverified: wrist, thumb_mcp".to_string(),
+            Level::Warn
+        )));
         for name in Screen::ALL.map(Screen::name) {
             assert_eq!(Screen::from_name(name).map(Screen::name), Some(name));
         }

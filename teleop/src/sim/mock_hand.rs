@@ -1,13 +1,15 @@
 //! The mock ORCA hand: follows `sensor_msgs/JointState` targets with a first-order lag within
 //! its joint limits, and publishes its state; it measures the end-to-end latency of each
 //! target (receive time minus the header stamp, which the station sets to the glove frame's
-//! publish time).
+//! publish time). Optionally it also follows a policy output topic (`Float32MultiArray`)
+//! decoded through the inverse of a hand-convention table, as the consumer of that topic
+//! would read it (`pomdar hand-check` against the mock hand).
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use futures::StreamExt;
-use msgs::JointState;
+use msgs::{Float32MultiArray, JointState};
 use retarget::HandModel;
 use tokio::sync::watch;
 
@@ -17,6 +19,7 @@ use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::error::SimError;
 use crate::sim::samples::Samples;
 use station::convert::header;
+use station::policy_output::PolicyOutput;
 
 /// What the mock hand saw.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -34,6 +37,13 @@ pub struct MockHandReport {
     pub last_target: Option<Vec<f64>>,
     /// State messages whose publishing failed (not sent).
     pub publish_failed: u64,
+    /// Policy output arrays received and followed.
+    pub policy_targets: u64,
+    /// Policy output arrays of the wrong length or with a non-finite value.
+    pub policy_rejected: u64,
+    /// Every measured state published, by model degree of freedom (only with
+    /// [`MockHandConfig::record_states`]).
+    pub states: Vec<Vec<f64>>,
 }
 
 /// The mock hand's settings.
@@ -47,6 +57,19 @@ pub struct MockHandConfig {
     pub time_constant_s: f64,
     /// State publishing rate, Hz.
     pub rate_hz: f64,
+    /// Also follow this policy output topic, decoded through the inverse of the table.
+    pub policy: Option<PolicyInput>,
+    /// Keep every measured state in the report (tests; grows without bound).
+    pub record_states: bool,
+}
+
+/// A policy output topic the mock hand follows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolicyInput {
+    /// The topic (`std_msgs/Float32MultiArray`).
+    pub topic: String,
+    /// The table it is encoded with, resolved on the mock hand's model.
+    pub table: PolicyOutput,
 }
 
 impl Default for MockHandConfig {
@@ -56,6 +79,8 @@ impl Default for MockHandConfig {
             state_topic: "/pomdar/hand/joint_states".into(),
             time_constant_s: 0.03,
             rate_hz: 100.0,
+            policy: None,
+            record_states: false,
         }
     }
 }
@@ -69,22 +94,32 @@ pub async fn run_mock_hand(
     report: Arc<Mutex<MockHandReport>>,
     mut shutdown: watch::Receiver<bool>,
 ) -> Result<(), SimError> {
-    let MockHandConfig {
-        targets_topic,
-        state_topic,
-        time_constant_s,
-        rate_hz,
-    } = config;
     let context = network.context()?;
     let mut node = RosNode::new(&context, "/", "pomdar_mock_hand")?;
-    let targets_sub = node.subscription::<JointState>(&targets_topic, QosConfig::reliable(50))?;
-    let state_pub = node.publisher::<JointState>(&state_topic, QosConfig::best_effort(10))?;
+    let targets_sub =
+        node.subscription::<JointState>(&config.targets_topic, QosConfig::reliable(50))?;
+    let state_pub =
+        node.publisher::<JointState>(&config.state_topic, QosConfig::best_effort(10))?;
     let mut targets = Box::pin(targets_sub.async_stream());
+    // Best effort: matches the consumer topic's publisher whether it is reliable or not.
+    let policy_sub = match &config.policy {
+        Some(p) => {
+            Some(node.subscription::<Float32MultiArray>(&p.topic, QosConfig::best_effort(50))?)
+        }
+        None => None,
+    };
+    let mut policy = match &policy_sub {
+        Some(sub) => sub
+            .async_stream()
+            .filter_map(|m| async move { m.ok().map(|(message, _)| message.data) })
+            .boxed(),
+        None => futures::stream::pending().boxed(),
+    };
     let names: Vec<String> = model.ros_dof_names().to_vec();
     let limits: Vec<_> = model.limits().collect();
     let mut state = model.zero_pose();
     let mut target = state.clone();
-    let period = 1.0 / rate_hz;
+    let period = 1.0 / config.rate_hz;
     let mut last_stamp = None;
     let mut interval = tokio::time::interval(Duration::from_secs_f64(period));
     loop {
@@ -100,25 +135,36 @@ pub async fn run_mock_hand(
                     report.latency.push((now - stamp) as f64 * 1e-6);
                     last_stamp = Some(stamp);
                 }
-                let mut ok = message.name.len() == message.position.len();
-                let mut next = target.clone();
-                for (name, value) in message.name.iter().zip(&message.position) {
-                    match station::ros_tools::dof_of_published_name(&model, name, None) {
-                        Some(i) if value.is_finite() => next[i] = limits[i].clamp(*value),
-                        _ => ok = false,
+                match joint_state_target(&model, &limits, &target, &message) {
+                    Some(next) => {
+                        target = next;
+                        report.last_target = Some(target.clone());
                     }
+                    None => report.rejected += 1,
                 }
-                if ok {
-                    target = next;
-                    report.last_target = Some(target.clone());
-                } else {
-                    report.rejected += 1;
+            }
+            Some(values) = policy.next() => {
+                let Ok(mut report) = report.lock() else { break };
+                let decoded = config.policy.as_ref().and_then(|p| p.table.inverse(&values));
+                match decoded {
+                    Some(joints) => {
+                        for (dof, value) in joints {
+                            target[dof] = limits[dof].clamp(value);
+                        }
+                        report.policy_targets += 1;
+                        report.last_target = Some(target.clone());
+                    }
+                    None => report.policy_rejected += 1,
                 }
             }
             _ = interval.tick() => {
-                let alpha = 1.0 - (-period / time_constant_s).exp();
+                let alpha = 1.0 - (-period / config.time_constant_s).exp();
                 for (s, t) in state.iter_mut().zip(&target) {
                     *s += alpha * (t - *s);
+                }
+                if config.record_states {
+                    let Ok(mut report) = report.lock() else { break };
+                    report.states.push(state.clone());
                 }
                 let message = JointState {
                     header: header(clock.now_ns(), ""),
@@ -135,4 +181,25 @@ pub async fn run_mock_hand(
         }
     }
     Ok(())
+}
+
+/// The target a `JointState` sets (clamped to the limits), from `target`; `None` when it
+/// names a joint the hand lacks or carries a non-finite value.
+fn joint_state_target(
+    model: &HandModel,
+    limits: &[retarget::Limits],
+    target: &[f64],
+    message: &JointState,
+) -> Option<Vec<f64>> {
+    if message.name.len() != message.position.len() {
+        return None;
+    }
+    let mut next = target.to_vec();
+    for (name, value) in message.name.iter().zip(&message.position) {
+        match station::ros_tools::dof_of_published_name(model, name, None) {
+            Some(i) if value.is_finite() => next[i] = limits[i].clamp(*value),
+            _ => return None,
+        }
+    }
+    Some(next)
 }

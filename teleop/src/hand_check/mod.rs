@@ -1,0 +1,29 @@
+//! # The hand check (`pomdar hand-check`): a table of a hand's command conventions, checked on
+//! the hand, joint by joint
+//!
+//! The table is the station configuration's `[[policy_output.joints]]`
+//! ([`station::hand_convention`]). From a neutral pose each joint in turn moves a small, slow
+//! step and back through the table on the consumer's topic while the terminal names what the
+//! operator should see; the operator confirms, reports the wrong direction (and flips the
+//! sign), repeats or quits. Only when every joint is confirmed is the table written again,
+//! every row verified, with who checked it and when.
+//!
+//! | file | what |
+//! |---|---|
+//! | `session.rs` | the check as a pure state machine (time a parameter): phases, answers, the pose and command, the verified table |
+//! | `directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
+//! | `hand_check_script.rs` | `--script` files and typed words: yes / no / repeat / flip / keep / quit, `wait PHASE` |
+//! | `check_node.rs` | the check over ROS 2: commands at a fixed rate, answers from the script or stdin |
+//! | `table_file.rs` | the verified table written into a copy of the station configuration (comments kept), checked to load back |
+//! | `error.rs` | the one error type, [`HandCheckError`] |
+
+pub mod check_node;
+pub mod directions;
+pub mod error;
+pub mod hand_check_script;
+pub mod session;
+#[cfg(test)]
+mod session_tests;
+pub mod table_file;
+
+pub use error::HandCheckError;
