@@ -17,7 +17,7 @@ fn station_for(seconds: f64, glove: bool, slot: u16) -> (String, Option<i32>) {
     let binary = pomdar_binary().unwrap();
     let domain = test_domain(slot).to_string();
     let config = workspace_root().join("launch_configs/station/eth_lab.toml");
-    let mut station = Command::new(&binary)
+    let station = Command::new(&binary)
         .args(["station", "--config"])
         .arg(&config)
         .args(["--interface", "127.0.0.1"])
