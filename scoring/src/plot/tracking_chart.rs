@@ -129,7 +129,7 @@ pub(super) fn tracking_drawing(chart: &TrackingChart) -> Result<Drawing, PlotErr
             top: top + INSET_TOP,
             bottom: top + PANEL_H - INSET_BOTTOM,
         };
-        draw_panel(&mut d, panel, area, time);
+        draw_panel(&mut d, panel, area, (time, t_max));
     }
     let at = Point::new(width / 2.0, height - MARGIN + 6.0);
     d.text(Text::new("time (s)", at, Anchor::Middle, NOTE_PX));
@@ -181,8 +181,9 @@ fn labelled_every(axis: LinearAxis, span_px: f64) -> usize {
     (MIN_LABEL_GAP / px_per_step).ceil().max(1.0) as usize
 }
 
-/// One panel: frame, ticks, title, the two series.
-fn draw_panel(d: &mut Drawing, panel: &TrackingPanel, area: Area, time: LinearAxis) {
+/// One panel: frame, ticks, title, the two series (the last command held until `end`, the
+/// chart's last sample).
+fn draw_panel(d: &mut Drawing, panel: &TrackingPanel, area: Area, (time, end): (LinearAxis, f64)) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for &(_, v) in panel.commanded.iter().chain(&panel.measured) {
         (lo, hi) = (lo.min(v), hi.max(v));
@@ -251,7 +252,7 @@ fn draw_panel(d: &mut Drawing, panel: &TrackingPanel, area: Area, time: LinearAx
     );
     title.bold = true;
     d.text(title);
-    let commanded: Vec<Point> = held(&panel.commanded, time.hi)
+    let commanded: Vec<Point> = held(&panel.commanded, end)
         .map(|(t, v)| Point::new(x(t), y(v)))
         .collect();
     let measured: Vec<Point> = panel
