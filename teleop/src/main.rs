@@ -117,7 +117,7 @@ enum Command {
     /// is an error naming the file and the topic looked at.
     ///
     /// Examples:
-    ///   pomdar tracking trials/V1/trial-003.mcap
+    ///   pomdar tracking sessions/alice/orca_full/V1/V1-t03.mcap
     ///   pomdar tracking run.mcap --out report/tracking --json > tracking.json
     ///   pomdar tracking run.mcap --config launch_configs/station/eth_lab.toml --threshold-deg 3
     #[command(verbatim_doc_comment)]

@@ -125,3 +125,34 @@ fn compare(tracks: &[scoring::JointTrack], settings: TrackingSettings) -> Tracki
     progress.finish();
     TrackingReport { settings, joints }
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: TrackingArgs,
+    }
+
+    #[test]
+    fn the_defaults_are_the_analysis_defaults_and_bad_settings_are_refused() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let args = Cli::try_parse_from(["pomdar", "run.mcap"]).unwrap().args;
+        assert_eq!(args.threshold_deg, 5.0);
+        assert_eq!(args.max_lag_ms, 300);
+        assert_eq!((args.out, args.json), (None, false));
+        for bad in [["--threshold-deg", "0"], ["--max-lag-ms", "20000"]] {
+            let argv = ["pomdar", "run.mcap"].into_iter().chain(bad);
+            let args = Cli::try_parse_from(argv).unwrap().args;
+            let error = tracking(args).unwrap_err().to_string();
+            assert!(error.contains(bad[0]), "{error}");
+        }
+    }
+}
