@@ -58,7 +58,7 @@ pub enum EvalError {
         path: PathBuf,
         /// The decoding error (names the topic and the log time).
         #[source]
-        source: LogError,
+        source: Box<LogError>,
     },
     /// `pomdar tracking`: the log holds no measured joint state the model can read.
     #[error(

@@ -108,7 +108,7 @@ fn read_topic(
     for message in reader.messages_on(topic) {
         let state: JointState = message.decode().map_err(|source| EvalError::JointStates {
             path: reader.path().to_path_buf(),
-            source,
+            source: Box::new(source),
         })?;
         series.messages += 1;
         for (name, value) in state.name.iter().zip(&state.position) {
