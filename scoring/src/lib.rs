@@ -51,6 +51,7 @@
 //! | `report.rs` | [`ScoreReport`]: all of the above with its warnings |
 //! | `report_terminal.rs`, `report_markdown.rs`, `report_csv.rs` | the renderers (JSON is serde) |
 //! | `figures.rs` | [`render_figures`]: the report's radars and overall-vs-DoF charts |
+//! | `tracking.rs` | [`tracking_report`]: commanded against measured joint angles of a trial (RMS, max, lag, share over a threshold) |
 //! | `plot/` | the figures' drawing (radar, overall vs DoF) as SVG and PNG |
 
 pub mod plot;
@@ -68,6 +69,7 @@ mod report_markdown;
 mod report_terminal;
 mod rules;
 mod stats;
+mod tracking;
 mod trial_log;
 mod trial_score;
 
@@ -93,5 +95,9 @@ pub use report_markdown::render_markdown;
 pub use report_terminal::{TERMINAL_WIDTH, render_terminal};
 pub use rules::{DEFAULT_RULES_ORIGIN, ScoringRules, UnfinishedRule};
 pub use stats::MeanStd;
+pub use tracking::{
+    JointTrack, JointTracking, MIN_LAG_SAMPLES, TrackingReport, TrackingSettings, track_joint,
+    tracking_chart, tracking_report,
+};
 pub use trial_log::{Ending, HUMAN_EMBODIMENT, Mark, TRIAL_METADATA_NAME, TrialLog, TrialRecord};
 pub use trial_score::{Outcome, TrialScore, score_record, score_trial};

@@ -13,7 +13,8 @@ use teleop::command;
 /// glove, mock robot nodes, the all-in-one demo, hand model inspection, the per-user glove
 /// calibration, scoring trial logs against a human baseline, the Rokoko Studio glove
 /// ingress, a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md), a
-/// retargeting quality report for a recording, and the operator console for timed trials.
+/// retargeting quality report for a recording, commanded vs measured joint angles of a trial,
+/// and the operator console for timed trials.
 #[derive(Debug, Parser)]
 #[command(name = "pomdar", version, about, long_about)]
 struct Cli {
@@ -101,6 +102,27 @@ enum Command {
     ///   pomdar eval ../shared/reference/ eval_set/
     #[command(verbatim_doc_comment)]
     Eval(command::eval::EvalArgs),
+    /// How closely the hand followed its commands in a trial log: commanded vs measured, per
+    /// joint.
+    ///
+    /// Reads the station's joint targets ([output] joint_targets_topic) and the hand's
+    /// measured state ([input] hand_state_topic), both sensor_msgs/JointState as the station
+    /// recorded them, with their names mapped onto the model's joints. Per joint: commands and
+    /// measured samples, the RMS and largest |command in force − measured| (degrees; the
+    /// command in force is the last one sent at or before the measurement), the lag that best
+    /// aligns the measured angle with the command (the highest correlation over 0–300 ms, in
+    /// whole milliseconds) and the share of time the error exceeds --threshold-deg (5°).
+    /// Prints a table (or JSON with --json); --out DIR writes tracking.svg and tracking.png
+    /// (one panel per joint: commanded and measured angle over time, titled with the joint
+    /// and its RMS error) and tracking.json, each atomically. A log without measured states
+    /// is an error naming the file and the topic looked at.
+    ///
+    /// Examples:
+    ///   pomdar tracking sessions/alice/orca_full/V1/V1-t03.mcap
+    ///   pomdar tracking run.mcap --out report/tracking --json > tracking.json
+    ///   pomdar tracking run.mcap --config launch_configs/station/eth_lab.toml --threshold-deg 3
+    #[command(verbatim_doc_comment)]
+    Tracking(command::tracking::TrackingArgs),
     /// Build an evaluation set: transformed copies of real recordings for `pomdar eval`.
     ///
     /// Each recording's distinct keypoint frames are written again as they would come from
@@ -419,6 +441,7 @@ fn main() -> ExitCode {
         Command::Calibrate(args) => command::calibrate::calibrate(args),
         Command::Resim(args) => command::resim::resim(args),
         Command::Eval(args) => command::eval::eval(args),
+        Command::Tracking(args) => command::tracking::tracking(args),
         Command::EvalSet(args) => command::eval_set::eval_set(args),
         Command::Recover(args) => command::recover::recover(args),
         Command::Replay(args) => command::common::run_async(command::replay::replay(args)),

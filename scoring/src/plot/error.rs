@@ -127,6 +127,28 @@ pub enum PlotError {
         /// What is wrong with it.
         problem: ValueProblem,
     },
+    /// A chart of panels without panels.
+    #[error("panel chart '{title}' has no panels to draw")]
+    NoPanels {
+        /// The chart's title.
+        title: String,
+    },
+    /// A panel's point that cannot be drawn.
+    #[error("panel '{panel}', {series} point {index}, {axis}: value {value} is {problem}")]
+    BadPanelValue {
+        /// The panel's title.
+        panel: String,
+        /// `commanded` or `measured`.
+        series: &'static str,
+        /// The point's index in its series (0-based).
+        index: usize,
+        /// `time` or `angle`.
+        axis: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        problem: ValueProblem,
+    },
     /// The rasteriser could not make the canvas or encode the PNG.
     #[error("could not rasterise the figure: {reason}")]
     Raster {

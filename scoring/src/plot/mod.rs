@@ -9,6 +9,8 @@
 //!   embodiment, ± one standard deviation as error bars when given.
 //! - [`pca_scatter`]: principal component scores (the human study's strategy analysis), one
 //!   colour per series, round ticks around the data, light zero lines, a legend.
+//! - [`tracking_grid`]: commanded and measured joint angle over time, one small panel per
+//!   joint in a grid (`pomdar tracking`).
 //!
 //! The charts build one drawing description (polylines, polygons, circles, text;
 //! `primitives`) which two backends render: an SVG writer (`<text>` in a sans-serif family,
@@ -32,6 +34,7 @@ mod radar_layout;
 mod scale;
 mod stroke_font;
 mod svg_backend;
+mod tracking_chart;
 
 pub use dof_chart::{DofChart, DofPoint, dof_scatter};
 pub use error::{PlotError, ValueProblem};
@@ -41,6 +44,7 @@ pub use primitives::Rgba;
 pub use radar::radar;
 pub use radar_chart::{RadarChart, RadarSeries};
 pub use scale::MAX_SCORE;
+pub use tracking_chart::{TrackingChart, TrackingPanel, tracking_grid};
 
 /// A rendered figure.
 #[derive(Debug, Clone, PartialEq)]

@@ -23,4 +23,5 @@ pub mod sim_glove;
 pub mod station;
 pub mod study;
 pub mod study_report;
+pub mod tracking;
 pub mod trial;

@@ -51,6 +51,40 @@ pub enum EvalError {
         /// The model's joints.
         known: String,
     },
+    /// `pomdar tracking`: a joint-state message does not decode.
+    #[error("{path}: {source}")]
+    JointStates {
+        /// The log.
+        path: PathBuf,
+        /// The decoding error (names the topic and the log time).
+        #[source]
+        source: Box<LogError>,
+    },
+    /// `pomdar tracking`: the log holds no measured joint state the model can read.
+    #[error(
+        "{path}: no measured hand state on {topic} ({found}); was the hand publishing its \
+         state there while the station recorded? (`[input] hand_state_topic`, or --measured)"
+    )]
+    NoMeasuredStates {
+        /// The log.
+        path: PathBuf,
+        /// The topic looked at.
+        topic: String,
+        /// What the log holds instead.
+        found: String,
+    },
+    /// `pomdar tracking`: the log holds no joint command the model can read.
+    #[error(
+        "{path}: no joint commands on {topic} ({found}); `[output] joint_targets_topic`, or --commanded"
+    )]
+    NoCommands {
+        /// The log.
+        path: PathBuf,
+        /// The topic looked at.
+        topic: String,
+        /// What the log holds instead.
+        found: String,
+    },
     /// The live path: the recording cannot be re-simulated.
     #[error(transparent)]
     LivePath(#[from] ResimError),

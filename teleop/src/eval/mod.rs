@@ -23,6 +23,7 @@ pub mod external;
 pub mod live_path;
 pub mod summary;
 pub mod synthetic_users;
+pub mod tracking;
 pub mod variants;
 
 use crate::mcap_log::{LoggedMessage, TrialReader};
