@@ -27,6 +27,8 @@ def plain(value):
         return {name: plain(getattr(value, name)) for name in value.__slots__}
     if hasattr(value, "tolist"):  # numpy arrays and scalars
         return value.tolist()
+    if isinstance(value, (bytes, bytearray, memoryview)):  # mcap-ros2-support's uint8[]
+        return list(value)
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
     return value
