@@ -27,7 +27,7 @@ use pomdar_tests::interop::reference_file;
 use pomdar_tests::station_harness::{Harness, Inbox, test_domain, timing_independent_config};
 use pomdar_tests::workspace_root;
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
-use retarget::{Finger, HandModel, KeypointLayout, PalmFrame};
+use retarget::{Finger, HandModel, JointMotion, KeypointLayout, PalmFrame};
 use ros2_client::ServiceMapping;
 use station::{ControlMode, StationConfig};
 use teleop::hand_source::HandSource;
@@ -202,11 +202,13 @@ fn from_k(pose: &k::Isometry3<f64>) -> Isometry3<f64> {
 
 /// `/tf` + `/tf_static` composed from the URDF's root equal `k`'s forward kinematics at the
 /// published positions, for every published frame; every published frame (but the arm
-/// target's) is a URDF link, and they include the fingertips and every movable joint's child.
+/// target's) is a URDF link, and they include the fingertips, the child link of each of the
+/// model's revolute joints (`revolute_children`, URDF names) and every link the URDF draws.
 fn assert_tf_is_the_urdf_kinematics(
     edges: &BTreeMap<String, (String, Isometry3<f64>)>,
     chain: &k::Chain<f64>,
     arm_target_frame: &str,
+    revolute_children: &[String],
 ) {
     let root_node = chain.iter().next().unwrap();
     let root = root_node.link().as_ref().unwrap().name.clone();
@@ -243,12 +245,19 @@ fn assert_tf_is_the_urdf_kinematics(
         let tip = format!("right_{finger}_fingertip");
         assert!(compared.contains(&tip), "{tip} is not on /tf");
     }
-    for node in chain.iter().filter(|n| n.joint().is_movable()) {
-        let child = node.link().as_ref().unwrap().name.clone();
+    for child in revolute_children {
+        assert!(compared.contains(child), "{child} (a revolute joint's child) is not on /tf");
+    }
+    // Every link the URDF draws (a visual) has its frame, so RViz can place its mesh; only
+    // the URDF's helper frames without one may be left out (the built-in model folds its
+    // `*_jointbody` frames into the joints).
+    for node in chain.iter() {
+        let link = node.link();
+        let link = link.as_ref().unwrap();
         assert!(
-            compared.contains(&child),
-            "{child} (child of the movable joint {}) is not on /tf",
-            node.joint().name
+            link.visuals.is_empty() || compared.contains(&link.name) || link.name == root,
+            "{} has a visual but no /tf frame",
+            link.name
         );
     }
 }
@@ -262,6 +271,13 @@ async fn check_tf_against_urdf(
     slot: u16,
 ) -> Inbox<StringMsg> {
     let config = config();
+    let revolute_children: Vec<String> = model
+        .joints()
+        .iter()
+        .filter(|j| matches!(j.motion, JointMotion::Revolute { .. }))
+        .map(|j| model.ros_link_names()[j.child.index()].clone())
+        .collect();
+    assert_eq!(revolute_children.len(), model.dof());
     let mut h = Harness::start_with(config.clone(), model, hooks, test_domain(slot), None)
         .await
         .unwrap();
@@ -281,7 +297,8 @@ async fn check_tf_against_urdf(
     let chain = k::Chain::<f64>::from_urdf_file(urdf).unwrap();
     assert_joint_names_are_the_urdfs(&target, &chain);
     set_published_positions(&chain, &target);
-    assert_tf_is_the_urdf_kinematics(&edges, &chain, &config.ros_tools.arm_target_frame);
+    let arm_target = &config.ros_tools.arm_target_frame;
+    assert_tf_is_the_urdf_kinematics(&edges, &chain, arm_target, &revolute_children);
     description
 }
 
