@@ -95,7 +95,11 @@ pub fn decode<T: serde::de::DeserializeOwned>(report: &Value, pointer: &str) -> 
 /// Cyclone received, message for message, exactly what the station sent (its log). After the
 /// last frame's target the station sends nothing more (every-frame control, watchdog far off),
 /// and the peer keeps receiving until the station has stopped.
-pub fn assert_same_messages<T: PartialEq + std::fmt::Debug>(what: &str, received: &[T], sent: &[T]) {
+pub fn assert_same_messages<T: PartialEq + std::fmt::Debug>(
+    what: &str,
+    received: &[T],
+    sent: &[T],
+) {
     for (i, (r, s)) in received.iter().zip(sent).enumerate() {
         assert_eq!(
             r, s,

@@ -293,7 +293,8 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
     let log_path: PathBuf = dir.join("station.mcap");
 
     let script = "cyclone_peer.py";
-    let report = run_station_with_peer(&python, script, &config, &plan_path, &log_path, FRAMES).await;
+    let report =
+        run_station_with_peer(&python, script, &config, &plan_path, &log_path, FRAMES).await;
     let log = TrialReader::open(&log_path).unwrap();
     let source_ns = assert_station_decoded_what_cyclone_sent(&report, &log, &config, &rows);
     let received = assert_cyclone_decoded_what_the_station_sent(&report, &log, &config);

@@ -92,9 +92,11 @@ async fn drive_then_hold(h: &Harness) -> JointState {
     let stopped = h.clock.now_ns();
     wait_for_state(h, "held", stopped).await;
     let held = h.heard.lock().unwrap().targets.len();
-    h.wait_until(Duration::from_secs(5), |heard| heard.targets.len() >= held + 5)
-        .await
-        .unwrap();
+    h.wait_until(Duration::from_secs(5), |heard| {
+        heard.targets.len() >= held + 5
+    })
+    .await
+    .unwrap();
     let heard = h.heard.lock().unwrap();
     let last: Vec<&JointState> = heard.targets.iter().rev().take(5).map(|(_, m)| m).collect();
     assert!(
@@ -158,7 +160,11 @@ fn urdf_joints(chain: &k::Chain<f64>) -> BTreeMap<String, bool> {
 fn assert_joint_names_are_the_urdfs(target: &JointState, chain: &k::Chain<f64>) {
     let joints = urdf_joints(chain);
     let published: BTreeSet<&str> = target.name.iter().map(String::as_str).collect();
-    assert_eq!(published.len(), target.name.len(), "a joint published twice");
+    assert_eq!(
+        published.len(),
+        target.name.len(),
+        "a joint published twice"
+    );
     for name in &target.name {
         assert_eq!(
             joints.get(name),
@@ -184,7 +190,10 @@ fn set_published_positions(chain: &k::Chain<f64>, target: &JointState) {
         .map(String::as_str)
         .zip(target.position.iter().copied())
         .collect();
-    let positions: Vec<f64> = chain.iter_joints().map(|j| by_name[j.name.as_str()]).collect();
+    let positions: Vec<f64> = chain
+        .iter_joints()
+        .map(|j| by_name[j.name.as_str()])
+        .collect();
     chain
         .set_joint_positions(&positions)
         .unwrap_or_else(|e| panic!("published positions outside the URDF's limits: {e}"));
@@ -231,7 +240,10 @@ fn assert_tf_is_the_urdf_kinematics(
         }
         worst_rad = worst_rad.max(error_rad);
         assert!(error_m <= FK_TOLERANCE_M, "{frame}: {error_m} m from k");
-        assert!(error_rad <= FK_TOLERANCE_RAD, "{frame}: {error_rad} rad from k");
+        assert!(
+            error_rad <= FK_TOLERANCE_RAD,
+            "{frame}: {error_rad} rad from k"
+        );
         compared.insert(frame.clone());
     }
     println!(
@@ -246,7 +258,10 @@ fn assert_tf_is_the_urdf_kinematics(
         assert!(compared.contains(&tip), "{tip} is not on /tf");
     }
     for child in revolute_children {
-        assert!(compared.contains(child), "{child} (a revolute joint's child) is not on /tf");
+        assert!(
+            compared.contains(child),
+            "{child} (a revolute joint's child) is not on /tf"
+        );
     }
     // Every link the URDF draws (a visual) has its frame, so RViz can place its mesh; only
     // the URDF's helper frames without one may be left out (the built-in model folds its
@@ -281,7 +296,9 @@ async fn check_tf_against_urdf(
     let mut h = Harness::start_with(config.clone(), model, hooks, test_domain(slot), None)
         .await
         .unwrap();
-    let tf = h.listen::<TFMessage>("/tf", QosConfig::reliable(1000)).unwrap();
+    let tf = h
+        .listen::<TFMessage>("/tf", QosConfig::reliable(1000))
+        .unwrap();
     let tf_static = h.listen_latched::<TFMessage>("/tf_static").unwrap();
     let description = h
         .listen_latched::<StringMsg>(&config.ros_tools.robot_description_topic)
@@ -416,13 +433,19 @@ async fn keypoint_markers_put_the_robots_own_fingertips_on_its_fingertips() {
     .await
     .unwrap();
     let markers = h
-        .listen::<MarkerArray>(&config.ros_tools.keypoint_markers_topic, QosConfig::reliable(1000))
+        .listen::<MarkerArray>(
+            &config.ros_tools.keypoint_markers_topic,
+            QosConfig::reliable(1000),
+        )
         .unwrap();
     let state = model.forward_new(&inner_pose(&model)).unwrap();
     let frame = model.synthetic_keypoints(&state, layout);
     // An identical frame is a repeat (not solved again); a shifted copy is new and, the palm
     // frame being translation-invariant, asks for the same pose.
-    let shifted: Vec<Point3<f64>> = frame.iter().map(|p| p + nalgebra::Vector3::x() * 1e-3).collect();
+    let shifted: Vec<Point3<f64>> = frame
+        .iter()
+        .map(|p| p + nalgebra::Vector3::x() * 1e-3)
+        .collect();
     for i in 0..60 {
         let points = if i % 2 == 0 { &frame } else { &shifted };
         h.publish(points, &Isometry3::identity()).await.unwrap();
@@ -443,7 +466,13 @@ async fn keypoint_markers_put_the_robots_own_fingertips_on_its_fingertips() {
     let target = h.heard.lock().unwrap().targets.last().unwrap().1.clone();
     let summary = h.stop().await.unwrap();
     assert_eq!(summary.counters.frames_new, 60, "{:?}", summary.counters);
-    check_converged_markers(&model, layout, &markers.last().unwrap().markers, &target, &shifted);
+    check_converged_markers(
+        &model,
+        layout,
+        &markers.last().unwrap().markers,
+        &target,
+        &shifted,
+    );
 }
 
 /// The last markers: the robot fingertips are the forward kinematics of the published
@@ -462,7 +491,10 @@ fn check_converged_markers(
     for (i, finger) in Finger::ALL.into_iter().enumerate() {
         let fk = state.position(model.frames().tip(finger));
         let drawn = point(&markers[2].points[i]);
-        assert!((fk - drawn).norm() < 1e-9, "{finger:?}: robot tip marker is not FK");
+        assert!(
+            (fk - drawn).norm() < 1e-9,
+            "{finger:?}: robot tip marker is not FK"
+        );
     }
     // What the station received: f32 keypoints.
     let received: Vec<Point3<f64>> = last_frame
@@ -475,7 +507,10 @@ fn check_converged_markers(
         let placed = point(&markers[0].points[i]);
         let in_robot_palm = robot.rotation.inverse() * (placed - robot.origin);
         let error = (in_robot_palm - human.point_to_palm(p)).norm();
-        assert!(error < 1e-9, "glove point {i} is {error} m off its palm position");
+        assert!(
+            error < 1e-9,
+            "glove point {i} is {error} m off its palm position"
+        );
     }
     let mut worst = 0.0_f64;
     for (i, finger) in Finger::ALL.into_iter().enumerate() {
@@ -502,9 +537,14 @@ async fn diagnostics_name_glove_hand_and_arm_and_the_glove_goes_stale_without_fr
     // Frames every 20 ms are never this old, even on a loaded machine.
     config.watchdog.hold_timeout_ms = 1000;
     config.watchdog.disengage_timeout_ms = 3000;
-    let mut h = Harness::start(config.clone(), test_domain(3)).await.unwrap();
+    let mut h = Harness::start(config.clone(), test_domain(3))
+        .await
+        .unwrap();
     let diagnostics = h
-        .listen::<DiagnosticArray>(&config.ros_tools.diagnostics_topic, QosConfig::reliable(100))
+        .listen::<DiagnosticArray>(
+            &config.ros_tools.diagnostics_topic,
+            QosConfig::reliable(100),
+        )
         .unwrap();
     diagnostics
         .wait_until(Duration::from_secs(10), |m| !m.is_empty())
@@ -529,14 +569,27 @@ async fn diagnostics_name_glove_hand_and_arm_and_the_glove_goes_stale_without_fr
         .filter(|(t, _)| *t > flowing && *t <= stopped)
         .map(|(_, m)| m)
         .collect();
-    assert!(while_flowing.len() >= 5, "{} diagnostics in 1.2 s at 20 Hz", while_flowing.len());
+    assert!(
+        while_flowing.len() >= 5,
+        "{} diagnostics in 1.2 s at 20 Hz",
+        while_flowing.len()
+    );
     for array in &while_flowing {
         let names: Vec<&str> = array.status.iter().map(|s| s.name.as_str()).collect();
         assert_eq!(
             names,
-            ["pomdar_station: glove", "pomdar_station: hand", "pomdar_station: arm"]
+            [
+                "pomdar_station: glove",
+                "pomdar_station: hand",
+                "pomdar_station: arm"
+            ]
         );
-        assert_eq!(glove_status(array).level, DiagnosticStatus::OK, "{:?}", glove_status(array));
+        assert_eq!(
+            glove_status(array).level,
+            DiagnosticStatus::OK,
+            "{:?}",
+            glove_status(array)
+        );
         let state = array.status[1].values.iter().find(|v| v.key == "state");
         assert_eq!(state.map(|v| v.value.as_str()), Some("engaged"));
     }
@@ -545,7 +598,8 @@ async fn diagnostics_name_glove_hand_and_arm_and_the_glove_goes_stale_without_fr
     for level in [DiagnosticStatus::WARN, DiagnosticStatus::STALE] {
         diagnostics
             .wait_until(Duration::from_secs(10), |m| {
-                m.iter().any(|(t, a)| *t > stopped && glove_status(a).level == level)
+                m.iter()
+                    .any(|(t, a)| *t > stopped && glove_status(a).level == level)
             })
             .await
             .unwrap_or_else(|_| panic!("the glove never reached level {level} without frames"));
@@ -556,16 +610,25 @@ async fn diagnostics_name_glove_hand_and_arm_and_the_glove_goes_stale_without_fr
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn trigger_services_disengage_and_engage_and_trial_start_needs_a_console() {
     let config = config();
-    let mut h = Harness::start(config.clone(), test_domain(4)).await.unwrap();
+    let mut h = Harness::start(config.clone(), test_domain(4))
+        .await
+        .unwrap();
     let services = &config.ros_tools.services;
     let mut clients = Vec::new();
     for name in [&services.disengage, &services.engage, &services.trial_start] {
-        clients.push(h.node.trigger_client(name, ServiceMapping::Enhanced).unwrap());
+        clients.push(
+            h.node
+                .trigger_client(name, ServiceMapping::Enhanced)
+                .unwrap(),
+        );
     }
     for client in &clients {
-        tokio::time::timeout(Duration::from_secs(15), client.wait_for_service(h.node.node()))
-            .await
-            .expect("the station's service did not match in 15 s");
+        tokio::time::timeout(
+            Duration::from_secs(15),
+            client.wait_for_service(h.node.node()),
+        )
+        .await
+        .expect("the station's service did not match in 15 s");
     }
     let call = |index: usize| {
         let client = &clients[index];
