@@ -18,7 +18,7 @@ const TOLERANCE_M: f64 = 1e-6;
 const POSES: usize = 1000;
 
 fn reference_chain(test: &str) -> Option<(Chain<f64>, String)> {
-    let path = common::reference_dir(test)?.join(URDF);
+    let path = common::reference_file(test, URDF)?;
     let text = std::fs::read_to_string(&path).unwrap();
     Some((Chain::from_urdf_file(&path).unwrap(), text))
 }
@@ -196,4 +196,23 @@ fn urdf_import_matches_k_on_every_joint_frame() {
             assert!((a - b).norm() <= TOLERANCE_M, "{finger} tip");
         }
     }
+}
+
+#[test]
+fn a_missing_reference_file_is_skipped_outside_ci() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for ci in [false, true] {
+        let found = common::reference_file_in(dir, "Cargo.toml", "helper", ci);
+        assert_eq!(found, Some(dir.join("Cargo.toml")));
+    }
+    let missing = common::reference_file_in(dir, "no_such_file.urdf", "helper", false);
+    assert_eq!(missing, None);
+    assert_eq!(common::reference_file_in(dir, "src", "helper", false), None);
+}
+
+#[test]
+#[should_panic(expected = "no_such_file.urdf")]
+fn a_missing_reference_file_fails_under_ci() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    common::reference_file_in(dir, "no_such_file.urdf", "helper", true);
 }

@@ -74,8 +74,8 @@ fn reference_urdf() -> Option<&'static (String, UrdfImport)> {
             strip_prefix: String,
             frames: FrameSpec,
         }
-        let dir = common::reference_dir("fuzz_config::urdf")?;
-        let urdf = std::fs::read_to_string(dir.join("orcahand_v1_right.urdf")).unwrap();
+        let path = common::reference_file("fuzz_config::urdf", "orcahand_v1_right.urdf")?;
+        let urdf = std::fs::read_to_string(path).unwrap();
         let import: ImportFile = toml::from_str(
             &std::fs::read_to_string(concat!(
                 env!("CARGO_MANIFEST_DIR"),

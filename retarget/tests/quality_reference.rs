@@ -16,10 +16,10 @@ use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, RetargetConfig, Re
 
 #[test]
 fn the_defaults_on_the_reference_recording() {
-    let Some(dir) = common::reference_dir("quality_reference") else {
+    let Some(path) = common::reference_file("quality_reference", RECORDING) else {
         return;
     };
-    let (frames, _) = distinct_mano_frames(&dir.join(RECORDING));
+    let (frames, _) = distinct_mano_frames(&path);
     let config = RetargetConfig::default();
     let model = HandModel::orca_v1_right();
     let mut recorder = QualityRecorder::new(model.clone(), config.layout);

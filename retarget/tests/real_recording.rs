@@ -16,10 +16,10 @@ fn max_step_rad(config: &RetargetConfig) -> f64 {
 
 #[test]
 fn every_frame_of_the_reference_recording_retargets() {
-    let Some(dir) = common::reference_dir("real_recording") else {
+    let Some(path) = common::reference_file("real_recording", RECORDING) else {
         return;
     };
-    let (frames, messages) = distinct_mano_frames(&dir.join(RECORDING));
+    let (frames, messages) = distinct_mano_frames(&path);
     let config = RetargetConfig::default();
     let step_bound = max_step_rad(&config);
     let model = HandModel::orca_v1_right();
@@ -79,10 +79,10 @@ fn every_frame_of_the_reference_recording_retargets() {
 /// (Clarabel stops at its interior-point tolerance; measured: 1.2e-5 rad at most).
 #[test]
 fn active_set_and_clarabel_give_the_same_commands() {
-    let Some(dir) = common::reference_dir("real_recording") else {
+    let Some(path) = common::reference_file("real_recording", RECORDING) else {
         return;
     };
-    let (frames, _) = distinct_mano_frames(&dir.join(RECORDING));
+    let (frames, _) = distinct_mano_frames(&path);
     let retargeter = |method| {
         let mut config = RetargetConfig::default();
         config.solver.qp_method = method;

@@ -18,15 +18,19 @@ from collections import Counter, defaultdict
 def plain(value):
     """A decoded message as dicts and lists keyed by the schema's field names."""
     if dataclasses.is_dataclass(value):  # rosbags (`__msgtype__` names the type, not a field)
+        # Types built from a file's schemas carry the constants (`Marker.ADD`) as dataclass
+        # fields; ROS names constants in upper case and fields in lower case.
         return {
             f.name: plain(getattr(value, f.name))
             for f in dataclasses.fields(value)
-            if not f.name.startswith("__")
+            if not f.name.startswith("__") and not f.name.isupper()
         }
     if hasattr(value, "__slots__") and hasattr(value, "_type"):  # mcap-ros2-support
         return {name: plain(getattr(value, name)) for name in value.__slots__}
     if hasattr(value, "tolist"):  # numpy arrays and scalars
         return value.tolist()
+    if isinstance(value, (bytes, bytearray, memoryview)):  # mcap-ros2-support's uint8[]
+        return list(value)
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
     return value

@@ -3,7 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use msgs::{
-    Float32MultiArray, Float64MultiArray, JointState, PoseArray, PoseStamped, RosMessage, StringMsg,
+    DiagnosticArray, Float32MultiArray, Float64MultiArray, JointState, MarkerArray, PoseArray,
+    PoseStamped, RosMessage, StringMsg, TFMessage,
 };
 use serde_json::Value;
 use teleop::mcap_log::{LoggedMessage, TrialReader};
@@ -11,15 +12,33 @@ use teleop::mcap_log::{LoggedMessage, TrialReader};
 use crate::workspace_root;
 
 /// `../shared/reference/NAME` beside the checkout, or `None` (with a printed skip notice)
-/// where it is absent; `.ci/run` refuses to run without it.
+/// where it is absent. Panics instead under `CI` (see [`under_ci`]): `.ci/run` refuses to run
+/// without the directory, and a file missing from it is a failure, never a silent skip.
 pub fn reference_file(name: &str) -> Option<PathBuf> {
-    let path = workspace_root().join("../shared/reference").join(name);
+    let dir = workspace_root().join("../shared/reference");
+    reference_file_in(&dir, name, under_ci())
+}
+
+/// Whether the tests run under CI (the `CI` environment variable is set, as `.ci/run` sets
+/// it): there a missing tool or reference file fails the test instead of skipping it.
+pub fn under_ci() -> bool {
+    std::env::var_os("CI").is_some()
+}
+
+/// `DIR/NAME` if it is a file; else `None` with a skip notice, or a panic naming the path
+/// when `ci`. (The decision of [`reference_file`], with the environment as a parameter.)
+pub fn reference_file_in(dir: &Path, name: &str, ci: bool) -> Option<PathBuf> {
+    let path = dir.join(name);
     if path.is_file() {
-        Some(path)
-    } else {
-        eprintln!("SKIPPED: {} not found", path.display());
-        None
+        return Some(path);
     }
+    assert!(
+        !ci,
+        "CI needs the reference file {} (../shared/reference beside the checkout)",
+        path.display()
+    );
+    eprintln!("SKIPPED: {} not found", path.display());
+    None
 }
 
 /// The interop tools' Python (`target/interop-venv`, installed from PyPI by
@@ -32,7 +51,7 @@ pub fn interop_python() -> Option<PathBuf> {
         return Some(python);
     }
     assert!(
-        std::env::var_os("CI").is_none(),
+        !under_ci(),
         "CI must run tests/interop/setup_python.sh first ({} not found)",
         python.display()
     );
@@ -128,6 +147,12 @@ pub fn decoded_as_json(message: &LoggedMessage) -> Result<Value, String> {
         as_json::<PoseArray>(message)
     } else if message.is::<StringMsg>() {
         as_json::<StringMsg>(message)
+    } else if message.is::<TFMessage>() {
+        as_json::<TFMessage>(message)
+    } else if message.is::<MarkerArray>() {
+        as_json::<MarkerArray>(message)
+    } else if message.is::<DiagnosticArray>() {
+        as_json::<DiagnosticArray>(message)
     } else {
         Err(format!(
             "no msgs type for {} on {}",
@@ -212,7 +237,7 @@ pub fn interop_node() -> Option<PathBuf> {
         (Some(_), false) => format!("{} not found", installed.display()),
     };
     assert!(
-        std::env::var_os("CI").is_none(),
+        !under_ci(),
         "CI must run tests/interop/setup_node.sh first ({missing})"
     );
     eprintln!("SKIPPED: JavaScript interop tools ({missing}; run tests/interop/setup_node.sh)");
@@ -255,4 +280,39 @@ pub fn foxglove_mcap_reader(path: &Path) -> Option<Vec<Value>> {
         String::from_utf8_lossy(&output.stderr)
     );
     Some(json_lines("read_mcap.mjs", &output.stdout))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_present_reference_file_is_found_with_or_without_ci() {
+        let root = workspace_root();
+        for ci in [false, true] {
+            assert_eq!(
+                reference_file_in(&root, "Cargo.toml", ci),
+                Some(root.join("Cargo.toml"))
+            );
+        }
+    }
+
+    #[test]
+    fn a_missing_reference_file_is_skipped_outside_ci() {
+        assert_eq!(
+            reference_file_in(&workspace_root(), "no_such_reference.mcap", false),
+            None
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "no_such_reference.mcap")]
+    fn a_missing_reference_file_fails_under_ci() {
+        reference_file_in(&workspace_root(), "no_such_reference.mcap", true);
+    }
+
+    #[test]
+    fn a_directory_is_not_a_reference_file() {
+        assert_eq!(reference_file_in(&workspace_root(), "tests", false), None);
+    }
 }

@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use futures::StreamExt;
-use msgs::{Float32MultiArray, JointState, PoseStamped, StringMsg};
+use msgs::{Float32MultiArray, JointState, PoseStamped, RosMessage, StringMsg};
 use nalgebra::{Isometry3, Point3};
 use retarget::HandModel;
 use station::StationConfig;
@@ -13,8 +13,9 @@ use station::convert::{header, isometry_to_pose};
 use teleop::clock::StationClock;
 use teleop::ros::NetworkContext as _;
 use teleop::ros::{NetworkConfig, QosConfig, RosNode};
+use teleop::station_node::operator::StationHooks;
 use teleop::station_node::recorder::RecordingOptions;
-use teleop::station_node::ros_node::{OperatorCommand, StationSummary, run_station};
+use teleop::station_node::ros_node::{OperatorCommand, StationSummary, run_station_observed};
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
@@ -124,7 +125,20 @@ impl Harness {
     /// [`Harness::start`], the station recording its run to `recording` (finished when the
     /// harness stops).
     pub async fn start_recording(
+        config: StationConfig,
+        domain: u16,
+        recording: Option<RecordingOptions>,
+    ) -> anyhow::Result<Harness> {
+        let model = HandModel::orca_v1_right();
+        Harness::start_with(config, model, StationHooks::default(), domain, recording).await
+    }
+
+    /// [`Harness::start_recording`] with a hand `model` of the test's choice and the
+    /// station's `hooks` (e.g. a robot description to publish).
+    pub async fn start_with(
         mut config: StationConfig,
+        model: HandModel,
+        hooks: StationHooks,
         domain: u16,
         recording: Option<RecordingOptions>,
     ) -> anyhow::Result<Harness> {
@@ -134,13 +148,14 @@ impl Harness {
         let clock = StationClock::new();
         let (shutdown, shutdown_rx) = watch::channel(false);
         let (operator, operator_rx) = mpsc::unbounded_channel();
-        let station = tokio::spawn(run_station(
+        let station = tokio::spawn(run_station_observed(
             config.clone(),
-            HandModel::orca_v1_right(),
+            model,
             clock,
             shutdown_rx,
             operator_rx,
             recording,
+            hooks,
         ));
 
         let context = network.context()?;
@@ -269,6 +284,42 @@ impl Harness {
             .and_then(|h| h.status.last().map(|(_, v)| v.clone()))
     }
 
+    /// Listen to `M` on `topic` with `qos` until the harness stops.
+    pub fn listen<M>(&mut self, topic: &str, qos: QosConfig) -> anyhow::Result<Inbox<M>>
+    where
+        M: RosMessage + serde::de::DeserializeOwned + Send + Sync + 'static,
+    {
+        let subscription = self.node.subscription::<M>(topic, qos)?;
+        Ok(self.keep(subscription))
+    }
+
+    /// Listen to `M` on the latched (transient-local) `topic`: also what was published before
+    /// the test node joined.
+    pub fn listen_latched<M>(&mut self, topic: &str) -> anyhow::Result<Inbox<M>>
+    where
+        M: RosMessage + serde::de::DeserializeOwned + Send + Sync + 'static,
+    {
+        let subscription = self.node.latched_subscription::<M>(topic, 10)?;
+        Ok(self.keep(subscription))
+    }
+
+    fn keep<M>(&mut self, subscription: ros2_client::Subscription<M>) -> Inbox<M>
+    where
+        M: serde::de::DeserializeOwned + Send + Sync + 'static,
+    {
+        let inbox = Inbox(Arc::new(Mutex::new(Vec::new())));
+        let (clock, sink) = (self.clock, inbox.clone());
+        self.listeners.push(tokio::spawn(async move {
+            let mut stream = Box::pin(subscription.async_stream());
+            while let Some(item) = stream.next().await {
+                if let (Ok((message, _)), Ok(mut messages)) = (item, sink.0.lock()) {
+                    messages.push((clock.now_ns(), message));
+                }
+            }
+        }));
+        inbox
+    }
+
     /// Stop the station and the listeners; returns the station's summary.
     pub async fn stop(self) -> anyhow::Result<StationSummary> {
         self.shutdown.send(true).ok();
@@ -277,6 +328,60 @@ impl Harness {
             l.abort();
         }
         Ok(summary)
+    }
+}
+
+/// The messages of one topic the test node heard, with receive times (station clock, ns).
+#[derive(Debug)]
+pub struct Inbox<M>(Arc<Mutex<Vec<(i64, M)>>>);
+
+impl<M> Clone for Inbox<M> {
+    fn clone(&self) -> Self {
+        Inbox(Arc::clone(&self.0))
+    }
+}
+
+impl<M: Clone> Inbox<M> {
+    /// Everything heard so far, in arrival order.
+    #[allow(clippy::unwrap_used)] // a poisoned lock means a test thread already panicked
+    pub fn all(&self) -> Vec<(i64, M)> {
+        self.0.lock().unwrap().clone()
+    }
+
+    /// The last message heard.
+    #[allow(clippy::unwrap_used)] // as above
+    pub fn last(&self) -> Option<M> {
+        self.0.lock().unwrap().last().map(|(_, m)| m.clone())
+    }
+
+    /// How many messages were heard.
+    #[allow(clippy::unwrap_used)] // as above
+    pub fn len(&self) -> usize {
+        self.0.lock().unwrap().len()
+    }
+
+    /// Whether nothing was heard.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Wait until `condition` holds on what was heard, at most `timeout`.
+    pub async fn wait_until(
+        &self,
+        timeout: Duration,
+        condition: impl Fn(&[(i64, M)]) -> bool,
+    ) -> anyhow::Result<()> {
+        let start = Instant::now();
+        loop {
+            if self.0.lock().map(|m| condition(&m)).unwrap_or(false) {
+                return Ok(());
+            }
+            anyhow::ensure!(
+                start.elapsed() < timeout,
+                "condition not met within {timeout:?}"
+            );
+            tokio::time::sleep(Duration::from_millis(5)).await;
+        }
     }
 }
 

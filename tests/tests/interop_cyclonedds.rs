@@ -17,15 +17,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::io::{BufRead as _, BufReader, Write as _};
 use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdin, Command, Stdio};
-use std::time::Duration;
 
 use msgs::{Float32MultiArray, JointState, PoseStamped, Time};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use pomdar_tests::cyclone_peer::{assert_same_messages, decode, run_station_with_peer};
 use pomdar_tests::interop::{
-    assert_readers_decode_as_we_do, independent_readers_with_values, interop_python, interop_script,
+    assert_readers_decode_as_we_do, independent_readers_with_values, interop_python,
 };
 use pomdar_tests::station_harness::{check_arm_targets, loopback, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
@@ -33,13 +31,9 @@ use retarget::{HandModel, KeypointLayout};
 use serde_json::{Value, json};
 use station::arm::Constraint;
 use station::{ControlMode, StationConfig};
-use teleop::clock::StationClock;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::resim::resim;
 use teleop::ros::QosConfig;
-use teleop::station_node::recorder::RecordingOptions;
-use teleop::station_node::ros_node::run_station;
-use tokio::sync::{mpsc, watch};
 
 const FRAMES: usize = 60;
 const PERIOD_S: f64 = 0.02;
@@ -127,137 +121,8 @@ fn plan(config: &StationConfig, rows: &[Vec<[f32; 3]>], wrists: &[Isometry3<f64>
     })
 }
 
-/// The running peer: its stdin (closing it ends the peer) and its stdout lines.
-struct Peer {
-    child: Child,
-    stdin: Option<ChildStdin>,
-    lines: mpsc::UnboundedReceiver<String>,
-}
-
-impl Peer {
-    fn start(python: &Path, plan_path: &Path) -> Peer {
-        let mut child = Command::new(python)
-            .arg(interop_script("cyclone_peer.py"))
-            .arg(plan_path)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .expect("cannot start cyclone_peer.py");
-        let stdout = child.stdout.take().unwrap();
-        let (tx, lines) = mpsc::unbounded_channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-        let stdin = child.stdin.take();
-        Peer {
-            child,
-            stdin,
-            lines,
-        }
-    }
-
-    /// The peer's next JSON line of `kind`; panics on its error line, its exit or a timeout.
-    async fn next(&mut self, kind: &str, timeout: Duration) -> Value {
-        let line = tokio::time::timeout(timeout, self.lines.recv())
-            .await
-            .unwrap_or_else(|_| panic!("no '{kind}' from the Cyclone peer within {timeout:?}"))
-            .unwrap_or_else(|| {
-                let status = self.child.wait().unwrap();
-                panic!("the Cyclone peer exited ({status}) before '{kind}'")
-            });
-        let value: Value =
-            serde_json::from_str(&line).unwrap_or_else(|_| panic!("Cyclone peer printed {line}"));
-        assert_eq!(
-            value["kind"],
-            kind,
-            "Cyclone peer: {}",
-            value["message"].as_str().unwrap_or(&line)
-        );
-        value
-    }
-
-    fn close_stdin(&mut self) {
-        if let Some(mut stdin) = self.stdin.take() {
-            stdin.flush().ok();
-        }
-    }
-}
-
-/// The peer's messages of one kind, as `msgs` values.
-#[track_caller]
-fn decode<T: serde::de::DeserializeOwned>(report: &Value, pointer: &str) -> Vec<T> {
-    let value = report.pointer(pointer).unwrap_or(&Value::Null);
-    serde_json::from_value(value.clone()).unwrap_or_else(|e| {
-        let text: String = value.to_string().chars().take(300).collect();
-        panic!("the peer's {pointer} ({text}...): {e}")
-    })
-}
-
-/// Cyclone received, message for message, exactly what the station sent (its log). After the
-/// last frame's target the station sends nothing more (every-frame control, watchdog far off),
-/// and the peer keeps receiving until the station has stopped.
-fn assert_same_messages<T: PartialEq + std::fmt::Debug>(what: &str, received: &[T], sent: &[T]) {
-    for (i, (r, s)) in received.iter().zip(sent).enumerate() {
-        assert_eq!(
-            r, s,
-            "{what} {i}: as Cyclone decoded it vs as the station sent it"
-        );
-    }
-    assert_eq!(
-        received.len(),
-        sent.len(),
-        "{what}s: Cyclone received {}, the station sent {}",
-        received.len(),
-        sent.len()
-    );
-}
-
 fn nanos(t: &Time) -> i64 {
     i64::from(t.sec) * 1_000_000_000 + i64::from(t.nanosec)
-}
-
-/// Runs the station, recording to `log_path`, then the peer, until the peer has sent every
-/// frame; stops the station and collects the peer's report. Checks the station recorded that
-/// one log and found every frame new.
-async fn run_station_with_peer(
-    python: &Path,
-    config: &StationConfig,
-    plan_path: &Path,
-    log_path: &Path,
-) -> Value {
-    let (shutdown, shutdown_rx) = watch::channel(false);
-    let (_operator, operator_rx) = mpsc::unbounded_channel();
-    let station = tokio::spawn(run_station(
-        config.clone(),
-        HandModel::orca_v1_right(),
-        StationClock::new(),
-        shutdown_rx,
-        operator_rx,
-        Some(RecordingOptions {
-            path: log_path.to_path_buf(),
-            metadata: Default::default(),
-        }),
-    ));
-    let mut peer = Peer::start(python, plan_path);
-    let done = peer.next("done", Duration::from_secs(40)).await;
-    println!("Cyclone peer: {done}");
-    shutdown.send(true).unwrap();
-    let summary = station.await.unwrap().unwrap();
-    peer.close_stdin();
-    let report = peer.next("report", Duration::from_secs(10)).await;
-    assert!(peer.child.wait().unwrap().success());
-    assert_eq!(summary.recorded, vec![log_path.to_path_buf()]);
-    assert_eq!(
-        summary.counters.frames_new, FRAMES as u64,
-        "every frame new (no repeats in this motion, none rejected): {:?}",
-        summary.counters
-    );
-    report
 }
 
 /// Inputs: the station decoded (its log) exactly what Cyclone sent, keypoints frame for frame
@@ -427,7 +292,9 @@ async fn cyclone_dds_peer_drives_the_station_and_reads_its_outputs() {
     std::fs::write(&plan_path, plan(&config, &rows, &wrists).to_string()).unwrap();
     let log_path: PathBuf = dir.join("station.mcap");
 
-    let report = run_station_with_peer(&python, &config, &plan_path, &log_path).await;
+    let script = "cyclone_peer.py";
+    let report =
+        run_station_with_peer(&python, script, &config, &plan_path, &log_path, FRAMES).await;
     let log = TrialReader::open(&log_path).unwrap();
     let source_ns = assert_station_decoded_what_cyclone_sent(&report, &log, &config, &rows);
     let received = assert_cyclone_decoded_what_the_station_sent(&report, &log, &config);

@@ -5,21 +5,34 @@
 pub mod poses;
 pub mod recording;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-/// `../shared/reference/` relative to the workspace root, or `None` (with a printed skip
-/// notice naming the path) when it is absent, as on a user's machine. CI fails when it is
-/// absent (`.ci/run` checks), so these tests always run there.
-pub fn reference_dir(test: &str) -> Option<PathBuf> {
+/// `../shared/reference/NAME` relative to the workspace root, or `None` (with a printed skip
+/// notice naming the path) when it is absent, as on a user's machine. Panics instead under CI
+/// (the `CI` environment variable, which `.ci/run` sets): there the file must exist and the
+/// test must run.
+pub fn reference_file(test: &str, name: &str) -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/reference");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "SKIPPED {test}: reference data not found at {} (it exists beside the checkout in CI \
-             and developer sessions only)",
-            dir.display()
-        );
-        None
+    reference_file_in(&dir, name, test, std::env::var_os("CI").is_some())
+}
+
+/// `DIR/NAME` if it is a file; else `None` with a skip notice for `test`, or a panic naming
+/// the path when `ci`. (The decision of [`reference_file`], with the environment as a
+/// parameter.)
+pub fn reference_file_in(dir: &Path, name: &str, test: &str, ci: bool) -> Option<PathBuf> {
+    let path = dir.join(name);
+    if path.is_file() {
+        return Some(path);
     }
+    assert!(
+        !ci,
+        "{test}: CI needs the reference file {} (../shared/reference beside the checkout)",
+        path.display()
+    );
+    eprintln!(
+        "SKIPPED {test}: reference data not found at {} (it exists beside the checkout in CI \
+         and developer sessions only)",
+        path.display()
+    );
+    None
 }

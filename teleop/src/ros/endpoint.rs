@@ -7,8 +7,8 @@ use msgs::RosMessage;
 use ros2_client::dds::rustdds::Topic;
 use ros2_client::qos::Durability;
 use ros2_client::{
-    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile, Server,
-    ServiceMapping, ServiceTypeName, Subscription,
+    Client, Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
+    Server, ServiceMapping, ServiceTypeName, Subscription,
 };
 use serde::{Deserialize, Serialize};
 
@@ -157,6 +157,28 @@ impl RosNode {
             })
     }
 
+    /// A `std_srvs/srv/Trigger` client of `service`, carried as `mapping` says (the server's
+    /// side of [`RosNode::trigger_server`]).
+    pub fn trigger_client(
+        &mut self,
+        service: &str,
+        mapping: ServiceMapping,
+    ) -> Result<Client<TriggerRequest, TriggerResponse>, RosError> {
+        let profile = QosConfig::reliable(10).profile();
+        self.node
+            .create_client(
+                mapping,
+                &topic_name(service)?,
+                &ServiceTypeName::new("std_srvs", "Trigger"),
+                profile.clone(),
+                profile,
+            )
+            .map_err(|source| RosError::Service {
+                service: service.to_string(),
+                source,
+            })
+    }
+
     /// A publisher of `M` on `topic`.
     pub fn publisher<M: RosMessage>(
         &mut self,
@@ -179,6 +201,23 @@ impl RosNode {
         qos: QosConfig,
     ) -> Result<Subscription<M>, RosError> {
         let (handle, profile) = self.topic::<M>(topic, qos)?;
+        self.node
+            .create_subscription(&handle, Some(profile))
+            .map_err(|source| RosError::Subscription {
+                topic: topic.to_string(),
+                source,
+            })
+    }
+
+    /// A reliable, transient-local subscription to `M` on `topic` that also receives what a
+    /// [`RosNode::latched_publisher`] sent before it joined (the last `depth` messages).
+    pub fn latched_subscription<M: RosMessage + 'static>(
+        &mut self,
+        topic: &str,
+        depth: u32,
+    ) -> Result<Subscription<M>, RosError> {
+        let (handle, profile) = self.topic::<M>(topic, QosConfig::reliable(depth))?;
+        let profile = profile.durability(Durability::TransientLocal);
         self.node
             .create_subscription(&handle, Some(profile))
             .map_err(|source| RosError::Subscription {
