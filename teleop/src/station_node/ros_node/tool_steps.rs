@@ -142,14 +142,19 @@ impl StationNode {
         }
     }
 
+    /// Carry out a service call. Under an operator console every call reaches it as the
+    /// operator's own key (so an engage asked before the glove flows waits as the key's
+    /// does); a station without one engages and disengages itself and has no trials.
     async fn serve(&mut self, action: ServiceAction, endpoints: &Endpoints) -> TriggerResponse {
         let answer = |success: bool, message: &str| TriggerResponse {
             success,
             message: message.to_string(),
         };
-        if !self.config.drives_robot()
-            && matches!(action, ServiceAction::Engage | ServiceAction::Disengage)
-        {
+        if self.hooks.events.is_some() {
+            self.hooks.send(StationEvent::ServiceRequest(action));
+            return answer(true, "passed to the trial console");
+        }
+        if !self.config.drives_robot() {
             return answer(false, "a human-study station drives no robot");
         }
         match action {
@@ -163,10 +168,6 @@ impl StationNode {
                 self.drive(StationInput::Control(ControlInput::Disengage), endpoints)
                     .await;
                 answer(true, "disengaged: the hand holds, the arm stops")
-            }
-            trial if self.hooks.events.is_some() => {
-                self.hooks.send(StationEvent::ServiceRequest(trial));
-                answer(true, "passed to the trial console")
             }
             _ => answer(
                 false,
