@@ -18,6 +18,8 @@ pub mod ingress;
 pub mod launch_config;
 pub mod mcap_log;
 pub mod model_report;
+#[cfg(feature = "physics")]
+pub mod physics;
 pub mod progress_bar;
 pub mod replay;
 pub mod resim;

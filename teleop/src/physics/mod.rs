@@ -1,0 +1,5 @@
+//! The simulated benchmark's physics (feature `physics`): MuJoCo scenes from the `simulation`
+//! crate (or a lab's own MJCF), stepped in real time by the simulated robot node.
+
+pub mod engine;
+pub mod error;
