@@ -229,6 +229,20 @@ impl PhysicsEngine {
         ))
     }
 
+    /// Back to the scene's initial state (MuJoCo's reset: `qpos0`, zero speeds, time 0), the
+    /// hand's targets its initial positions.
+    pub fn reset(&mut self) {
+        self.data.reset();
+        self.data.forward();
+        self.targets = self.hand_positions();
+        self.hold_controls_at_targets();
+    }
+
+    /// Recompute the kinematics after poses were set (no time passes).
+    pub fn settle(&mut self) {
+        self.data.forward();
+    }
+
     fn hold_controls_at_targets(&mut self) {
         for (i, &a) in self.actuators.iter().enumerate() {
             let range = self.ctrl_ranges[i];

@@ -23,6 +23,15 @@ pub enum PhysicsError {
         /// The names not found.
         names: Vec<String>,
     },
+    /// Joining the DDS domain, or creating the node or an endpoint, failed.
+    #[error(transparent)]
+    Ros(#[from] crate::ros::RosError),
+    /// The task's progress mapping does not fit the scene.
+    #[error("progress: {message}")]
+    Progress {
+        /// What is wrong.
+        message: String,
+    },
     /// Targets of the wrong length, or not finite.
     #[error("expected {expected} finite values, got {got} (or a non-finite one)")]
     BadTargets {

@@ -82,13 +82,7 @@ pub async fn run_mock_franka(
                 }
             }
             _ = interval.tick() => {
-                let delta = target.translation.vector - pose.translation.vector;
-                let step = max_speed_m_s * period;
-                let moved = if delta.norm() > step { delta * (step / delta.norm()) } else { delta };
-                pose.translation.vector += moved;
-                let angle = pose.rotation.angle_to(&target.rotation);
-                let t = if angle > 0.0 { (max_rate_rad_s * period / angle).min(1.0) } else { 1.0 };
-                pose.rotation = pose.rotation.slerp(&target.rotation, t);
+                slew_pose(&mut pose, &target, max_speed_m_s * period, max_rate_rad_s * period);
                 let message = PoseStamped { header: header(clock.now_ns(), "world"), pose: isometry_to_pose(&pose) };
                 if pose_pub.async_publish(message).await.is_err() {
                     let Ok(mut report) = report.lock() else { break };
@@ -98,4 +92,28 @@ pub async fn run_mock_franka(
         }
     }
     Ok(())
+}
+
+/// Move `pose` toward `target` by at most `max_step_m` and `max_turn_rad` (an arm's speed
+/// limits over one period).
+pub fn slew_pose(
+    pose: &mut Isometry3<f64>,
+    target: &Isometry3<f64>,
+    max_step_m: f64,
+    max_turn_rad: f64,
+) {
+    let delta = target.translation.vector - pose.translation.vector;
+    let moved = if delta.norm() > max_step_m {
+        delta * (max_step_m / delta.norm())
+    } else {
+        delta
+    };
+    pose.translation.vector += moved;
+    let angle = pose.rotation.angle_to(&target.rotation);
+    let t = if angle > 0.0 {
+        (max_turn_rad / angle).min(1.0)
+    } else {
+        1.0
+    };
+    pose.rotation = pose.rotation.slerp(&target.rotation, t);
 }

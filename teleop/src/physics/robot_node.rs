@@ -1,0 +1,440 @@
+//! The simulated robot (feature `physics`): the hand and the arm's mount in a MuJoCo scene,
+//! stepped in real time, on the same topics as the real robot. It follows the station's hand
+//! targets (`sensor_msgs/JointState`, by the URDF's names) and arm targets (`PoseStamped`,
+//! slewed at the arm's speed limits, as the mock Franka does), and publishes the hand's
+//! measured joint states, the arm's pose (the station's arm feedback), the task object's pose
+//! and the task's progress as measured by the physics (`std_msgs/String`, one JSON object per
+//! event, see [`ProgressMessage`]).
+//!
+//! Real time: every tick advances the physics by the wall time since the last one (at most
+//! [`MAX_CATCH_UP_S`]; a machine too slow for real time falls behind, and the report says by
+//! how much).
+
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use futures::StreamExt;
+use msgs::{JointState, PoseStamped, StringMsg};
+use ros2_client::Publisher;
+use nalgebra::Isometry3;
+use retarget::HandModel;
+use serde::Serialize;
+use simulation::progress::{PhysicsMapping, ProgressEvent, ProgressTracker};
+use scoring::CorrectnessKind;
+use tokio::sync::{mpsc, watch};
+
+use super::engine::PhysicsEngine;
+use super::error::PhysicsError;
+use crate::clock::StationClock;
+use crate::ros::NetworkContext as _;
+use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::sim::mock_franka::slew_pose;
+use station::convert::{header, isometry_to_pose, pose_to_isometry};
+
+/// Longest physics advance in one tick, seconds: beyond it the simulation falls behind rather
+/// than taking a huge step.
+pub const MAX_CATCH_UP_S: f64 = 0.05;
+
+/// The simulated robot's settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhysicsRobotConfig {
+    /// Hand target topic (`sensor_msgs/JointState`).
+    pub hand_targets_topic: String,
+    /// Hand state topic (`sensor_msgs/JointState`).
+    pub hand_state_topic: String,
+    /// Arm target topic (`PoseStamped`).
+    pub arm_target_topic: String,
+    /// Arm pose feedback topic (`PoseStamped`).
+    pub arm_feedback_topic: String,
+    /// Progress events (`std_msgs/String`, JSON).
+    pub progress_topic: String,
+    /// The task object's pose (`PoseStamped`), when the scene has one.
+    pub object_topic: String,
+    /// The frame of arm poses and object poses (the arm's base).
+    pub frame_id: String,
+    /// The arm's start pose, base frame.
+    pub arm_start: Isometry3<f64>,
+    /// Arm translation speed limit, m/s.
+    pub arm_max_speed_m_s: f64,
+    /// Arm rotation speed limit, rad/s.
+    pub arm_max_rate_rad_s: f64,
+    /// Physics tick, seconds (each advances by the wall time since the last).
+    pub tick_s: f64,
+    /// State publishing rate, Hz.
+    pub state_rate_hz: f64,
+    /// The task's id (in progress messages).
+    pub task_id: String,
+    /// How the task's progress counts, and where it is read; `None`: no progress published.
+    pub progress: Option<(CorrectnessKind, PhysicsMapping)>,
+    /// The task object's body, for its pose.
+    pub object_body: Option<String>,
+}
+
+impl PhysicsRobotConfig {
+    /// Topics and rates as the mock robot's, for `task_id` and no progress.
+    pub fn new(task_id: &str, arm_start: Isometry3<f64>) -> Self {
+        PhysicsRobotConfig {
+            hand_targets_topic: "/pomdar/hand/joint_targets".into(),
+            hand_state_topic: "/pomdar/hand/joint_states".into(),
+            arm_target_topic: "/franka/end_effector_pose_cmd".into(),
+            arm_feedback_topic: "/franka/end_effector_pose".into(),
+            progress_topic: "/pomdar/sim/progress".into(),
+            object_topic: "/pomdar/sim/object_pose".into(),
+            frame_id: "world".into(),
+            arm_start,
+            arm_max_speed_m_s: 0.5,
+            arm_max_rate_rad_s: 1.0,
+            tick_s: 0.005,
+            state_rate_hz: 100.0,
+            task_id: task_id.to_string(),
+            progress: None,
+            object_body: None,
+        }
+    }
+}
+
+/// What the operator or a console asks of the simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SimControl {
+    /// Put the scene back to its initial state (objects, hand, arm) and count progress from
+    /// there: a new trial.
+    Reset,
+}
+
+/// One progress event as published.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ProgressMessage {
+    /// The task.
+    pub task: String,
+    /// `progress` (a value in the task's unit) or `drop`.
+    pub event: &'static str,
+    /// The value (progress only): ±1 notch or curve, degrees, millimetres, or a grasp level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub value: Option<f64>,
+    /// The unit of values and totals.
+    pub unit: &'static str,
+    /// The progress since the last reset.
+    pub total: f64,
+    /// Simulated time since the last reset, seconds.
+    pub sim_time_s: f64,
+}
+
+/// What the simulated robot saw and did (updated live).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PhysicsRobotReport {
+    /// Hand targets received.
+    pub hand_targets: u64,
+    /// Hand targets naming a joint the hand lacks, or not finite.
+    pub hand_rejected: u64,
+    /// Arm targets received.
+    pub arm_targets: u64,
+    /// Arm targets that are not a valid pose.
+    pub arm_rejected: u64,
+    /// Physics time simulated, seconds.
+    pub sim_time_s: f64,
+    /// Wall time the physics spent stepping, seconds.
+    pub step_wall_s: f64,
+    /// Wall time not simulated because a tick was longer than [`MAX_CATCH_UP_S`], seconds.
+    pub behind_s: f64,
+    /// Progress events published since the start (all resets).
+    pub events: Vec<ProgressMessage>,
+    /// The progress since the last reset.
+    pub progress_total: f64,
+    /// Resets done.
+    pub resets: u64,
+    /// Every measured hand state published with its target in force (tests; only when
+    /// [`PhysicsRobotOptions::record_states`]).
+    pub states: Vec<(Vec<f64>, Vec<f64>)>,
+    /// Messages whose publishing failed.
+    pub publish_failed: u64,
+}
+
+/// Inputs of a run that are not settings.
+pub struct PhysicsRobotRun {
+    /// The hand model (names of its degrees of freedom, as the station sends them).
+    pub model: HandModel,
+    /// The loaded scene.
+    pub engine: PhysicsEngine,
+    /// Network settings.
+    pub network: NetworkConfig,
+    /// The clock stamping messages.
+    pub clock: StationClock,
+    /// Live report.
+    pub report: Arc<Mutex<PhysicsRobotReport>>,
+    /// Resets.
+    pub control: mpsc::Receiver<SimControl>,
+    /// Stop.
+    pub shutdown: watch::Receiver<bool>,
+    /// Other options.
+    pub options: PhysicsRobotOptions,
+}
+
+/// Options of a run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PhysicsRobotOptions {
+    /// Keep every published state and its target in the report (grows without bound).
+    pub record_states: bool,
+}
+
+/// The simulation between ticks.
+struct SimState {
+    engine: PhysicsEngine,
+    arm_pose: Isometry3<f64>,
+    arm_target: Isometry3<f64>,
+    tracker: Option<ProgressTracker>,
+    reset_sim_time_s: f64,
+}
+
+impl SimState {
+    fn new(engine: PhysicsEngine, config: &PhysicsRobotConfig) -> Result<SimState, PhysicsError> {
+        let mut state = SimState {
+            engine,
+            arm_pose: config.arm_start,
+            arm_target: config.arm_start,
+            tracker: None,
+            reset_sim_time_s: 0.0,
+        };
+        state.reset(config)?;
+        Ok(state)
+    }
+
+    /// Back to the scene's initial state, the arm at its start, progress from zero.
+    fn reset(&mut self, config: &PhysicsRobotConfig) -> Result<(), PhysicsError> {
+        self.engine.reset();
+        self.arm_pose = config.arm_start;
+        self.arm_target = config.arm_start;
+        self.engine.set_mount_pose(&self.arm_pose);
+        self.engine.settle();
+        self.reset_sim_time_s = self.engine.time_s();
+        self.tracker = match &config.progress {
+            Some((kind, mapping)) => {
+                let initial = self.engine.reading(&mapping.joint).ok_or_else(|| {
+                    PhysicsError::Missing {
+                        origin: "scene".into(),
+                        kind: "progress joint",
+                        names: vec![mapping.joint.clone()],
+                    }
+                })?;
+                Some(
+                    ProgressTracker::new(kind, mapping, initial)
+                        .map_err(|e| PhysicsError::Progress {
+                            message: e.to_string(),
+                        })?,
+                )
+            }
+            None => None,
+        };
+        Ok(())
+    }
+
+    /// Advance by `dt_s`: the arm slews toward its target, the mount follows, the physics
+    /// steps; the progress events of the step.
+    fn advance(&mut self, dt_s: f64, config: &PhysicsRobotConfig) -> Vec<ProgressEvent> {
+        slew_pose(
+            &mut self.arm_pose,
+            &self.arm_target,
+            config.arm_max_speed_m_s * dt_s,
+            config.arm_max_rate_rad_s * dt_s,
+        );
+        self.engine.set_mount_pose(&self.arm_pose);
+        self.engine.advance(dt_s);
+        let t = self.engine.time_s() - self.reset_sim_time_s;
+        match (&mut self.tracker, &config.progress) {
+            (Some(tracker), Some((_, mapping))) => match self.engine.reading(&mapping.joint) {
+                Some(reading) => tracker.update(reading, t),
+                None => Vec::new(),
+            },
+            _ => Vec::new(),
+        }
+    }
+
+    fn progress_message(&self, event: &ProgressEvent, config: &PhysicsRobotConfig) -> ProgressMessage {
+        let unit = config
+            .progress
+            .as_ref()
+            .map_or("", |(kind, _)| kind.progress_unit());
+        let (name, value) = match event {
+            ProgressEvent::Progress(v) => ("progress", Some(*v)),
+            ProgressEvent::Drop => ("drop", None),
+        };
+        ProgressMessage {
+            task: config.task_id.clone(),
+            event: name,
+            value,
+            unit,
+            total: self.tracker.as_ref().map_or(0.0, ProgressTracker::total),
+            sim_time_s: self.engine.time_s() - self.reset_sim_time_s,
+        }
+    }
+}
+
+/// The endpoints of the simulated robot.
+struct Endpoints {
+    hand_state: Publisher<JointState>,
+    arm_pose: Publisher<PoseStamped>,
+    object_pose: Publisher<PoseStamped>,
+    progress: Publisher<StringMsg>,
+}
+
+/// Run the simulated robot until `shutdown`.
+pub async fn run_physics_robot(
+    config: PhysicsRobotConfig,
+    run: PhysicsRobotRun,
+) -> Result<(), PhysicsError> {
+    let PhysicsRobotRun {
+        model,
+        engine,
+        network,
+        clock,
+        report,
+        mut control,
+        mut shutdown,
+        options,
+    } = run;
+    let context = network.context()?;
+    let mut node = RosNode::new(&context, "/", "pomdar_sim_robot")?;
+    let hand_sub =
+        node.subscription::<JointState>(&config.hand_targets_topic, QosConfig::reliable(50))?;
+    let arm_sub =
+        node.subscription::<PoseStamped>(&config.arm_target_topic, QosConfig::reliable(50))?;
+    let out = Endpoints {
+        hand_state: node.publisher(&config.hand_state_topic, QosConfig::best_effort(10))?,
+        arm_pose: node.publisher(&config.arm_feedback_topic, QosConfig::best_effort(10))?,
+        object_pose: node.publisher(&config.object_topic, QosConfig::best_effort(10))?,
+        progress: node.publisher(&config.progress_topic, QosConfig::reliable(100))?,
+    };
+    let mut hand_targets = Box::pin(hand_sub.async_stream());
+    let mut arm_targets = Box::pin(arm_sub.async_stream());
+    let mut sim = SimState::new(engine, &config)?;
+    let mut hand_target = sim.engine.hand_positions();
+    let mut ticks = tokio::time::interval(Duration::from_secs_f64(config.tick_s));
+    let publish_every = (1.0 / (config.state_rate_hz * config.tick_s)).round().max(1.0) as u64;
+    let mut last_tick = Instant::now();
+    let mut tick_count = 0u64;
+    loop {
+        tokio::select! {
+            _ = shutdown.changed() => if *shutdown.borrow() { break },
+            Some(request) = control.recv() => match request {
+                SimControl::Reset => {
+                    sim.reset(&config)?;
+                    hand_target = sim.engine.hand_positions();
+                    if let Ok(mut r) = report.lock() { r.resets += 1; r.progress_total = 0.0; }
+                }
+            },
+            Some(Ok((message, _))) = hand_targets.next() => {
+                let accepted = hand_target_of(&model, &hand_target, &message)
+                    .filter(|next| sim.engine.set_hand_targets(next).is_ok());
+                let Ok(mut r) = report.lock() else { break };
+                r.hand_targets += 1;
+                match accepted { Some(next) => hand_target = next, None => r.hand_rejected += 1 }
+            }
+            Some(Ok((message, _))) = arm_targets.next() => {
+                let Ok(mut r) = report.lock() else { break };
+                r.arm_targets += 1;
+                match pose_to_isometry(&message.pose) {
+                    Some(pose) => sim.arm_target = pose,
+                    None => r.arm_rejected += 1,
+                }
+            }
+            _ = ticks.tick() => {
+                let now = Instant::now();
+                let elapsed = now.duration_since(last_tick).as_secs_f64();
+                last_tick = now;
+                let dt = elapsed.min(MAX_CATCH_UP_S);
+                let events = sim.advance(dt, &config);
+                let stepped = now.elapsed().as_secs_f64();
+                tick_count += 1;
+                let messages: Vec<ProgressMessage> =
+                    events.iter().map(|e| sim.progress_message(e, &config)).collect();
+                {
+                    let Ok(mut r) = report.lock() else { break };
+                    r.sim_time_s += dt;
+                    r.step_wall_s += stepped;
+                    r.behind_s += elapsed - dt;
+                    if let Some(tracker) = &sim.tracker { r.progress_total = tracker.total(); }
+                    r.events.extend(messages.iter().cloned());
+                }
+                let failed = publish_progress(&out, &messages).await
+                    + if tick_count % publish_every == 0 {
+                        let states = publish_states(&out, &sim, &model, &config, &clock).await;
+                        if options.record_states {
+                            if let Ok(mut r) = report.lock() {
+                                r.states.push((sim.engine.hand_positions(), hand_target.clone()));
+                            }
+                        }
+                        states
+                    } else { 0 };
+                if failed > 0 {
+                    let Ok(mut r) = report.lock() else { break };
+                    r.publish_failed += failed;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Publish progress events; the number that failed.
+async fn publish_progress(out: &Endpoints, messages: &[ProgressMessage]) -> u64 {
+    let mut failed = 0;
+    for message in messages {
+        let data = serde_json::to_string(message).unwrap_or_default();
+        if out.progress.async_publish(StringMsg { data }).await.is_err() {
+            failed += 1;
+        }
+    }
+    failed
+}
+
+/// Publish the hand's state, the arm's pose and the object's pose; the number that failed.
+async fn publish_states(
+    out: &Endpoints,
+    sim: &SimState,
+    model: &HandModel,
+    config: &PhysicsRobotConfig,
+    clock: &StationClock,
+) -> u64 {
+    let stamp = clock.now_ns();
+    let hand = JointState {
+        header: header(stamp, ""),
+        name: model.ros_dof_names().to_vec(),
+        position: sim.engine.hand_positions(),
+        velocity: sim.engine.hand_velocities(),
+        effort: vec![],
+    };
+    let mut failed = u64::from(out.hand_state.async_publish(hand).await.is_err());
+    let arm = PoseStamped {
+        header: header(stamp, &config.frame_id),
+        pose: isometry_to_pose(&sim.arm_pose),
+    };
+    failed += u64::from(out.arm_pose.async_publish(arm).await.is_err());
+    let object = config
+        .object_body
+        .as_deref()
+        .and_then(|body| sim.engine.body_pose(body));
+    if let Some(pose) = object {
+        let message = PoseStamped {
+            header: header(stamp, &config.frame_id),
+            pose: isometry_to_pose(&pose),
+        };
+        failed += u64::from(out.object_pose.async_publish(message).await.is_err());
+    }
+    failed
+}
+
+/// The hand target a `JointState` sets, from `current`; `None` when it names a joint the hand
+/// lacks, or its lengths differ, or a value is not finite.
+fn hand_target_of(model: &HandModel, current: &[f64], message: &JointState) -> Option<Vec<f64>> {
+    if message.name.len() != message.position.len() {
+        return None;
+    }
+    let mut next = current.to_vec();
+    for (name, value) in message.name.iter().zip(&message.position) {
+        let dof = station::ros_tools::dof_of_published_name(model, name, None)?;
+        if !value.is_finite() {
+            return None;
+        }
+        next[dof] = *value;
+    }
+    Some(next)
+}
