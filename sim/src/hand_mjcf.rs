@@ -22,9 +22,9 @@
 //!   and a fingertip whose rounded end sits on the tip frame (the last capsule of a chain stops
 //!   one radius short of the leaf link). The palm is a box through the wrist and the five digit
 //!   bases, aligned with the palm frame the retargeter uses, `2 · palm_radius_m` thick.
-//! - **Mass** comes from the geometry at [`HAND_DENSITY_KG_M3`]: 10–15 g per finger segment,
-//!   about 120 g of palm, in line with the 3D-printed, tendon-driven ORCA (its motors sit in
-//!   the tower, which hangs rigidly from the mount and does not move).
+//! - **Mass** comes from the geometry at [`HAND_DENSITY_KG_M3`]: 10–18 g per finger segment,
+//!   about 120 g of palm, 350 g below the wrist, in line with the 3D-printed, tendon-driven
+//!   ORCA (its motors sit in the tower, which hangs rigidly from the mount and does not move).
 //! - **Self-collision between digits, not within one.** Every digit has its own contact bit:
 //!   a digit's geoms collide with the other digits (a thumb presses on an index finger as the
 //!   real one does) and with everything of MuJoCo's default contact type (bit 0), never with
@@ -33,23 +33,30 @@
 //!   [`HandMjcf::contact_excludes`] is empty for these models; the field stays for models
 //!   whose geometry needs pair exclusions.
 //! - **Actuation.** One `<position>` actuator per degree of freedom (`kp`, force limit), its
-//!   `ctrlrange` the degree of freedom's limits; joint damping and armature (the reflected
-//!   inertia of a geared servo) set how fast a step is followed. The real servos hold a pose
-//!   against gravity with the integral term of their position loop, which a MuJoCo position
-//!   actuator lacks: every hand body is gravity-compensated (`gravcomp="1"`) through its
-//!   joints' actuators (`actuatorgravcomp`), within the same torque limit, so a pose is held
-//!   without the steady sag `m g l / kp` a pure PD servo would show. Objects keep their weight.
-//!   The joint speed limit is not expressible in MJCF: the engine rate-limits its controls with
-//!   [`HandMjcf::max_speed_rad_s`].
+//!   `ctrlrange` the degree of freedom's limits. Armature stands for the geared servo's rotor;
+//!   joint damping (`max_torque / max_speed` by default, a servo's linear torque–speed curve)
+//!   caps the speed of a saturated actuator at the real hand's. A hinge whose load needs more
+//!   damping for its servo to be critically damped (`2 √(kp · I)`, `I` its armature plus what
+//!   it moves, from the geometry and density MuJoCo uses) gets it: the wrist, carrying the
+//!   whole hand, does not overshoot, and turns at most `max_torque / damping`.
+//! - **Gravity.** The real servos hold a pose against gravity with the integral term of their
+//!   position loop, which a MuJoCo position actuator lacks: every hand body is
+//!   gravity-compensated (`gravcomp="1"`) through its joints' actuators (`actuatorgravcomp`),
+//!   within the same torque limit, so a pose is held without the steady sag `m g l / kp` of a
+//!   pure PD servo. Objects keep their weight.
+//! - **Speed.** A joint speed limit is not expressible in MJCF: the engine rate-limits its
+//!   controls with [`HandMjcf::max_speed_rad_s`].
 
-use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
+use std::f64::consts::PI;
+
+use nalgebra::{Isometry3, Matrix3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 use retarget::{Finger, FkState, HandModel, JointMotion, LinkId, PalmFrame};
 
 /// The MJCF default class of every hand element.
 pub const HAND_CLASS: &str = "pomdar_hand";
 
 /// Density of the hand's collision geometry, kg/m³: printed shells with a light infill
-/// weigh about as much as water, giving the ORCA's 10–30 g finger segments.
+/// weigh about as much as water; ORCA's finger segments come out at 10–18 g.
 pub const HAND_DENSITY_KG_M3: f64 = 1000.0;
 
 /// Contact bit of geoms with MuJoCo's default `contype`/`conaffinity` (tables, objects).
@@ -66,7 +73,8 @@ const MIN_SEGMENT_M: f64 = 1e-4;
 /// Coordinates smaller than this are written as 0 (rounding noise of the rotations).
 const ZERO_SNAP: f64 = 1e-12;
 /// Time constant of the joint limits, seconds: stiffer than MuJoCo's 0.02 s, so a joint
-/// driven into its stop at full speed passes it by under 0.01 rad (0.05 rad at the default).
+/// driven into its stop at full speed passes it by under 0.01 rad (about 0.05 rad with
+/// MuJoCo's default).
 /// MuJoCo raises it to twice the time step when the step is longer than 2.5 ms.
 const LIMIT_TIME_CONSTANT_S: f64 = 0.005;
 /// Grey of the hand's geoms (the station's marker colour, opaque).
@@ -77,7 +85,8 @@ const HAND_RGBA: &str = "0.75 0.75 0.78 1";
 pub struct HandMjcfOptions {
     /// Stiffness of the position actuators, N·m/rad.
     pub position_gain: f64,
-    /// Viscous damping of every hinge, N·m·s/rad.
+    /// Viscous damping of every hinge, N·m·s/rad; raised where a hinge's load needs more for
+    /// its servo to be critically damped (the wrist).
     pub joint_damping: f64,
     /// Reflected rotor inertia added to every hinge, kg·m².
     pub armature: f64,
@@ -98,17 +107,17 @@ pub struct HandMjcfOptions {
 impl Default for HandMjcfOptions {
     fn default() -> Self {
         HandMjcfOptions {
-            // A ramp at the speed limit is followed `joint_damping / position_gain` = 20 ms
-            // behind; a 1 rad step reaches 90 % in about 0.08 s and settles (2 %) in 0.1 s.
-            position_gain: 4.0,
-            // Near critical damping of a finger with the armature below (damping ratio ≈ 0.9,
-            // under 1 % overshoot; the heavier wrist about 5 %), while a saturated actuator
-            // still turns at max_torque / damping = 12.5 rad/s, above the engine's rate limit.
-            joint_damping: 0.08,
-            // A small servo's rotor (~5e-9 kg·m²) through its ~1:288 gearbox, as seen at the
+            // A command ramping at the speed limit is followed `joint_damping / position_gain`
+            // = 20 ms behind; a 1 rad step reaches 90 % in 0.1 s and settles (2 %) in 0.12 s.
+            position_gain: 5.0,
+            // max_torque_nm / max_speed_rad_s: a saturated actuator turns no faster than the
+            // real servo, even on an unlimited step; with the armature below, about critical
+            // for a finger (the hinges carrying more are raised to critical, the wrist ×2.3).
+            joint_damping: 0.1,
+            // A small servo's rotor (~6e-9 kg·m²) through its ~1:288 gearbox, as seen at the
             // joint through tendon spools of about 1:1; dwarfs a finger segment's own
             // ~5e-5 kg·m².
-            armature: 4e-4,
+            armature: 5e-4,
             // The order of a small Dynamixel servo's stall torque (~1 N·m) at ~1:1 spools:
             // 10–15 N at a fingertip.
             max_torque_nm: 1.0,
@@ -232,6 +241,36 @@ enum Shape {
         rotation: UnitQuaternion<f64>,
         half_size: Vector3<f64>,
     },
+}
+
+impl Shape {
+    /// Mass at [`HAND_DENSITY_KG_M3`] (as MuJoCo computes it), centre of mass in the link
+    /// frame, and a bound on its largest central moment of inertia, kg·m².
+    fn mass_properties(&self) -> (f64, Vector3<f64>, f64) {
+        let ball = |r: f64| 4.0 / 3.0 * PI * r.powi(3);
+        match self {
+            Shape::Sphere { center, radius } => {
+                let mass = HAND_DENSITY_KG_M3 * ball(*radius);
+                (mass, *center, 0.4 * mass * radius.powi(2))
+            }
+            Shape::Capsule { from, to, radius } => {
+                let length = (to - from).norm();
+                let volume = PI * radius.powi(2) * length + ball(*radius);
+                let mass = HAND_DENSITY_KG_M3 * volume;
+                let span = length + 2.0 * radius;
+                let own = mass * (span.powi(2) / 12.0 + radius.powi(2) / 4.0);
+                (mass, (from + to) / 2.0, own)
+            }
+            Shape::Box {
+                center, half_size, ..
+            } => {
+                let mass = HAND_DENSITY_KG_M3 * 8.0 * half_size.x * half_size.y * half_size.z;
+                let squares = half_size.component_mul(half_size);
+                let own = mass * (squares.sum() - squares.min()) / 3.0;
+                (mass, *center, own)
+            }
+        }
+    }
 }
 
 /// The model with the lookups the writer needs.
@@ -372,13 +411,43 @@ impl HandTree<'_> {
         } else {
             *limits
         };
+        let damping = self.hinge_damping(index, axis);
+        let raised = if damping > self.options.joint_damping {
+            format!(" damping=\"{}\"", num(damping))
+        } else {
+            String::new()
+        };
         Some(format!(
-            "<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{} {}\"/>",
+            "<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{} {}\"{raised}/>",
             escape(self.hinge_names[index].as_deref().unwrap_or_default()),
             vec3(axis),
             num(range.lower_rad),
             num(range.upper_rad),
         ))
+    }
+
+    /// `joint_damping`, raised to critical damping of the position servo, `2 √(kp · I)`, for
+    /// a hinge whose load `I` (its armature and everything it moves, about its axis at the
+    /// zero pose) needs more: the wrist, which carries the whole hand.
+    fn hinge_damping(&self, index: usize, axis: &Unit<Vector3<f64>>) -> f64 {
+        let child = self.model.joints()[index].child.index();
+        let pose = self.rest_poses[child];
+        let axis = pose.rotation * axis.into_inner();
+        let pivot = Point3::from(pose.translation.vector);
+        let mut inertia = self.options.armature;
+        for link in 0..self.model.link_count() {
+            if !self.ancestors_or_self(link).contains(&child) {
+                continue;
+            }
+            for shape in self.link_shapes(link) {
+                let (mass, centre, own) = shape.mass_properties();
+                let offset = self.rest_poses[link] * Point3::from(centre) - pivot;
+                let radial = offset - axis * offset.dot(&axis);
+                inertia += mass * radial.norm_squared() + own;
+            }
+        }
+        let critical = 2.0 * (self.options.position_gain * inertia).sqrt();
+        self.options.joint_damping.max(critical)
     }
 
     /// A knuckle at a hinged link's origin; the palm box on the palm; elsewhere a capsule
@@ -423,7 +492,7 @@ impl HandTree<'_> {
     }
 
     /// A box in the palm frame's axes spanning the wrist and the digit bases across and
-    /// along the palm, `2 · palm_radius_m` thick about their mean height.
+    /// along the palm, `2 · palm_radius_m` thick, centred between their lowest and highest.
     fn palm_box(&self) -> Shape {
         let frames = self.model.frames();
         let frame = self.palm_frame();
@@ -437,8 +506,10 @@ impl HandTree<'_> {
         let upper = points
             .iter()
             .fold(Vector3::repeat(f64::NEG_INFINITY), |a, p| a.sup(p));
-        let mut half_size = (upper - lower) / 2.0;
-        half_size.z = self.options.palm_radius_m;
+        // At least as wide and long as it is thick (landmarks in a line leave an edge flat).
+        let radius = self.options.palm_radius_m;
+        let mut half_size = ((upper - lower) / 2.0).map(|v| v.max(radius));
+        half_size.z = radius;
         let center_in_palm = (upper + lower) / 2.0;
         let palm = self.rest.pose(frames.palm);
         let center =
@@ -709,7 +780,7 @@ fn escape(text: &str) -> String {
 mod tests {
     use std::collections::{HashMap, HashSet};
 
-    use nalgebra::{Quaternion, Unit};
+    use nalgebra::Quaternion;
     use retarget::ModelSpec;
     use retarget::model_spec::CouplingSpec;
     use roxmltree::{Document, Node};
@@ -971,6 +1042,33 @@ mod tests {
         assert_eq!(group("pinky_fingertip"), Group::Digit(4));
         assert_eq!(group("palm"), Group::Palm);
         assert_eq!(group("tower"), Group::Palm);
+    }
+
+    #[test]
+    fn hinges_carrying_more_are_damped_more() {
+        let model = HandModel::orca_v1_right();
+        let options = HandMjcfOptions::default();
+        let text = scene(&hand_mjcf(&model, &options));
+        let doc = Document::parse(&text).unwrap();
+        let damping = |name: &str| {
+            let hinge = named(&elements(&doc, "joint"), name)[0];
+            hinge
+                .attribute("damping")
+                .map_or(options.joint_damping, |_| floats(hinge, "damping")[0])
+        };
+        // The wrist moves the whole hand (MuJoCo: 2.5e-3 kg·m² with the armature at qpos0).
+        let wrist = damping("right_wrist");
+        let critical = 2.0 * (options.position_gain * 2.5e-3_f64).sqrt();
+        assert!(
+            (wrist / critical - 1.0).abs() < 0.05,
+            "{wrist} vs {critical}"
+        );
+        // A fingertip's last joint moves almost nothing but its armature.
+        let pip = damping("right_index_pip");
+        assert!(
+            pip >= options.joint_damping && pip < 1.05 * options.joint_damping,
+            "{pip}"
+        );
     }
 
     #[test]
