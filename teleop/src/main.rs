@@ -58,6 +58,20 @@ enum Command {
     MockHand(command::mock_hand::MockHandArgs),
     /// A mock Franka: follows pose commands at limited speed, publishes its pose.
     MockFranka(command::mock_franka::MockFrankaArgs),
+    /// The simulated robot in a MuJoCo task scene (needs the `physics` build).
+    ///
+    /// The ORCA hand and the arm's mount in the task's scene, stepped in real time, on the real
+    /// robot's topics: follows hand and arm targets, publishes the hand's measured joint states,
+    /// the arm's pose, the task object's pose and the task's progress as the physics measures
+    /// it (/pomdar/sim/progress, JSON). The scene is the project's scaffold for --task or a
+    /// lab's own MJCF (--scene). Set-up: `bash sim/setup_mujoco.sh`, then build with
+    /// `--features physics` (README, "The simulated benchmark").
+    ///
+    /// Example:
+    ///   pomdar sim --task G4 --config launch_configs/station/eth_lab.toml
+    ///   pomdar sim --task G4 --write-scene g4.xml
+    #[command(verbatim_doc_comment)]
+    Sim(command::sim::SimArgs),
     /// Re-simulate a recorded log's glove input through the station, deterministically.
     ///
     /// The station's processing is fed from the log with the log's clock, in process; the
@@ -455,6 +469,7 @@ fn main() -> ExitCode {
             command::common::run_async(command::hand_check::hand_check(args))
         }
         Command::MockHand(args) => command::common::run_async(command::mock_hand::mock_hand(args)),
+        Command::Sim(args) => command::common::run_async(command::sim::sim(args)),
         Command::MockFranka(args) => {
             command::common::run_async(command::mock_franka::mock_franka(args))
         }

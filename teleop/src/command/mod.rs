@@ -19,6 +19,7 @@ pub mod recover;
 pub mod replay;
 pub mod resim;
 pub mod score;
+pub mod sim;
 pub mod sim_glove;
 pub mod station;
 pub mod study;

@@ -218,6 +218,16 @@ impl PhysicsEngine {
         Ok(())
     }
 
+    /// The name of the body joint `name` moves, or `None`.
+    pub fn body_of_joint(&self, name: &str) -> Option<String> {
+        let model = self.data.model();
+        let joint = model.name_to_id(MjtObjBase::mjOBJ_JOINT, name)?;
+        let body = usize::try_from(model.jnt_bodyid()[joint]).ok()?;
+        model
+            .id_to_name(MjtObjBase::mjOBJ_BODY, body)
+            .map(str::to_string)
+    }
+
     /// Body `name`'s pose in the world, or `None`.
     pub fn body_pose(&self, name: &str) -> Option<Isometry3<f64>> {
         let id = self.data.model().name_to_id(MjtObjBase::mjOBJ_BODY, name)?;

@@ -15,12 +15,12 @@ use std::time::{Duration, Instant};
 
 use futures::StreamExt;
 use msgs::{JointState, PoseStamped, StringMsg};
-use ros2_client::Publisher;
 use nalgebra::Isometry3;
 use retarget::HandModel;
+use ros2_client::Publisher;
+use scoring::CorrectnessKind;
 use serde::Serialize;
 use simulation::progress::{PhysicsMapping, ProgressEvent, ProgressTracker};
-use scoring::CorrectnessKind;
 use tokio::sync::{mpsc, watch};
 
 use super::engine::PhysicsEngine;
@@ -208,19 +208,19 @@ impl SimState {
         self.reset_sim_time_s = self.engine.time_s();
         self.tracker = match &config.progress {
             Some((kind, mapping)) => {
-                let initial = self.engine.reading(&mapping.joint).ok_or_else(|| {
-                    PhysicsError::Missing {
-                        origin: "scene".into(),
-                        kind: "progress joint",
-                        names: vec![mapping.joint.clone()],
+                let initial =
+                    self.engine
+                        .reading(&mapping.joint)
+                        .ok_or_else(|| PhysicsError::Missing {
+                            origin: "scene".into(),
+                            kind: "progress joint",
+                            names: vec![mapping.joint.clone()],
+                        })?;
+                Some(ProgressTracker::new(kind, mapping, initial).map_err(|e| {
+                    PhysicsError::Progress {
+                        message: e.to_string(),
                     }
-                })?;
-                Some(
-                    ProgressTracker::new(kind, mapping, initial)
-                        .map_err(|e| PhysicsError::Progress {
-                            message: e.to_string(),
-                        })?,
-                )
+                })?)
             }
             None => None,
         };
@@ -248,7 +248,11 @@ impl SimState {
         }
     }
 
-    fn progress_message(&self, event: &ProgressEvent, config: &PhysicsRobotConfig) -> ProgressMessage {
+    fn progress_message(
+        &self,
+        event: &ProgressEvent,
+        config: &PhysicsRobotConfig,
+    ) -> ProgressMessage {
         let unit = config
             .progress
             .as_ref()
@@ -308,7 +312,9 @@ pub async fn run_physics_robot(
     let mut sim = SimState::new(engine, &config)?;
     let mut hand_target = sim.engine.hand_positions();
     let mut ticks = tokio::time::interval(Duration::from_secs_f64(config.tick_s));
-    let publish_every = (1.0 / (config.state_rate_hz * config.tick_s)).round().max(1.0) as u64;
+    let publish_every = (1.0 / (config.state_rate_hz * config.tick_s))
+        .round()
+        .max(1.0) as u64;
     let mut last_tick = Instant::now();
     let mut tick_count = 0u64;
     loop {
@@ -379,7 +385,12 @@ async fn publish_progress(out: &Endpoints, messages: &[ProgressMessage]) -> u64 
     let mut failed = 0;
     for message in messages {
         let data = serde_json::to_string(message).unwrap_or_default();
-        if out.progress.async_publish(StringMsg { data }).await.is_err() {
+        if out
+            .progress
+            .async_publish(StringMsg { data })
+            .await
+            .is_err()
+        {
             failed += 1;
         }
     }

@@ -1,0 +1,175 @@
+//! `pomdar sim`: the simulated robot — the hand and the arm's mount in a MuJoCo task scene,
+//! on the real robot's topics — for a station (or `pomdar trial`) running elsewhere. Built
+//! with the `physics` feature only; without it the command says how to get it.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::common::NodeArgs;
+
+/// `pomdar sim` options.
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    /// The task (catalog id, e.g. G4): its scene, its arm constraint and how its progress counts.
+    #[arg(long, default_value = "G4")]
+    pub task: String,
+    /// A lab's own task MJCF instead of the project's scaffold: its hand's joints and
+    /// actuators named as the URDF's degrees of freedom, the hand under a mocap body named
+    /// `pomdar_arm_mount`; the progress joint is the catalog entry's `physics.joint`.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+    /// Task catalog (default: the built-in POMDAR catalog).
+    #[arg(long, value_name = "FILE")]
+    pub catalog: Option<PathBuf>,
+    /// Station configuration whose topics, arm start pose and network the simulated robot uses
+    /// (default: the built-in station defaults).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Write the project's scene for --task as MJCF to FILE and exit (open it in MuJoCo's
+    /// viewer: `python -m mujoco.viewer --mjcf FILE`).
+    #[arg(long, value_name = "FILE")]
+    pub write_scene: Option<PathBuf>,
+    /// Stop after this many seconds (default: run until Ctrl-C).
+    #[arg(long, value_name = "SECONDS")]
+    pub duration: Option<f64>,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar sim`.
+#[cfg(not(feature = "physics"))]
+pub async fn sim(_args: SimArgs) -> anyhow::Result<()> {
+    anyhow::bail!(
+        "this pomdar was built without the simulator: run `bash sim/setup_mujoco.sh` once, then \
+         build with `cargo build --release --features physics` (README, \"The simulated benchmark\")"
+    )
+}
+
+/// `pomdar sim`.
+#[cfg(feature = "physics")]
+pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
+    use std::sync::{Arc, Mutex};
+
+    use anyhow::Context as _;
+
+    use super::common::ctrl_c_shutdown;
+    use crate::clock::StationClock;
+    use crate::physics::robot_node::{PhysicsRobotReport, PhysicsRobotRun, run_physics_robot};
+    use crate::physics::setup::{SceneSource, load_task, project_scene_xml};
+    use crate::score::score_inputs::ScoringInputs;
+    use crate::station_setup::load_station_config;
+
+    let inputs = ScoringInputs::load(args.catalog.as_deref(), None, None)?;
+    let task = inputs.catalog.get(&args.task).cloned().with_context(|| {
+        format!(
+            "no task {} in the catalog (known: {})",
+            args.task,
+            inputs.catalog.ids()
+        )
+    })?;
+    let station = load_station_config(args.config.as_deref())?;
+    let arm_start = station.arm.start_pose_isometry()?;
+    let model = retarget::HandModel::orca_v1_right();
+    if let Some(path) = &args.write_scene {
+        let (xml, _) = project_scene_xml(&task, &model, arm_start)?;
+        crate::atomic_file::write_atomically(path, xml.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote the {} scene to {}", task.id, path.display());
+        return Ok(());
+    }
+    let source = match &args.scene {
+        Some(path) => SceneSource::LabFile(path),
+        None => SceneSource::Project,
+    };
+    let loaded = load_task(&task, &model, source, arm_start)?;
+    let config = robot_config(&station, &loaded, arm_start);
+    let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
+    let (_control, control_rx) = tokio::sync::mpsc::channel(4);
+    let shutdown = match args.duration {
+        Some(s) => timed_shutdown(s),
+        None => ctrl_c_shutdown(),
+    };
+    eprintln!(
+        "pomdar sim: task {} ({}), {} scene; hand targets on {}, arm targets on {}, progress on {}",
+        task.id,
+        task.name,
+        args.scene
+            .as_ref()
+            .map_or("the project's".to_string(), |p| p.display().to_string()),
+        config.hand_targets_topic,
+        config.arm_target_topic,
+        config.progress_topic
+    );
+    let run = PhysicsRobotRun {
+        model,
+        engine: loaded.engine,
+        network: args.node.network(&station.network),
+        clock: StationClock::new(),
+        report: report.clone(),
+        control: control_rx,
+        shutdown,
+        options: Default::default(),
+    };
+    run_physics_robot(config, run).await?;
+    if let Ok(r) = report.lock() {
+        eprintln!("{}", summary_line(&r));
+    }
+    Ok(())
+}
+
+/// The simulated robot on `station`'s topics for `loaded`.
+#[cfg(feature = "physics")]
+pub(crate) fn robot_config(
+    station: &station::StationConfig,
+    loaded: &crate::physics::setup::SimulatedTask,
+    arm_start: nalgebra::Isometry3<f64>,
+) -> crate::physics::robot_node::PhysicsRobotConfig {
+    use crate::physics::robot_node::PhysicsRobotConfig;
+    PhysicsRobotConfig {
+        hand_targets_topic: station.output.joint_targets_topic.clone(),
+        hand_state_topic: station.input.hand_state_topic.clone(),
+        arm_target_topic: station.output.arm_target_topic.clone(),
+        arm_feedback_topic: station.input.arm_feedback_topic.clone(),
+        frame_id: station.output.arm_frame_id.clone(),
+        progress: Some((loaded.task.correctness, loaded.progress.clone())),
+        object_body: loaded.object_body.clone(),
+        ..PhysicsRobotConfig::new(&loaded.task.id, arm_start)
+    }
+}
+
+/// The run in one line: time simulated, real-time factor, targets, progress.
+#[cfg(feature = "physics")]
+fn summary_line(r: &crate::physics::robot_node::PhysicsRobotReport) -> String {
+    let factor = if r.step_wall_s > 0.0 {
+        r.sim_time_s / r.step_wall_s
+    } else {
+        0.0
+    };
+    format!(
+        "simulated {:.1} s ({factor:.1}× real time while stepping, {:.2} s behind); {} hand and {} arm targets; progress {} ({} events)",
+        r.sim_time_s,
+        r.behind_s,
+        r.hand_targets,
+        r.arm_targets,
+        r.progress_total,
+        r.events.len()
+    )
+}
+
+/// A shutdown signal that turns true after `seconds` or on Ctrl-C.
+#[cfg(feature = "physics")]
+fn timed_shutdown(seconds: f64) -> tokio::sync::watch::Receiver<bool> {
+    let (tx, rx) = tokio::sync::watch::channel(false);
+    let mut ctrl_c = super::common::ctrl_c_shutdown();
+    tokio::spawn(async move {
+        let wait = std::time::Duration::from_secs_f64(seconds.max(0.0));
+        tokio::select! {
+            _ = tokio::time::sleep(wait) => {}
+            _ = ctrl_c.changed() => {}
+        }
+        tx.send(true).ok();
+    });
+    rx
+}

@@ -1,0 +1,116 @@
+//! One place a simulated task is loaded: the project's own scene for a catalog task (the hand
+//! from the station's model, the scaffold and its progress mapping from `simulation`), or a
+//! lab's own MJCF by path with the progress joint the catalog maps for that task.
+
+use std::path::Path;
+
+use nalgebra::Isometry3;
+use retarget::HandModel;
+use scoring::TaskSpec;
+use simulation::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mjcf};
+use simulation::progress::PhysicsMapping;
+use simulation::scene::{SceneOptions, task_scene};
+
+use super::engine::{HandBinding, PhysicsEngine};
+use super::error::PhysicsError;
+
+/// The mocap body carrying the hand in every scene (the project's, and a lab's file must name
+/// its own the same).
+pub const MOUNT_BODY: &str = "pomdar_arm_mount";
+
+/// A task ready to simulate.
+pub struct SimulatedTask {
+    /// The loaded, bound scene.
+    pub engine: PhysicsEngine,
+    /// The catalog's entry.
+    pub task: TaskSpec,
+    /// Where its progress is read.
+    pub progress: PhysicsMapping,
+    /// The body whose pose is published as the task object's, if any.
+    pub object_body: Option<String>,
+    /// The scene's MJCF text (the project's scenes only; a lab's file is read by MuJoCo).
+    pub scene_xml: Option<String>,
+}
+
+/// Where the scene comes from.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneSource<'a> {
+    /// The project's scaffold for the task.
+    Project,
+    /// A lab's own MJCF file (its hand's joints and actuators named as the URDF's degrees of
+    /// freedom, its hand under a mocap body named [`MOUNT_BODY`]).
+    LabFile(&'a Path),
+}
+
+/// The project's scene of `task` written as MJCF (for `pomdar sim --write-scene`).
+pub fn project_scene_xml(
+    task: &TaskSpec,
+    model: &HandModel,
+    arm_start: Isometry3<f64>,
+) -> Result<(String, PhysicsMapping), PhysicsError> {
+    let hand = hand_mjcf(model, &HandMjcfOptions::default());
+    let options = SceneOptions {
+        arm_start,
+        ..SceneOptions::default()
+    };
+    let scene = task_scene(task, &hand, &options).map_err(|e| PhysicsError::Load {
+        origin: format!("the project's scene for {}", task.id),
+        message: e.to_string(),
+    })?;
+    Ok((scene.xml, scene.progress))
+}
+
+/// Load `task` from `source` with the hand `model`, the arm's mount at `arm_start`.
+pub fn load_task(
+    task: &TaskSpec,
+    model: &HandModel,
+    source: SceneSource<'_>,
+    arm_start: Isometry3<f64>,
+) -> Result<SimulatedTask, PhysicsError> {
+    let hand = hand_mjcf(model, &HandMjcfOptions::default());
+    let binding = hand_binding(&hand);
+    let (engine, progress, scene_xml) = match source {
+        SceneSource::Project => {
+            let (xml, progress) = project_scene_xml(task, model, arm_start)?;
+            let origin = format!("the project's scene for {}", task.id);
+            let engine = PhysicsEngine::from_xml_str(&xml, &origin, &binding)?;
+            (engine, progress, Some(xml))
+        }
+        SceneSource::LabFile(path) => {
+            let progress = task.physics.clone().ok_or_else(|| PhysicsError::Progress {
+                message: format!(
+                    "task {} has no physics mapping in the catalog: add `physics = {{ joint = \"…\" }}` to its entry to read its progress from {}",
+                    task.id,
+                    path.display()
+                ),
+            })?;
+            let engine = PhysicsEngine::from_file(path, &binding)?;
+            (engine, progress, None)
+        }
+    };
+    if engine.reading(&progress.joint).is_none() {
+        return Err(PhysicsError::Missing {
+            origin: task.id.clone(),
+            kind: "progress joint",
+            names: vec![progress.joint.clone()],
+        });
+    }
+    let object_body = engine.body_of_joint(&progress.joint);
+    Ok(SimulatedTask {
+        engine,
+        task: task.clone(),
+        progress,
+        object_body,
+        scene_xml,
+    })
+}
+
+/// How the engine finds the hand of a scene written with `hand`'s names.
+pub fn hand_binding(hand: &HandMjcf) -> HandBinding {
+    HandBinding {
+        dof_joints: hand.dof_joints.clone(),
+        dof_actuators: hand.dof_actuators.clone(),
+        mount_body: MOUNT_BODY.to_string(),
+        max_speed_rad_s: hand.max_speed_rad_s,
+    }
+}
