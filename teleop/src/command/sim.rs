@@ -109,6 +109,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         clock: StationClock::new(),
         report: report.clone(),
         control: control_rx,
+        events: None,
         shutdown,
         options: Default::default(),
     };

@@ -19,7 +19,6 @@ use nalgebra::Isometry3;
 use retarget::HandModel;
 use ros2_client::Publisher;
 use scoring::CorrectnessKind;
-use serde::Serialize;
 use simulation::progress::{PhysicsMapping, ProgressEvent, ProgressTracker};
 use tokio::sync::{mpsc, watch};
 
@@ -29,6 +28,7 @@ use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::mock_franka::slew_pose;
+pub use crate::sim::progress_message::ProgressMessage;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
 /// Longest physics advance in one tick, seconds: beyond it the simulation falls behind rather
@@ -101,24 +101,6 @@ pub enum SimControl {
     Reset,
 }
 
-/// One progress event as published.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ProgressMessage {
-    /// The task.
-    pub task: String,
-    /// `progress` (a value in the task's unit) or `drop`.
-    pub event: &'static str,
-    /// The value (progress only): ±1 notch or curve, degrees, millimetres, or a grasp level.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub value: Option<f64>,
-    /// The unit of values and totals.
-    pub unit: &'static str,
-    /// The progress since the last reset.
-    pub total: f64,
-    /// Simulated time since the last reset, seconds.
-    pub sim_time_s: f64,
-}
-
 /// What the simulated robot saw and did (updated live).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PhysicsRobotReport {
@@ -163,6 +145,8 @@ pub struct PhysicsRobotRun {
     pub report: Arc<Mutex<PhysicsRobotReport>>,
     /// Resets.
     pub control: mpsc::Receiver<SimControl>,
+    /// A copy of every progress event, for a console in the same process.
+    pub events: Option<mpsc::UnboundedSender<ProgressMessage>>,
     /// Stop.
     pub shutdown: watch::Receiver<bool>,
     /// Other options.
@@ -263,9 +247,9 @@ impl SimState {
         };
         ProgressMessage {
             task: config.task_id.clone(),
-            event: name,
+            event: name.to_string(),
             value,
-            unit,
+            unit: unit.to_string(),
             total: self.tracker.as_ref().map_or(0.0, ProgressTracker::total),
             sim_time_s: self.engine.time_s() - self.reset_sim_time_s,
         }
@@ -292,6 +276,7 @@ pub async fn run_physics_robot(
         clock,
         report,
         mut control,
+        events: events_tx,
         mut shutdown,
         options,
     } = run;
@@ -359,6 +344,9 @@ pub async fn run_physics_robot(
                     r.behind_s += elapsed - dt;
                     if let Some(tracker) = &sim.tracker { r.progress_total = tracker.total(); }
                     r.events.extend(messages.iter().cloned());
+                }
+                if let Some(tx) = &events_tx {
+                    for message in &messages { tx.send(message.clone()).ok(); }
                 }
                 let failed = publish_progress(&out, &messages).await
                     + if tick_count % publish_every == 0 {

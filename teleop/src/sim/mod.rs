@@ -6,6 +6,7 @@ mod error;
 pub mod mock_franka;
 pub mod mock_hand;
 pub mod mock_robot;
+pub mod progress_message;
 pub use crate::samples;
 pub mod sim_glove_node;
 
