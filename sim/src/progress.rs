@@ -52,7 +52,8 @@ use ratchet::Ratchet;
 pub enum Reading {
     /// A slide's position (m) or a hinge's angle (rad).
     Joint(f64),
-    /// A free object's body origin in the world frame (m) and its linear speed (m/s).
+    /// A free object's body origin in the world frame (m) and its linear speed (m/s): in
+    /// MuJoCo the body's `xpos` and the norm of its free joint's `qvel[0..3]`.
     Body {
         /// The body origin's position in the world frame, m.
         position_m: [f64; 3],

@@ -6,9 +6,10 @@ use super::{Direction, ProgressEvent};
 const DEG_PER_RAD: f64 = 180.0 / std::f64::consts::PI;
 /// Millimetres per metre.
 const MM_PER_M: f64 = 1000.0;
-/// Slack on whole steps so that a float just under a whole unit (359.999999999 for a full
-/// turn read back in radians) still counts: a billionth of a step.
-const STEP_SLACK: f64 = 1e-9;
+/// Slack on whole steps so that a value just under a whole unit (359.99999999° for a full
+/// turn read back in radians, or printed with 9 decimals) still counts: a millionth of a
+/// degree or millimetre, far below any physical meaning.
+const STEP_SLACK: f64 = 1e-6;
 
 /// A ratchet on the best forward progress; emits whole units (1° or 1 mm) as they are due.
 #[derive(Debug, Clone)]

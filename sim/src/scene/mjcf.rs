@@ -17,6 +17,22 @@ pub(super) fn nums(values: &[f64]) -> String {
     values.iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")
 }
 
+/// `text` with every non-empty line indented by `spaces` more, without a trailing newline.
+pub(super) fn indent(text: &str, spaces: usize) -> String {
+    let pad = " ".repeat(spaces);
+    text.trim_end()
+        .lines()
+        .map(|line| {
+            if line.trim().is_empty() {
+                String::new()
+            } else {
+                format!("{pad}{line}")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// `quat="w x y z"` of a rotation.
 pub(super) fn quat(rotation: &UnitQuaternion<f64>) -> String {
     let q = rotation.quaternion();
@@ -53,5 +69,13 @@ mod tests {
         assert_eq!(num(2.0), "2");
         assert_eq!(nums(&[0.5, -0.25, 0.0]), "0.5 -0.25 0");
         assert_eq!(yaw(0.0), "1 0 0 0");
+    }
+
+    #[test]
+    fn indenting_keeps_lines_and_drops_the_trailing_newline() {
+        assert_eq!(
+            indent("<a>\n  <b/>\n\n</a>\n", 2),
+            "  <a>\n    <b/>\n\n  </a>"
+        );
     }
 }

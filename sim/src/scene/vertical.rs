@@ -5,7 +5,7 @@
 //! masses, the plate order and the key design are guesses): the handle slides up a vertical
 //! axis (`handle_slide`) and turns about it (`handle_twist`); at its foot a flat key bar.
 //! Each plate is split by a slot through the axis, turned by its notch angle; the key passes
-//! a plate only when turned within about ±10° of the slot, and otherwise rests on it. The
+//! a plate only when turned within about ±8° of the slot, and otherwise rests on it. The
 //! operator lifts the handle and twists it to each notch in turn: progress is the number of
 //! plates the key has cleared.
 
@@ -23,18 +23,21 @@ const PLATE_Z: [f64; 6] = [0.04, 0.07, 0.10, 0.13, 0.16, 0.19];
 /// The plates' slot angles about the vertical, bottom to top, degrees (order a guess).
 const NOTCH_DEG: [f64; 6] = [15.0, -15.0, 30.0, -30.0, 45.0, -45.0];
 /// A plate's half thickness, m.
-const PLATE_HALF_THICKNESS: f64 = 0.003;
+const PLATE_HALF_THICKNESS: f64 = 0.004;
 /// Half the slot's width, m.
-const SLOT_HALF_WIDTH: f64 = 0.005;
+const SLOT_HALF_WIDTH: f64 = 0.006;
 /// How far a plate reaches from the axis, m.
-const PLATE_REACH: f64 = 0.03;
-/// The key bar's half extents (along the bar, across it, up), m.
-const KEY_HALF: [f64; 3] = [0.014, 0.0025, 0.003];
+const PLATE_REACH: f64 = 0.035;
+/// The key bar's half extents (along the bar, across it, up), m. Long, so that a key pressed
+/// hard against a plate 30° off its slot overlaps the plate by ~9 mm sideways: MuJoCo pushes
+/// a deep box–box overlap out along its shallowest axis, and a short key could be squeezed
+/// sideways into the slot.
+const KEY_HALF: [f64; 3] = [0.025, 0.0025, 0.004];
 /// The key's centre height with the handle down (the handle body's origin), m.
 const KEY_Z: f64 = 0.022;
-/// The shaft's radius, m (inside the slot with 1.5 mm to spare).
+/// The shaft's radius, m (inside the slot with 2.5 mm to spare).
 const SHAFT_RADIUS: f64 = 0.0035;
-/// The grip's lowest point above the key with the handle down, m: 1 cm over the top plate.
+/// The grip's lowest point above the key with the handle down, m: 9 mm over the top plate.
 const GRIP_BASE: f64 = 0.181;
 /// The slide's travel, m.
 const TRAVEL: f64 = 0.185;
@@ -88,7 +91,7 @@ fn tower_geoms() -> String {
     );
     let _ = writeln!(
         geoms,
-        "      <geom name=\"tower_column\" class=\"pomdar_fixture\" type=\"box\" size=\"0.008 0.008 {}\" pos=\"0 0.042 {}\"/>",
+        "      <geom name=\"tower_column\" class=\"pomdar_fixture\" type=\"box\" size=\"0.008 0.008 {}\" pos=\"0 0.047 {}\"/>",
         num(top / 2.0),
         num(top / 2.0)
     );

@@ -3,20 +3,20 @@
 
 use std::fmt::Write as _;
 
-use super::mjcf::{num, pose_attributes};
+use super::mjcf::{indent, num, pose_attributes};
 use super::{HAND_MOUNT_BODY, MOUNT_BODY, SceneOptions};
 use crate::hand_mjcf::HandMjcf;
 
 /// The task scaffolds' contact and look classes (see the module docs of `scene`).
 const TASK_DEFAULTS: &str = r#"    <default class="pomdar_fixture">
-      <geom condim="3" friction="0.8 0.005 0.0001" rgba="0.62 0.64 0.68 1"/>
+      <geom condim="3" friction="0.8 0.005 0.0001" solref="0.004 1" rgba="0.62 0.64 0.68 1"/>
     </default>
     <default class="pomdar_object">
-      <geom condim="4" friction="1 0.01 0.0002" rgba="0.92 0.55 0.18 1"/>
-      <joint armature="0.0001"/>
+      <geom condim="4" friction="1 0.01 0.0002" solref="0.004 1" rgba="0.92 0.55 0.18 1"/>
+      <joint armature="0.0001" solreflimit="0.004 1"/>
     </default>
     <default class="pomdar_free_object">
-      <geom condim="6" friction="1 0.01 0.0005" rgba="0.2 0.5 0.9 1"/>
+      <geom condim="6" friction="1 0.01 0.0005" solref="0.004 1" rgba="0.2 0.5 0.9 1"/>
     </default>
     <default class="pomdar_marker">
       <geom contype="0" conaffinity="0" group="1" rgba="0.2 0.8 0.3 0.35"/>
@@ -46,7 +46,7 @@ pub(super) fn world_xml(
     let _ = writeln!(
         xml,
         "  <default>\n{}\n{TASK_DEFAULTS}  </default>",
-        hand.defaults.trim_end()
+        indent(&hand.defaults, 4)
     );
     xml.push_str("  <worldbody>\n");
     xml.push_str(TABLE_AND_LIGHT);
@@ -66,7 +66,7 @@ fn arm_mount(hand: &HandMjcf, options: &SceneOptions) -> String {
         "    <body name=\"{MOUNT_BODY}\" mocap=\"true\" {}>\n      <body name=\"{HAND_MOUNT_BODY}\" {}>\n{}\n      </body>\n    </body>\n",
         pose_attributes(&options.arm_start),
         pose_attributes(&hand.mount),
-        hand.body.trim_end()
+        indent(&hand.body, 8)
     )
 }
 
@@ -75,6 +75,6 @@ fn section(name: &str, content: &str) -> String {
     if content.trim().is_empty() {
         String::new()
     } else {
-        format!("  <{name}>\n{}\n  </{name}>\n", content.trim_end())
+        format!("  <{name}>\n{}\n  </{name}>\n", indent(content, 4))
     }
 }
