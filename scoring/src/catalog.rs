@@ -2,10 +2,19 @@
 //!
 //! The built-in catalog is `scoring/data/tasks_pomdar.toml` (the 18 POMDAR tasks, each with
 //! its provenance); a lab can load its own corrected copy with [`TaskCatalog::from_toml_str`].
+//! A task may say where its progress is read in a simulated scene ([`PhysicsMapping`],
+//! `physics_mapping.rs`), for a lab's own task files.
+
+mod physics_mapping;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::ScoringError;
+
+pub use physics_mapping::{
+    DEFAULT_LIFT_M, DEFAULT_MARK_BAND, DEFAULT_REST_SPEED_M_S, DEFAULT_REST_TIME_S, Direction,
+    GraspMapping, InvalidMapping, PhysicsMapping,
+};
 
 /// The built-in catalog's text (the 18 POMDAR tasks).
 pub const POMDAR_TASKS_TOML: &str = include_str!("../data/tasks_pomdar.toml");
@@ -119,6 +128,10 @@ pub struct TaskSpec {
     pub correctness: CorrectnessKind,
     /// Where the entry comes from, and what about it is unverified.
     pub provenance: String,
+    /// Where the task's progress is read in a simulated scene (the lab's own task file's
+    /// joints); `None` when the catalog does not say.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub physics: Option<PhysicsMapping>,
 }
 
 /// The catalog's header.
@@ -161,7 +174,7 @@ impl TaskCatalog {
     ///
     /// Checks: at least one task; IDs non-empty, made of letters, digits, `_` or `-`, and
     /// unique; names and provenance non-empty; counts ≥ 1; `full_deg` and `full_mm` finite
-    /// and > 0.
+    /// and > 0; a `physics` mapping fits the task's kind ([`PhysicsMapping::validate`]).
     pub fn from_toml_str(text: &str, origin: &str) -> Result<TaskCatalog, ScoringError> {
         let file: CatalogFile =
             toml::from_str(text).map_err(|e| ScoringError::syntax(origin, &e))?;
@@ -258,6 +271,22 @@ fn validate_task(origin: &str, i: usize, task: &TaskSpec) -> Result<(), ScoringE
             "a note saying where the entry comes from",
         ));
     }
+    validate_kind(origin, task)?;
+    match &task.physics {
+        Some(physics) => physics.validate(&task.correctness).map_err(|e| {
+            ScoringError::invalid(
+                origin,
+                key(&format!("physics.{}", e.field)),
+                e.value,
+                e.allowed,
+            )
+        }),
+        None => Ok(()),
+    }
+}
+
+fn validate_kind(origin: &str, task: &TaskSpec) -> Result<(), ScoringError> {
+    let key = |k: &str| format!("task {}: {k}", task.id);
     match task.correctness {
         CorrectnessKind::Notches { count } | CorrectnessKind::Curves { count } if count == 0 => {
             Err(ScoringError::invalid(
@@ -309,5 +338,41 @@ mod tests {
             Some(CorrectnessKind::Curves { count: 3 })
         );
         assert_eq!(catalog.get("C4").map(|t| t.arm), Some(ArmConstraint::Fixed));
+    }
+
+    #[test]
+    fn the_builtin_catalog_maps_only_the_tasks_whose_lab_joints_are_known() {
+        let catalog = TaskCatalog::builtin();
+        let mapped: Vec<&str> = catalog
+            .tasks
+            .iter()
+            .filter(|t| t.physics.is_some())
+            .map(|t| t.id.as_str())
+            .collect();
+        assert_eq!(mapped, ["V1", "V2", "V3", "C1"]);
+        let c1 = catalog.get("C1").and_then(|t| t.physics.clone());
+        assert_eq!(c1.map(|p| p.direction), Some(Direction::Decreasing));
+    }
+
+    #[test]
+    fn a_physics_mapping_that_does_not_fit_its_task_names_the_task_and_key() {
+        let text = "[catalog]\nname = \"lab\"\nprovenance = \"ours\"\n\n[[task]]\nid = \"V1\"\n\
+            name = \"Wheel\"\nconfiguration = \"vertical\"\narm = \"vertical_axis\"\n\
+            correctness = { kind = \"notches\", count = 2 }\nprovenance = \"ours\"\n\
+            physics = { joint = \"slide\", marks = [0.02, 0.01] }\n";
+        let error = TaskCatalog::from_toml_str(text, "lab.toml").unwrap_err();
+        let message = error.to_string();
+        assert!(
+            message.starts_with(
+                "lab.toml: task V1: physics.marks = [0.02, 0.01]: strictly increasing"
+            ),
+            "{message}"
+        );
+        let fixed = text.replace("[0.02, 0.01]", "[0.01, 0.02]");
+        let catalog = TaskCatalog::from_toml_str(&fixed, "lab.toml").unwrap();
+        assert_eq!(
+            catalog.tasks[0].physics.as_ref().map(|p| p.marks.clone()),
+            Some(vec![0.01, 0.02])
+        );
     }
 }

@@ -40,6 +40,7 @@
 //! | file | what |
 //! |---|---|
 //! | `catalog.rs` | [`TaskCatalog`]: the 18 tasks as data (`data/tasks_pomdar.toml`), validated |
+//! | `catalog/physics_mapping.rs` | [`PhysicsMapping`]: where a task's progress is read in a simulated scene |
 //! | `rules.rs` | [`ScoringRules`]: weights, time limits, unfinished trials |
 //! | `baseline.rs` | [`BaselineTable`] and [`compute_baseline`] from human trials |
 //! | `baseline_report.rs` | [`baseline_study`]: the study per participant × task, rendered |
@@ -84,7 +85,8 @@ pub use baseline_report::{
 };
 pub use catalog::{
     ArmConstraint, BUILTIN_CATALOG_ORIGIN, CatalogHeader, Configuration, CorrectnessKind,
-    POMDAR_TASKS_TOML, TaskCatalog, TaskSpec,
+    DEFAULT_LIFT_M, DEFAULT_MARK_BAND, DEFAULT_REST_SPEED_M_S, DEFAULT_REST_TIME_S, Direction,
+    GraspMapping, InvalidMapping, POMDAR_TASKS_TOML, PhysicsMapping, TaskCatalog, TaskSpec,
 };
 pub use correctness::{Correctness, GRASP_LEVELS, correctness};
 pub use error::ScoringError;

@@ -1,0 +1,138 @@
+//! G1–G6: a free object to lift and set down in a target region.
+//!
+//! From the paper: levels 0 not lifted, 0.5 lifted then dropped, 1 relocated; the objects
+//! wheel, sphere, disk and three cylinders; the arm free. The lab's README says the objects
+//! are the V handles, the C base plate and clutch rotor and the V tower reused. This
+//! project's model (sizes, masses, supports and the target's place are guesses): the object
+//! starts at (0.5, −0.1) on the table or on a small support that leaves room for the fingers
+//! under it (wheel and disk on a pedestal, the thin cylinder across a two-block rack); the
+//! target is a 12 × 12 cm region at (0.5, 0.15) drawn on the table (a non-colliding marker).
+//! It counts as relocated when the object's origin rests inside the region no more than 1 cm
+//! above the highest it rests stably on the table (a cylinder standing or lying, the wheel
+//! on its face or edge, the disk and the thin cylinder flat), so that it must be set down
+//! rather than held over the region.
+
+use scoring::{GraspMapping, PhysicsMapping};
+
+use super::Scaffold;
+use super::mjcf::nums;
+
+/// Where the object starts (world x, y), m.
+const START_XY: [f64; 2] = [0.5, -0.1];
+/// The target region's centre (world x, y), m.
+const TARGET_XY: [f64; 2] = [0.5, 0.15];
+/// The target region's half width, m.
+const TARGET_HALF: f64 = 0.06;
+/// How far above its highest stable rest on the table the origin may rest and count, m.
+const TARGET_SLACK_Z: f64 = 0.01;
+
+/// The grasp tasks' objects.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Object {
+    /// G1: a wheel, 60 mm across, 16 mm thick, 30 g, flat on a pedestal.
+    Wheel,
+    /// G2: a sphere, 55 mm across, 40 g, on the table.
+    Sphere,
+    /// G3: a disk, 120 mm across, 4 mm thick, 40 g, flat on a pedestal.
+    Disk,
+    /// G4: a cylinder, 7 mm across, 120 mm long, 5 g, lying across a rack.
+    CylinderSmall,
+    /// G5: a cylinder, 28 mm across, 120 mm tall, 30 g, standing.
+    CylinderMedium,
+    /// G6: a cylinder, 60 mm across, 60 mm tall, 50 g, standing.
+    CylinderLarge,
+}
+
+/// An object's place at the start.
+struct Layout {
+    /// The geom's shape and mass attributes.
+    geom: &'static str,
+    /// The geoms it starts on (maybe none: the table).
+    support: &'static str,
+    /// Its origin's height at the start, m.
+    start_z: f64,
+    /// The highest its origin rests stably on the table, m.
+    max_rest_z: f64,
+}
+
+const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
+const RACK: &str = concat!(
+    "      <geom name=\"rack_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.006 0.015 0.01\" pos=\"0.04 0 0.01\"/>\n",
+    "      <geom name=\"rack_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.006 0.015 0.01\" pos=\"-0.04 0 0.01\"/>\n",
+);
+
+fn layout(object: Object) -> Layout {
+    match object {
+        Object::Wheel => Layout {
+            geom: r#"type="cylinder" size="0.03 0.008" mass="0.03""#,
+            support: PEDESTAL,
+            start_z: 0.038,
+            max_rest_z: 0.03,
+        },
+        Object::Sphere => Layout {
+            geom: r#"type="sphere" size="0.0275" mass="0.04""#,
+            support: "",
+            start_z: 0.0275,
+            max_rest_z: 0.0275,
+        },
+        Object::Disk => Layout {
+            geom: r#"type="cylinder" size="0.06 0.002" mass="0.04""#,
+            support: PEDESTAL,
+            start_z: 0.032,
+            max_rest_z: 0.002,
+        },
+        Object::CylinderSmall => Layout {
+            geom: r#"type="cylinder" size="0.0035 0.06" quat="0.707107 0 0.707107 0" mass="0.005""#,
+            support: RACK,
+            start_z: 0.0235,
+            max_rest_z: 0.0035,
+        },
+        Object::CylinderMedium => Layout {
+            geom: r#"type="cylinder" size="0.014 0.06" mass="0.03""#,
+            support: "",
+            start_z: 0.06,
+            max_rest_z: 0.06,
+        },
+        Object::CylinderLarge => Layout {
+            geom: r#"type="cylinder" size="0.03 0.03" mass="0.05""#,
+            support: "",
+            start_z: 0.03,
+            max_rest_z: 0.03,
+        },
+    }
+}
+
+/// The support, the free object and the target marker, with the grasp mapping.
+pub(super) fn scaffold(object: Object) -> Scaffold {
+    let layout = layout(object);
+    let mut bodies = format!(
+        "    <body name=\"object_support\" pos=\"{} 0\">\n{}",
+        nums(&START_XY),
+        layout.support
+    );
+    bodies.push_str(&format!(
+        "      <geom name=\"target_region\" class=\"pomdar_marker\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n    </body>\n",
+        nums(&[TARGET_HALF, TARGET_HALF, 0.0005]),
+        nums(&[TARGET_XY[0] - START_XY[0], TARGET_XY[1] - START_XY[1], 0.0005]),
+    ));
+    bodies.push_str(&format!(
+        "    <body name=\"object\" pos=\"{}\">\n      <freejoint name=\"object_free\"/>\n      <geom name=\"object\" class=\"pomdar_free_object\" {}/>\n    </body>\n",
+        nums(&[START_XY[0], START_XY[1], layout.start_z]),
+        layout.geom
+    ));
+    let grasp = GraspMapping::with_target(
+        [TARGET_XY[0] - TARGET_HALF, TARGET_XY[1] - TARGET_HALF, 0.0],
+        [
+            TARGET_XY[0] + TARGET_HALF,
+            TARGET_XY[1] + TARGET_HALF,
+            layout.max_rest_z + TARGET_SLACK_Z,
+        ],
+    );
+    Scaffold {
+        bodies,
+        mapping: PhysicsMapping {
+            grasp: Some(grasp),
+            ..PhysicsMapping::joint("object_free")
+        },
+    }
+}
