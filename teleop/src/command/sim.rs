@@ -69,7 +69,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
             inputs.catalog.ids()
         )
     })?;
-    let station = load_station_config(args.config.as_deref())?;
+    let station = load_station_config(args.config.as_deref(), None)?;
     let arm_start = station.arm.start_pose_isometry()?;
     let model = retarget::HandModel::orca_v1_right();
     if let Some(path) = &args.write_scene {
