@@ -21,4 +21,3 @@ pub struct ProgressMessage {
     /// Simulated time since the last reset, seconds.
     pub sim_time_s: f64,
 }
-
