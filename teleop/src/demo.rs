@@ -3,7 +3,6 @@
 //! own domain id, with a live status line and a summary.
 
 use std::collections::BTreeMap;
-use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use retarget::HandModel;
@@ -12,11 +11,11 @@ use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
+use crate::demo_robot::{DemoRobot, PhysicsOutcome, PhysicsTask, RobotReports};
 use crate::ros::NetworkConfig;
 use crate::sim::SimError;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
-use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
 use crate::sim::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
 use crate::station_node::NodeError;
 use crate::station_node::operator::StationHooks;
@@ -51,6 +50,15 @@ pub enum DemoError {
     /// The station failed.
     #[error(transparent)]
     Station(#[from] NodeError),
+    /// The simulated task cannot be loaded or its robot failed.
+    #[cfg(feature = "physics")]
+    #[error(transparent)]
+    Physics(#[from] crate::physics::error::PhysicsError),
+    /// `--physics` asked of a build without the simulator.
+    #[error(
+        "this pomdar was built without the simulator: run `bash sim/setup_mujoco.sh` once, then build with `--features physics`"
+    )]
+    NoPhysics,
     /// A node's task panicked or was cancelled.
     #[error("{task}: {source}")]
     Task {
@@ -79,6 +87,8 @@ pub struct DemoOptions {
     pub out: Option<std::path::PathBuf>,
     /// A copy of what the station sends, for the live view (`--view`).
     pub tap: Option<Tap>,
+    /// Drive the simulated robot in this task's MuJoCo scene instead of the mock robot.
+    pub physics: Option<PhysicsTask>,
 }
 
 /// The machine-readable summary (`--json`).
@@ -114,6 +124,9 @@ pub struct DemoSummary {
     pub frames_new: u64,
     /// Frames the station recognised as repeats.
     pub frames_repeated: u64,
+    /// What the physics measured (`--physics`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physics: Option<PhysicsOutcome>,
 }
 
 /// Everything a demo run produced: the summary and the mock robots' full reports.
@@ -129,13 +142,15 @@ pub struct DemoOutcome {
     pub glove: SimGloveReport,
     /// The log written, with `out`.
     pub recorded: Option<std::path::PathBuf>,
+    /// What the physics measured (`--physics`).
+    pub physics: Option<PhysicsOutcome>,
 }
 
 /// Run the demo.
 pub async fn run_demo(options: DemoOptions) -> Result<DemoOutcome, DemoError> {
     let clock = StationClock::new();
     let network = loopback_network(options.domain_id);
-    let station = demo_station_config(&options.station, &network)?;
+    let station = demo_station_config(&options.station, &network, options.physics.as_ref())?;
     let model = HandModel::orca_v1_right();
     // A bad calibration profile stops the demo before any node starts.
     if let Some(path) = &station.calibration_profile {
@@ -149,30 +164,23 @@ pub async fn run_demo(options: DemoOptions) -> Result<DemoOutcome, DemoError> {
         .await;
     let stopped = nodes.stop().await?;
     let elapsed = seconds_since(clock, start_ns);
-    let hand_report = stopped
-        .hand_report
-        .lock()
-        .map(|r| r.clone())
-        .unwrap_or_default();
-    let arm_report = stopped
-        .arm_report
-        .lock()
-        .map(|r| r.clone())
-        .unwrap_or_default();
-    let summary = demo_summary(
+    let RobotReports { hand, arm, physics } = stopped.robot;
+    let mut summary = demo_summary(
         &options,
         elapsed,
         stopped.glove.frames,
         &stopped.station,
-        &hand_report,
-        &arm_report,
+        &hand,
+        &arm,
     );
+    summary.physics = physics.clone();
     Ok(DemoOutcome {
         recorded: stopped.station.recorded.first().cloned(),
         summary,
-        hand: hand_report,
-        arm: arm_report,
+        hand,
+        arm,
         glove: stopped.glove,
+        physics,
     })
 }
 
@@ -184,16 +192,19 @@ fn loopback_network(domain_id: u16) -> NetworkConfig {
     }
 }
 
-/// The given station configuration on the demo's `network`, engaging by itself, a `Fixed` arm
-/// constraint made `Free`; validated.
+/// The given station configuration on the demo's `network`, engaging by itself, the arm
+/// constrained as the simulated task says (else a `Fixed` constraint made `Free`); validated.
 fn demo_station_config(
     configured: &StationConfig,
     network: &NetworkConfig,
+    physics: Option<&PhysicsTask>,
 ) -> Result<StationConfig, DemoError> {
     let mut station = configured.clone();
     station.network = network.clone();
     station.control.auto_engage = true;
-    if station.arm.constraint == Constraint::Fixed {
+    if let Some(physics) = physics {
+        station.arm.constraint = crate::demo_robot::station_constraint(physics.task.arm);
+    } else if station.arm.constraint == Constraint::Fixed {
         station.arm.constraint = Constraint::Free;
     }
     station.validate()?;
@@ -229,7 +240,7 @@ fn demo_recording(
 
 /// The demo's running nodes, each with the switch that stops it.
 struct DemoNodes {
-    robot: MockRobot,
+    robot: DemoRobot,
     robot_stop: watch::Sender<bool>,
     station: JoinHandle<Result<StationSummary, NodeError>>,
     station_shutdown: watch::Sender<bool>,
@@ -245,10 +256,8 @@ struct StoppedNodes {
     glove: SimGloveReport,
     /// The station's run.
     station: StationSummary,
-    /// What the mock hand saw.
-    hand_report: Arc<Mutex<MockHandReport>>,
-    /// What the mock Franka saw.
-    arm_report: Arc<Mutex<MockFrankaReport>>,
+    /// What the robot saw.
+    robot: RobotReports,
 }
 
 impl DemoNodes {
@@ -265,7 +274,13 @@ impl DemoNodes {
 
         // The robot stops after the station, so it hears every command the station sent.
         let (robot_stop, robot_stop_rx) = watch::channel(false);
-        let robot = spawn_mock_robot(station, &model, clock, &robot_stop_rx)?;
+        let robot = DemoRobot::spawn(
+            station,
+            &model,
+            clock,
+            &robot_stop_rx,
+            options.physics.as_ref(),
+        )?;
         let recording = demo_recording(options.out.as_deref(), clock)?;
         let hooks = StationHooks {
             tap: options.tap.clone(),
@@ -312,21 +327,9 @@ impl DemoNodes {
         }
     }
 
-    /// The live status line: the mock hand's joint targets in the last second and latency.
+    /// The live status line: the robot's view of the last second.
     fn print_status_line(&self, seconds: u64, clock: StationClock) {
-        if let Ok(report) = self.robot.hand_report.lock() {
-            let recent = report
-                .receive_times_ns
-                .iter()
-                .filter(|&&t| clock.now_ns() - t < 1_000_000_000)
-                .count();
-            eprintln!(
-                "[{seconds:>3} s] joint targets {recent:>4}/s  latency p50 {:>6} ms  p99 {:>6} ms  total {}",
-                fmt_ms(report.latency.percentile(0.5)),
-                fmt_ms(report.latency.percentile(0.99)),
-                report.targets
-            );
-        }
+        eprintln!("[{seconds:>3} s] {}", self.robot.status(clock));
     }
 
     /// Stops the glove first and lets its last frames arrive, then the station, then the
@@ -339,19 +342,20 @@ impl DemoNodes {
         let station = join("station task", self.station).await?;
         tokio::time::sleep(Duration::from_millis(100)).await;
         self.robot_stop.send(true).ok();
-        join("mock hand task", self.robot.hand).await?;
-        join("mock arm task", self.robot.arm).await?;
+        let robot = self.robot.finish().await?;
         Ok(StoppedNodes {
             glove,
             station,
-            hand_report: self.robot.hand_report,
-            arm_report: self.robot.arm_report,
+            robot,
         })
     }
 }
 
 /// The result of the node task `task`, its panic or cancellation a [`DemoError::Task`].
-async fn join<T, E>(task: &'static str, handle: JoinHandle<Result<T, E>>) -> Result<T, DemoError>
+pub(crate) async fn join<T, E>(
+    task: &'static str,
+    handle: JoinHandle<Result<T, E>>,
+) -> Result<T, DemoError>
 where
     DemoError: From<E>,
 {
@@ -391,9 +395,6 @@ fn demo_summary(
         frames_published: frames,
         frames_new: station.counters.frames_new,
         frames_repeated: station.counters.frames_repeated,
+        physics: None,
     }
-}
-
-fn fmt_ms(value: Option<f64>) -> String {
-    value.map_or("-".into(), |v| format!("{v:.2}"))
 }

@@ -7,7 +7,9 @@ use retarget::human_hand::MotionKind;
 
 use super::common::{MotionArg, ViewArgs};
 use crate::demo::{DemoOptions, run_demo};
+use crate::demo_robot::PhysicsTask;
 use crate::ros::default_domain_id;
+use crate::score::score_inputs::ScoringInputs;
 use crate::sim::sim_glove_node::SimGloveConfig;
 use crate::station_setup::load_station_config;
 
@@ -43,6 +45,21 @@ pub struct DemoArgs {
     /// The live view.
     #[command(flatten)]
     pub view: ViewArgs,
+    /// Drive the simulated robot in a MuJoCo scene of --task instead of the mock robot: the
+    /// physics measures the task's progress and the summary gives its correctness (needs the
+    /// `physics` build: `bash sim/setup_mujoco.sh`, then `--features physics`).
+    #[arg(long)]
+    pub physics: bool,
+    /// With --physics: the task (catalog id); its scene and its arm constraint.
+    #[arg(long, default_value = "G4", requires = "physics")]
+    pub task: String,
+    /// With --physics: a lab's own task MJCF instead of the project's scaffold (see
+    /// `pomdar sim --help`).
+    #[arg(long, value_name = "FILE", requires = "physics")]
+    pub scene: Option<PathBuf>,
+    /// With --physics: the task catalog (default: the built-in POMDAR catalog).
+    #[arg(long, value_name = "FILE", requires = "physics")]
+    pub catalog: Option<PathBuf>,
 }
 
 /// `pomdar demo`.
@@ -67,9 +84,17 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         }
         ::station::ControlMode::OnArrival => "commands on frame arrival".to_string(),
     };
+    let physics = physics_task(&args)?;
     if !args.json {
+        let robot = match &physics {
+            Some(p) => format!(
+                "simulated ORCA hand + arm in the {} scene (MuJoCo)",
+                p.task.id
+            ),
+            None => "mock ORCA hand + mock Franka".to_string(),
+        };
         eprintln!(
-            "pomdar demo: simulated glove ({:?}, {} Hz) → station → mock ORCA hand + mock Franka, loopback DDS, domain {domain_id}, {} s",
+            "pomdar demo: simulated glove ({:?}, {} Hz) → station → {robot}, loopback DDS, domain {domain_id}, {} s",
             glove.motion, glove.rate_hz, args.duration
         );
     }
@@ -85,6 +110,7 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         live: !args.json,
         out: args.out.clone(),
         tap: view.as_ref().map(|v| v.tap.clone()),
+        physics,
     })
     .await;
     if let Some(view) = view {
@@ -124,6 +150,36 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
                 .fingertip_error_mm
                 .map_or("-".into(), |v| format!("{v:.1} mm"))
         );
+        if let Some(p) = &summary.physics {
+            println!(
+                "  task {}           progress {} {}, correctness {} (measured by the physics); physics {:.1}× real time",
+                p.task,
+                p.progress,
+                p.unit,
+                p.correctness.map_or("-".into(), |c| format!("{c:.2}")),
+                p.realtime_factor
+            );
+        }
     }
     Ok(())
+}
+
+/// `--physics`: the task from the catalog, and the scene.
+fn physics_task(args: &DemoArgs) -> anyhow::Result<Option<PhysicsTask>> {
+    if !args.physics {
+        return Ok(None);
+    }
+    let inputs = ScoringInputs::load(args.catalog.as_deref(), None, None)?;
+    let task = inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
+        anyhow::anyhow!(
+            "--task {}: no such task in the catalog (known: {})",
+            args.task,
+            inputs.catalog.ids()
+        )
+    })?;
+    Ok(Some(PhysicsTask {
+        task,
+        scene: args.scene.clone(),
+        record_states: false,
+    }))
 }

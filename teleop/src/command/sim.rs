@@ -56,7 +56,9 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
 
     use super::common::ctrl_c_shutdown;
     use crate::clock::StationClock;
-    use crate::physics::robot_node::{PhysicsRobotReport, PhysicsRobotRun, run_physics_robot};
+    use crate::physics::robot_node::{
+        PhysicsRobotConfig, PhysicsRobotReport, PhysicsRobotRun, run_physics_robot,
+    };
     use crate::physics::setup::{SceneSource, load_task, project_scene_xml};
     use crate::score::score_inputs::ScoringInputs;
     use crate::station_setup::load_station_config;
@@ -84,7 +86,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         None => SceneSource::Project,
     };
     let loaded = load_task(&task, &model, source, arm_start)?;
-    let config = robot_config(&station, &loaded, arm_start);
+    let config = PhysicsRobotConfig::for_station(&station, &loaded, arm_start);
     let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
     let (_control, control_rx) = tokio::sync::mpsc::channel(4);
     let shutdown = match args.duration {
@@ -118,26 +120,6 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         eprintln!("{}", summary_line(&r));
     }
     Ok(())
-}
-
-/// The simulated robot on `station`'s topics for `loaded`.
-#[cfg(feature = "physics")]
-pub(crate) fn robot_config(
-    station: &station::StationConfig,
-    loaded: &crate::physics::setup::SimulatedTask,
-    arm_start: nalgebra::Isometry3<f64>,
-) -> crate::physics::robot_node::PhysicsRobotConfig {
-    use crate::physics::robot_node::PhysicsRobotConfig;
-    PhysicsRobotConfig {
-        hand_targets_topic: station.output.joint_targets_topic.clone(),
-        hand_state_topic: station.input.hand_state_topic.clone(),
-        arm_target_topic: station.output.arm_target_topic.clone(),
-        arm_feedback_topic: station.input.arm_feedback_topic.clone(),
-        frame_id: station.output.arm_frame_id.clone(),
-        progress: Some((loaded.task.correctness, loaded.progress.clone())),
-        object_body: loaded.object_body.clone(),
-        ..PhysicsRobotConfig::new(&loaded.task.id, arm_start)
-    }
 }
 
 /// The run in one line: time simulated, real-time factor, targets, progress.

@@ -13,7 +13,7 @@ use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
 use retarget::human_hand::MotionKind;
-use scoring::{ArmConstraint, TaskSpec};
+use scoring::TaskSpec;
 use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
@@ -32,7 +32,6 @@ use crate::station_node::ros_node::{
 };
 use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
-use station::arm::Constraint;
 use station::ros_tools::ServiceAction;
 
 use crate::console::health::{Health, StartLimits};
@@ -136,15 +135,6 @@ pub struct ConsoleArgs {
     /// without --script, commands are read from stdin, one per line.
     #[arg(long)]
     pub plain: bool,
-}
-
-fn station_constraint(arm: ArmConstraint) -> Constraint {
-    match arm {
-        ArmConstraint::Fixed => Constraint::Fixed,
-        ArmConstraint::VerticalAxis => Constraint::VerticalAxis,
-        ArmConstraint::HorizontalAxis => Constraint::HorizontalAxis,
-        ArmConstraint::Free => Constraint::Free,
-    }
 }
 
 fn check_range(flag: &str, value: f64, low: f64, high: f64, unit: &str) -> anyhow::Result<()> {
@@ -347,7 +337,7 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
         // No robot: nothing is retargeted, so no user's calibration applies.
         config.calibration_profile = None;
     }
-    config.arm.constraint = station_constraint(task.arm);
+    config.arm.constraint = crate::demo_robot::station_constraint(task.arm);
     config.control.auto_engage = false;
     config.validate()?;
     Ok(config)

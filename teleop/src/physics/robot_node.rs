@@ -24,6 +24,7 @@ use tokio::sync::{mpsc, watch};
 
 use super::engine::PhysicsEngine;
 use super::error::PhysicsError;
+use super::setup::SimulatedTask;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
@@ -89,6 +90,27 @@ impl PhysicsRobotConfig {
             task_id: task_id.to_string(),
             progress: None,
             object_body: None,
+        }
+    }
+}
+
+impl PhysicsRobotConfig {
+    /// The simulated robot on `station`'s topics for the task `loaded`, its arm starting at
+    /// `arm_start`.
+    pub fn for_station(
+        station: &station::StationConfig,
+        loaded: &SimulatedTask,
+        arm_start: Isometry3<f64>,
+    ) -> PhysicsRobotConfig {
+        PhysicsRobotConfig {
+            hand_targets_topic: station.output.joint_targets_topic.clone(),
+            hand_state_topic: station.input.hand_state_topic.clone(),
+            arm_target_topic: station.output.arm_target_topic.clone(),
+            arm_feedback_topic: station.input.arm_feedback_topic.clone(),
+            frame_id: station.output.arm_frame_id.clone(),
+            progress: Some((loaded.task.correctness, loaded.progress.clone())),
+            object_body: loaded.object_body.clone(),
+            ..PhysicsRobotConfig::new(&loaded.task.id, arm_start)
         }
     }
 }
@@ -436,4 +458,54 @@ fn hand_target_of(model: &HandModel, current: &[f64], message: &JointState) -> O
         next[dof] = *value;
     }
     Some(next)
+}
+
+/// A simulated robot running in this process.
+#[derive(Debug)]
+pub struct PhysicsRobot {
+    /// Its task.
+    pub task: tokio::task::JoinHandle<Result<(), PhysicsError>>,
+    /// What it saw (live).
+    pub report: Arc<Mutex<PhysicsRobotReport>>,
+    /// Resets.
+    pub control: mpsc::Sender<SimControl>,
+}
+
+/// Start the simulated robot for `loaded` on `station`'s network and topics, the arm at the
+/// station's start pose, until `shutdown`; progress events are also sent to `events`.
+pub fn spawn_physics_robot(
+    station: &station::StationConfig,
+    model: &HandModel,
+    loaded: SimulatedTask,
+    clock: StationClock,
+    shutdown: &watch::Receiver<bool>,
+    options: PhysicsRobotOptions,
+    events: Option<mpsc::UnboundedSender<ProgressMessage>>,
+) -> Result<PhysicsRobot, PhysicsError> {
+    let arm_start = station
+        .arm
+        .start_pose_isometry()
+        .map_err(|e| PhysicsError::Progress {
+            message: format!("arm start pose: {e}"),
+        })?;
+    let config = PhysicsRobotConfig::for_station(station, &loaded, arm_start);
+    let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
+    let (control, control_rx) = mpsc::channel(8);
+    let run = PhysicsRobotRun {
+        model: model.clone(),
+        engine: loaded.engine,
+        network: station.network.clone(),
+        clock,
+        report: report.clone(),
+        control: control_rx,
+        events,
+        shutdown: shutdown.clone(),
+        options,
+    };
+    let task = tokio::spawn(run_physics_robot(config, run));
+    Ok(PhysicsRobot {
+        task,
+        report,
+        control,
+    })
 }
