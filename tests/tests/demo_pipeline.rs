@@ -118,6 +118,7 @@ async fn sim_glove_station_mock_hand_and_arm() {
         live: false,
         out: Some(out_dir.clone()),
         tap: None,
+        physics: None,
     })
     .await
     .unwrap();
