@@ -4,9 +4,9 @@
 //! wheel, sphere, disk and three cylinders; the arm free. The lab's README says the objects
 //! are the V handles, the C base plate and clutch rotor and the V tower reused. This
 //! project's model (sizes, masses, supports and the target's place are guesses): the object
-//! starts at (0.5, −0.1) on the table or on a small support that leaves room for the fingers
-//! under it (wheel and disk on a pedestal, the thin cylinder across a two-block rack); the
-//! target is a 12 × 12 cm region at (0.5, 0.15) drawn on the table (a non-colliding marker).
+//! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
+//! under it (wheel and disk on a pedestal; the thin cylinder across two 10 cm posts, and two
+//! more in the target region to set it down on); the target is a 12 × 12 cm region at (0.5, 0.15) drawn on the table (a non-colliding marker).
 //! It counts as relocated when the object's origin rests inside the region no more than 1 cm
 //! above the highest it rests stably on the table (a cylinder standing or lying, the wheel
 //! on its face or edge, the disk and the thin cylinder flat), so that it must be set down
@@ -18,7 +18,7 @@ use super::Scaffold;
 use super::mjcf::nums;
 
 /// Where the object starts (world x, y), m.
-const START_XY: [f64; 2] = [0.5, -0.1];
+const START_XY: [f64; 2] = [0.5, -0.2];
 /// The target region's centre (world x, y), m.
 const TARGET_XY: [f64; 2] = [0.5, 0.15];
 /// The target region's half width, m.
@@ -35,7 +35,9 @@ pub(super) enum Object {
     Sphere,
     /// G3: a disk, 120 mm across, 4 mm thick, 40 g, flat on a pedestal.
     Disk,
-    /// G4: a cylinder, 7 mm across, 120 mm long, 5 g, lying across a rack.
+    /// G4: a cylinder, 16 mm across, 140 mm long, 35 g, lying along y across two 10 cm posts, and
+    /// set down across two posts in the target region (a thumb–index pinch from above reaches
+    /// under it between the posts; the other fingers hang below the pinch beside them).
     CylinderSmall,
     /// G5: a cylinder, 28 mm across, 120 mm tall, 30 g, standing.
     CylinderMedium,
@@ -51,15 +53,25 @@ struct Layout {
     support: &'static str,
     /// Its origin's height at the start, m.
     start_z: f64,
-    /// The highest its origin rests stably on the table, m.
+    /// The highest its origin rests stably on the table (or on the target's support), m.
     max_rest_z: f64,
+    /// The geoms the target region holds (maybe none: the object is set down on the table).
+    target_support: &'static str,
 }
 
-const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
-const RACK: &str = concat!(
-    "      <geom name=\"rack_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.006 0.015 0.01\" pos=\"0.04 0 0.01\"/>\n",
-    "      <geom name=\"rack_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.006 0.015 0.01\" pos=\"-0.04 0 0.01\"/>\n",
+/// Two posts 10 cm high, 124 mm apart along y: the thin cylinder lies across them, and a
+/// thumb–index pinch from above reaches under it between them, the other fingers hanging below
+/// the pinch beside the posts.
+const POSTS: &str = concat!(
+    "      <geom name=\"post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.062 0.05\"/>\n",
+    "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 -0.062 0.05\"/>\n",
 );
+/// The same posts under the target region (relative to the start's support body).
+const TARGET_POSTS: &str = concat!(
+    "      <geom name=\"target_post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.412 0.05\"/>\n",
+    "      <geom name=\"target_post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.288 0.05\"/>\n",
+);
+const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
 
 fn layout(object: Object) -> Layout {
     match object {
@@ -68,36 +80,42 @@ fn layout(object: Object) -> Layout {
             support: PEDESTAL,
             start_z: 0.038,
             max_rest_z: 0.03,
+            target_support: "",
         },
         Object::Sphere => Layout {
             geom: r#"type="sphere" size="0.0275" mass="0.04""#,
             support: "",
             start_z: 0.0275,
             max_rest_z: 0.0275,
+            target_support: "",
         },
         Object::Disk => Layout {
             geom: r#"type="cylinder" size="0.06 0.002" mass="0.04""#,
             support: PEDESTAL,
             start_z: 0.032,
             max_rest_z: 0.002,
+            target_support: "",
         },
         Object::CylinderSmall => Layout {
-            geom: r#"type="cylinder" size="0.0035 0.06" quat="0.707107 0 0.707107 0" mass="0.005""#,
-            support: RACK,
-            start_z: 0.0235,
-            max_rest_z: 0.0035,
+            geom: r#"type="cylinder" size="0.008 0.07" quat="0.707107 0.707107 0 0" mass="0.035""#,
+            support: POSTS,
+            start_z: 0.108,
+            max_rest_z: 0.108,
+            target_support: TARGET_POSTS,
         },
         Object::CylinderMedium => Layout {
             geom: r#"type="cylinder" size="0.014 0.06" mass="0.03""#,
             support: "",
             start_z: 0.06,
             max_rest_z: 0.06,
+            target_support: "",
         },
         Object::CylinderLarge => Layout {
             geom: r#"type="cylinder" size="0.03 0.03" mass="0.05""#,
             support: "",
             start_z: 0.03,
             max_rest_z: 0.03,
+            target_support: "",
         },
     }
 }
@@ -110,6 +128,7 @@ pub(super) fn scaffold(object: Object) -> Scaffold {
         nums(&START_XY),
         layout.support
     );
+    bodies.push_str(layout.target_support);
     bodies.push_str(&format!(
         "      <geom name=\"target_region\" class=\"pomdar_marker\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n    </body>\n",
         nums(&[TARGET_HALF, TARGET_HALF, 0.0005]),
