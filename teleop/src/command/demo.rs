@@ -8,6 +8,7 @@ use retarget::human_hand::MotionKind;
 use super::common::{MotionArg, ViewArgs};
 use crate::demo::{DemoOptions, run_demo};
 use crate::ros::default_domain_id;
+use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::SimGloveConfig;
 use crate::station_setup::load_station_config;
 
@@ -26,9 +27,15 @@ pub struct DemoArgs {
     /// Station configuration (default: the ETH lab preset built in).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Scripted glove motion.
+    /// Scripted glove motion (periodic, the wrist in place).
     #[arg(long, value_enum, default_value = "task-like")]
     pub motion: MotionArg,
+    /// Instead of --motion, play this task script (TOML keyframes of the wrist's offset from
+    /// its start, glove frame, and the hand's pose, e.g. launch_configs/sim/grasp_place.toml)
+    /// once from the glove's first frame, then hold its last keyframe. The demo engages on
+    /// the first frame, so the arm follows the wrist's path.
+    #[arg(long, value_name = "FILE", conflicts_with = "motion")]
+    pub glove_script: Option<PathBuf>,
     /// Glove publishing rate, Hz.
     #[arg(long, default_value_t = 100.0)]
     pub glove_rate_hz: f64,
@@ -55,6 +62,11 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         keypoints_topic: station.input.keypoints_topic.clone(),
         wrist_topic: station.input.wrist_topic.clone(),
         layout: station.retarget.layout,
+        script: args
+            .glove_script
+            .as_deref()
+            .map(load_glove_script)
+            .transpose()?,
         ..SimGloveConfig::default()
     };
     if !(args.duration > 0.0 && args.duration <= 86_400.0) {
@@ -69,8 +81,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
     };
     if !args.json {
         eprintln!(
-            "pomdar demo: simulated glove ({:?}, {} Hz) → station → mock ORCA hand + mock Franka, loopback DDS, domain {domain_id}, {} s",
-            glove.motion, glove.rate_hz, args.duration
+            "pomdar demo: simulated glove ({}, {} Hz) → station → mock ORCA hand + mock Franka, loopback DDS, domain {domain_id}, {} s",
+            glove.describe_performance(),
+            glove.rate_hz,
+            args.duration
         );
     }
     let view = args.view.start().await?;
