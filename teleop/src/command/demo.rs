@@ -141,3 +141,32 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: DemoArgs,
+    }
+
+    #[test]
+    fn a_glove_script_replaces_the_motion_and_conflicts_with_naming_one() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let args = Cli::try_parse_from(["pomdar"]).unwrap().args;
+        assert_eq!(
+            (args.motion, args.glove_script),
+            (MotionArg::TaskLike, None)
+        );
+        let argv = ["pomdar", "--glove-script", "grasp_place.toml"];
+        let args = Cli::try_parse_from(argv).unwrap().args;
+        assert_eq!(args.glove_script, Some(PathBuf::from("grasp_place.toml")));
+        let both = ["pomdar", "--glove-script", "g.toml", "--motion", "pinches"];
+        assert!(Cli::try_parse_from(both).is_err());
+    }
+}

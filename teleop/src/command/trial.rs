@@ -1105,3 +1105,45 @@ fn name_seed(name: &str) -> u64 {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: TrialArgs,
+    }
+
+    fn parse(extra: &[&str]) -> Result<TrialArgs, clap::Error> {
+        let argv = [
+            "pomdar",
+            "--task",
+            "G4",
+            "--user",
+            "sim",
+            "--operator",
+            "me",
+        ];
+        Cli::try_parse_from(argv.iter().chain(extra)).map(|c| c.args)
+    }
+
+    #[test]
+    fn a_simulated_glove_script_needs_simulate_and_replaces_the_motion() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        assert_eq!(parse(&[]).unwrap().simulate_glove_script, None);
+        let script = ["--simulate", "--simulate-glove-script", "grasp_place.toml"];
+        let args = parse(&script).unwrap();
+        assert_eq!(
+            args.simulate_glove_script,
+            Some(PathBuf::from("grasp_place.toml"))
+        );
+        assert!(parse(&script[1..]).is_err(), "needs --simulate");
+        let both = [&script[..], &["--simulate-motion", "pinches"]].concat();
+        assert!(parse(&both).is_err(), "one or the other");
+    }
+}
