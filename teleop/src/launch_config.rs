@@ -13,7 +13,7 @@ use station::StationConfig;
 pub enum LaunchConfigError {
     /// The file is not in one of the known folders.
     #[error(
-        "{path}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/, baselines/ or ingress/)"
+        "{path}: not a known kind of launch config (expected under launch_configs/hands/, retarget/, station/, calibration/, tasks/, scoring/, baselines/, ingress/ or sim/)"
     )]
     UnknownKind {
         /// The file.
@@ -28,7 +28,8 @@ pub enum LaunchConfigError {
         #[source]
         source: std::io::Error,
     },
-    /// A hand import file or retargeting configuration is not valid (the error names the file).
+    /// A hand import file, retargeting configuration or glove script is not valid (the error
+    /// names the file).
     #[error(transparent)]
     Retarget {
         /// The error, in its file.
@@ -93,6 +94,9 @@ pub enum LaunchConfigKind {
     Baseline,
     /// `ingress/*.toml`: glove ingress settings (`pomdar ingress rokoko --config`).
     Ingress,
+    /// `sim/*.toml`: the simulated glove's task scripts (`pomdar demo --glove-script`,
+    /// `pomdar trial --simulate --simulate-glove-script`).
+    GloveScript,
 }
 
 impl LaunchConfigKind {
@@ -108,6 +112,7 @@ impl LaunchConfigKind {
             "scoring" => Some(LaunchConfigKind::ScoringRules),
             "baselines" => Some(LaunchConfigKind::Baseline),
             "ingress" => Some(LaunchConfigKind::Ingress),
+            "sim" => Some(LaunchConfigKind::GloveScript),
             _ => None,
         }
     }
@@ -170,6 +175,40 @@ pub fn check_file(path: &Path) -> Result<LaunchConfigKind, LaunchConfigError> {
                 }
             })?;
         }
+        LaunchConfigKind::GloveScript => {
+            retarget::human_hand::GloveScript::from_toml_str(&text).map_err(|e| e.in_file(path))?;
+        }
     }
     Ok(kind)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shipped_glove_scripts_are_checked_as_scripts() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../launch_configs/sim");
+        for name in ["grasp_place.toml", "grasp_miss.toml"] {
+            let kind = check_file(&dir.join(name)).unwrap();
+            assert_eq!(kind, LaunchConfigKind::GloveScript, "{name}");
+        }
+    }
+
+    #[test]
+    fn a_broken_glove_script_is_reported_with_file_and_field() {
+        let dir = std::env::temp_dir().join(format!("pomdar-launch-sim-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sim")).unwrap();
+        let path = dir.join("sim/backwards.toml");
+        let keyframe = |t: f64| {
+            format!("[[keyframes]]\nt_s = {t:?}\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\n")
+        };
+        std::fs::write(&path, keyframe(0.0) + &keyframe(2.0) + &keyframe(1.0)).unwrap();
+        let err = check_file(&path).unwrap_err().to_string();
+        std::fs::remove_dir_all(&dir).ok();
+        assert!(
+            err.contains("backwards.toml") && err.contains("keyframes[2].t_s"),
+            "{err}"
+        );
+    }
 }

@@ -3,7 +3,8 @@
 //! A kinematic model of a human hand, pure like the rest of the crate: bone lengths that scale
 //! with hand size, joint angles per digit, forward kinematics into any
 //! [`KeypointLayout`](crate::KeypointLayout), pinch poses found by a small numeric solve,
-//! scripted motions as functions of time, and a simulated glove with deterministic jitter.
+//! scripted motions as functions of time, task scripts (a wrist path and hand poses as
+//! keyframes), and a simulated glove with deterministic jitter.
 //! The station's simulated glove (issue 4) publishes its frames; calibration (issue 6)
 //! generates its synthetic users with it (sizes 0.8–1.25×, a rotated glove frame, 2 mm noise).
 //!
@@ -25,6 +26,7 @@
 //! | `hand_kinematics.rs` | forward kinematics ([`HumanHandShape::keypoints`]) and placement ([`place_points`]) |
 //! | `pinch.rs` | [`pinch_pose`]: thumb-to-fingertip gap by damped Gauss–Newton |
 //! | `motion.rs` | [`Motion`]: open/close, pinches, abduction, a task-like sequence; C¹ and periodic |
+//! | `glove_script.rs` | [`GloveScript`]: a task played once, wrist path and hand poses as keyframes |
 //! | `noise.rs` | [`SplitMix64`]: deterministic uniform and Gaussian numbers |
 //! | `sim_glove.rs` | [`SimGlove`]: shape + motion + placement + jitter → frames |
 //!
@@ -45,6 +47,7 @@
 //! # Ok::<(), retarget::Error>(())
 //! ```
 
+mod glove_script;
 mod hand_kinematics;
 mod motion;
 mod noise;
@@ -53,6 +56,9 @@ mod pose;
 mod shape;
 mod sim_glove;
 
+pub use glove_script::{
+    GloveScript, MAX_WRIST_OFFSET_M, ResolvedScript, ScriptKeyframe, ScriptPose, ScriptSample,
+};
 pub use hand_kinematics::{DigitChains, place_points};
 pub use motion::{
     CALIBRATION_MOVE_SHARE, KeyPose, MIN_PERIOD_S, Motion, MotionKind, MotionPhase, PINCH_GAP_M,

@@ -3,12 +3,14 @@
 //! At time `t` (seconds) the glove reports, in its own (tracker) frame `G`:
 //!
 //! ```text
-//! T_GH(t) = T_GH0 · S(t)                              wrist pose: the hand frame H in G
-//! p_k(t)  = T_GH(t) · x_k(motion(t)) + σ · n_k(seed, t)   keypoints, k = 0 … layout.len() − 1
+//! T_GH(t) = Trans(w(t)) · T_GH0 · S(t)                wrist pose: the hand frame H in G
+//! p_k(t)  = T_GH(t) · x_k(θ(t)) + σ · n_k(seed, t)     keypoints, k = 0 … layout.len() − 1
 //! ```
 //!
-//! - `x_k(θ)`: the hand model's keypoints for the scripted pose `θ = motion(t)`, in the hand
-//!   frame ([`HumanHandShape::keypoints`]);
+//! - `x_k(θ)`: the hand model's keypoints for the pose `θ(t)`, in the hand frame
+//!   ([`HumanHandShape::keypoints`]); `θ(t)` is the periodic motion's pose, or a task
+//!   script's ([`SimGlove::with_script`]);
+//! - `w(t)`: a task script's wrist offset, glove frame (zero without a script);
 //! - `T_GH0`: where the hand sits in the glove frame (`hand_in_glove`; identity by default;
 //!   calibration's synthetic users rotate it by up to ±20° per axis);
 //! - `S(t)`: an optional slow sway of the wrist about that placement ([`WristSway`]);
@@ -24,6 +26,7 @@ use std::f64::consts::TAU;
 
 use nalgebra::{Isometry3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
+use super::glove_script::{GloveScript, ResolvedScript};
 use super::hand_kinematics::place_points;
 use super::motion::Motion;
 use super::noise::SplitMix64;
@@ -87,11 +90,13 @@ impl WristSway {
     }
 }
 
-/// A simulated glove: a hand shape performing a scripted motion, seen in the glove frame.
+/// A simulated glove: a hand shape performing a periodic motion or a task script, seen in the
+/// glove frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimGlove {
     shape: HumanHandShape,
     motion: Motion,
+    script: Option<ResolvedScript>,
     layout: KeypointLayout,
     hand_in_glove: Isometry3<f64>,
     wrist_sway: Option<WristSway>,
@@ -112,6 +117,7 @@ impl SimGlove {
         Ok(SimGlove {
             shape,
             motion,
+            script: None,
             layout,
             hand_in_glove: Isometry3::identity(),
             wrist_sway: None,
@@ -156,6 +162,17 @@ impl SimGlove {
         })
     }
 
+    /// Perform `script` instead of the periodic motion: its hand poses (pinches solved for
+    /// this glove's shape) and its wrist path, added in the glove frame to the hand's
+    /// placement (and sway). `Err` for an invalid script.
+    pub fn with_script(self, script: &GloveScript) -> Result<SimGlove, Error> {
+        let resolved = script.resolve(&self.shape)?;
+        Ok(SimGlove {
+            script: Some(resolved),
+            ..self
+        })
+    }
+
     /// Add Gaussian jitter of `sd_m` metres per axis to every keypoint, from `seed`. `Err`
     /// unless `0 ≤ sd_m ≤ MAX_JITTER_SD_M`.
     pub fn with_jitter(self, sd_m: f64, seed: u64) -> Result<SimGlove, Error> {
@@ -178,9 +195,14 @@ impl SimGlove {
         &self.shape
     }
 
-    /// The scripted motion.
+    /// The periodic motion (played unless a task script replaces it).
     pub fn motion(&self) -> &Motion {
         &self.motion
+    }
+
+    /// The task script it performs, if any ([`SimGlove::with_script`]).
+    pub fn script(&self) -> Option<&ResolvedScript> {
+        self.script.as_ref()
     }
 
     /// The keypoint layout of the frames.
@@ -188,7 +210,7 @@ impl SimGlove {
         self.layout
     }
 
-    /// The hand's placement in the glove frame (without sway).
+    /// The hand's placement in the glove frame (without sway or a script's wrist path).
     pub fn hand_in_glove(&self) -> &Isometry3<f64> {
         &self.hand_in_glove
     }
@@ -200,14 +222,21 @@ impl SimGlove {
 
     /// The hand pose (joint angles) at `t_s`.
     pub fn pose_at(&self, t_s: f64) -> HumanHandPose {
-        self.motion.sample(t_s)
+        match &self.script {
+            Some(script) => script.pose(t_s),
+            None => self.motion.sample(t_s),
+        }
     }
 
     /// The pose of the hand frame (the wrist) in the glove frame at `t_s`.
     pub fn wrist_pose(&self, t_s: f64) -> Isometry3<f64> {
-        match &self.wrist_sway {
+        let placed = match &self.wrist_sway {
             Some(sway) => self.hand_in_glove * sway.offset(t_s),
             None => self.hand_in_glove,
+        };
+        match &self.script {
+            Some(script) => Translation3::from(script.wrist_offset(t_s)) * placed,
+            None => placed,
         }
     }
 
@@ -310,6 +339,43 @@ mod tests {
                 assert!((palm_b.point_to_palm(&b[i]) - expected).norm() < 1e-12);
             }
         }
+    }
+
+    #[test]
+    fn a_script_moves_the_wrist_and_the_hand_along_its_keyframes() {
+        use crate::human_hand::glove_script::{GloveScript, ScriptKeyframe, ScriptPose};
+        let script = GloveScript {
+            keyframes: vec![
+                ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open),
+                ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::Open),
+                ScriptKeyframe::new(3.0, [0.0, 0.18, -0.25], ScriptPose::CylinderGrasp),
+            ],
+        };
+        let placement = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.0, 0.0, 0.4));
+        let g = glove()
+            .with_hand_in_glove(placement)
+            .with_script(&script)
+            .unwrap();
+        let offset = |t: f64| g.wrist_pose(t).translation.vector - placement.translation.vector;
+        assert_eq!(offset(0.0), Vector3::zeros());
+        assert!((offset(2.0) - Vector3::new(0.0, 0.0, -0.25)).norm() < 1e-15);
+        assert!((offset(1.0) - Vector3::new(0.0, 0.0, -0.125)).norm() < 1e-12);
+        assert!(
+            (offset(9.0) - Vector3::new(0.0, 0.18, -0.25)).norm() < 1e-15,
+            "holds"
+        );
+        assert_eq!(
+            g.wrist_pose(2.5).rotation,
+            placement.rotation,
+            "translation only"
+        );
+        assert_eq!(g.pose_at(9.0), HumanHandPose::cylinder_grasp());
+        let (points, wrist) = g.frame(2.5);
+        let expected = g.shape().keypoints_in(&g.pose_at(2.5), g.layout(), &wrist);
+        assert_eq!(points, expected);
+        assert!(g.script().is_some() && glove().script().is_none());
+        let bad = GloveScript { keyframes: vec![] };
+        assert!(glove().with_script(&bad).is_err());
     }
 
     #[test]

@@ -10,6 +10,7 @@ use crate::demo::{DemoOptions, run_demo};
 use crate::demo_robot::PhysicsTask;
 use crate::ros::default_domain_id;
 use crate::score::score_inputs::ScoringInputs;
+use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::SimGloveConfig;
 use crate::station_setup::load_station_config;
 
@@ -28,9 +29,15 @@ pub struct DemoArgs {
     /// Station configuration (default: the ETH lab preset built in).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Scripted glove motion.
+    /// Scripted glove motion (periodic, the wrist in place).
     #[arg(long, value_enum, default_value = "task-like")]
     pub motion: MotionArg,
+    /// Instead of --motion, play this task script (TOML keyframes of the wrist's offset from
+    /// its start, glove frame, and the hand's pose, e.g. launch_configs/sim/grasp_place.toml)
+    /// once from the glove's first frame, then hold its last keyframe. The demo engages on
+    /// the first frame, so the arm follows the wrist's path.
+    #[arg(long, value_name = "FILE", conflicts_with = "motion")]
+    pub glove_script: Option<PathBuf>,
     /// Glove publishing rate, Hz.
     #[arg(long, default_value_t = 100.0)]
     pub glove_rate_hz: f64,
@@ -72,6 +79,11 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         keypoints_topic: station.input.keypoints_topic.clone(),
         wrist_topic: station.input.wrist_topic.clone(),
         layout: station.retarget.layout,
+        script: args
+            .glove_script
+            .as_deref()
+            .map(load_glove_script)
+            .transpose()?,
         ..SimGloveConfig::default()
     };
     if !(args.duration > 0.0 && args.duration <= 86_400.0) {
@@ -94,8 +106,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             None => "mock ORCA hand + mock Franka".to_string(),
         };
         eprintln!(
-            "pomdar demo: simulated glove ({:?}, {} Hz) → station → {robot}, loopback DDS, domain {domain_id}, {} s",
-            glove.motion, glove.rate_hz, args.duration
+            "pomdar demo: simulated glove ({}, {} Hz) → station → {robot}, loopback DDS, domain {domain_id}, {} s",
+            glove.describe_performance(),
+            glove.rate_hz,
+            args.duration
         );
     }
     let view = args.view.start().await?;
@@ -182,4 +196,33 @@ fn physics_task(args: &DemoArgs) -> anyhow::Result<Option<PhysicsTask>> {
         scene: args.scene.clone(),
         record_states: false,
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: DemoArgs,
+    }
+
+    #[test]
+    fn a_glove_script_replaces_the_motion_and_conflicts_with_naming_one() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let args = Cli::try_parse_from(["pomdar"]).unwrap().args;
+        assert_eq!(
+            (args.motion, args.glove_script),
+            (MotionArg::TaskLike, None)
+        );
+        let argv = ["pomdar", "--glove-script", "grasp_place.toml"];
+        let args = Cli::try_parse_from(argv).unwrap().args;
+        assert_eq!(args.glove_script, Some(PathBuf::from("grasp_place.toml")));
+        let both = ["pomdar", "--glove-script", "g.toml", "--motion", "pinches"];
+        assert!(Cli::try_parse_from(both).is_err());
+    }
 }

@@ -6,14 +6,20 @@ use retarget::human_hand::MotionKind;
 use super::common::{MotionArg, NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
+use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 
 /// `pomdar sim-glove` options.
 #[derive(Debug, Args)]
 pub struct SimGloveArgs {
-    /// Scripted motion.
+    /// Scripted motion (periodic, the wrist in place).
     #[arg(long, value_enum, default_value = "task-like")]
     pub motion: MotionArg,
+    /// Instead of --motion, play this task script (TOML keyframes of the wrist's offset from
+    /// its start, glove frame, and the hand's pose, e.g. launch_configs/sim/grasp_place.toml)
+    /// once from the first subscriber, then keep publishing its last keyframe.
+    #[arg(long, value_name = "FILE", conflicts_with = "motion")]
+    pub glove_script: Option<std::path::PathBuf>,
     /// Publishing rate, Hz.
     #[arg(long, default_value_t = 100.0)]
     pub rate_hz: f64,
@@ -36,6 +42,11 @@ pub async fn sim_glove(args: SimGloveArgs) -> anyhow::Result<()> {
         rate_hz: args.rate_hz,
         hand_scale: args.hand_scale,
         jitter_m: args.jitter_m,
+        script: args
+            .glove_script
+            .as_deref()
+            .map(load_glove_script)
+            .transpose()?,
         ..SimGloveConfig::default()
     };
     let report = run_sim_glove(

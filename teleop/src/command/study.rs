@@ -92,6 +92,8 @@ impl StudyArgs {
             console: self.console.clone(),
             simulate: self.simulate,
             simulate_motion: motion,
+            // A study's glove is a participant's: it plays motions, not task scripts.
+            simulate_glove_script: None,
             simulate_hand_scale: self.simulate_hand_scale,
             node: self.node.clone(),
             // The human study drives no robot: nothing to view.

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
-use retarget::human_hand::MotionKind;
+use retarget::human_hand::{GloveScript, MotionKind};
 use scoring::TaskSpec;
 use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
@@ -24,6 +24,7 @@ use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
 use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
+use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 use crate::station_node::recorder::{RecordingOptions, config_digest};
@@ -99,9 +100,21 @@ pub struct TrialArgs {
     /// id unless --domain-id): a demo or a rehearsal.
     #[arg(long)]
     pub simulate: bool,
-    /// With --simulate: the simulated glove's motion.
+    /// With --simulate: the simulated glove's motion (periodic, the wrist in place).
     #[arg(long, value_enum, value_name = "KIND", default_value = "task-like")]
     pub simulate_motion: MotionArg,
+    /// With --simulate, instead of --simulate-motion: the simulated glove plays this task
+    /// script (TOML keyframes of the wrist's offset from its start, glove frame, and the
+    /// hand's pose, e.g. launch_configs/sim/grasp_place.toml) once from its first frame, then
+    /// holds the last keyframe. The arm follows the wrist's path from the operator's engage:
+    /// engage (a --script line, or the key) during the script's opening hold.
+    #[arg(
+        long,
+        value_name = "FILE",
+        requires = "simulate",
+        conflicts_with = "simulate_motion"
+    )]
+    pub simulate_glove_script: Option<PathBuf>,
     /// With --simulate: the simulated hand's size relative to an average adult hand
     /// (0.8–1.25; default: 1, or a size drawn from the user's name for `--embodiment human`,
     /// so each simulated participant has their own hand).
@@ -220,6 +233,11 @@ pub async fn run_session(
         .as_deref()
         .map(load_script)
         .transpose()?;
+    let glove_script = args
+        .simulate_glove_script
+        .as_deref()
+        .map(load_glove_script)
+        .transpose()?;
 
     let plan = session_plan(args, &task, &config);
     let dir = session_dir(&args.out, &plan);
@@ -244,7 +262,7 @@ pub async fn run_session(
     }
     let clock = StationClock::new();
     let tap = view.as_ref().map(|v| v.tap.clone());
-    let station = spawn_station(args, &config, &model, clock, tap)?;
+    let station = spawn_station(args, &config, &model, clock, tap, glove_script)?;
     let operator = OperatorSide::open(args.console.plain, script)?;
     let mut console = TrialConsole {
         operator,
@@ -455,13 +473,14 @@ struct StationHandles {
 }
 
 /// Starts the station (status and trial-log events back to the console) and, with
-/// `--simulate`, the glove and the robot.
+/// `--simulate`, the glove (playing `glove_script` if given) and the robot.
 fn spawn_station(
     args: &TrialArgs,
     config: &StationConfig,
     model: &HandModel,
     clock: StationClock,
     tap: Option<crate::station_node::tap::Tap>,
+    glove_script: Option<GloveScript>,
 ) -> anyhow::Result<StationHandles> {
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let (operator_tx, operator_rx) = mpsc::unbounded_channel();
@@ -483,7 +502,7 @@ fn spawn_station(
     ));
     let mut simulated = Vec::new();
     if args.simulate {
-        simulated = spawn_simulation(args, config, model, clock, &shutdown_rx)?;
+        simulated = spawn_simulation(args, config, model, clock, &shutdown_rx, glove_script)?;
     }
     Ok(StationHandles {
         task: station,
@@ -1021,14 +1040,15 @@ fn write_session_report(
     Ok(out.join("report.md"))
 }
 
-/// `--simulate`: a simulated glove, and for a robot a mock hand and a mock Franka, on the
-/// station's loopback domain, until `shutdown`.
+/// `--simulate`: a simulated glove (its motion, or `glove_script`), and for a robot a mock
+/// hand and a mock Franka, on the station's loopback domain, until `shutdown`.
 fn spawn_simulation(
     args: &TrialArgs,
     config: &StationConfig,
     model: &HandModel,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
+    glove_script: Option<GloveScript>,
 ) -> anyhow::Result<Vec<JoinHandle<Result<(), crate::sim::SimError>>>> {
     let mut tasks = Vec::new();
     if config.drives_robot() {
@@ -1044,6 +1064,7 @@ fn spawn_simulation(
         period_s: motion.default_period_s(),
         hand_scale: simulated_hand_scale(args),
         seed: name_seed(&args.user),
+        script: glove_script,
         ..SimGloveConfig::default()
     };
     let network = config.network.clone();
@@ -1073,4 +1094,46 @@ fn name_seed(name: &str) -> u64 {
     name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: TrialArgs,
+    }
+
+    fn parse(extra: &[&str]) -> Result<TrialArgs, clap::Error> {
+        let argv = [
+            "pomdar",
+            "--task",
+            "G4",
+            "--user",
+            "sim",
+            "--operator",
+            "me",
+        ];
+        Cli::try_parse_from(argv.iter().chain(extra)).map(|c| c.args)
+    }
+
+    #[test]
+    fn a_simulated_glove_script_needs_simulate_and_replaces_the_motion() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        assert_eq!(parse(&[]).unwrap().simulate_glove_script, None);
+        let script = ["--simulate", "--simulate-glove-script", "grasp_place.toml"];
+        let args = parse(&script).unwrap();
+        assert_eq!(
+            args.simulate_glove_script,
+            Some(PathBuf::from("grasp_place.toml"))
+        );
+        assert!(parse(&script[1..]).is_err(), "needs --simulate");
+        let both = [&script[..], &["--simulate-motion", "pinches"]].concat();
+        assert!(parse(&both).is_err(), "one or the other");
+    }
 }

@@ -1,13 +1,16 @@
 //! The simulated glove node: publishes the lab's `/ingress/mano` (Float32MultiArray, N × 3
 //! metres) and `/ingress/wrist` (PoseStamped, frame `coil`) from the parametric human hand
-//! model at a fixed rate, optionally with keypoint noise and timing jitter.
+//! model at a fixed rate, optionally with keypoint noise and timing jitter. The hand plays a
+//! periodic motion with the wrist in place, or a task script ([`GloveScript`]: a wrist path and
+//! hand poses as keyframes, played once from the glove's time origin and then held while the
+//! glove keeps publishing at its rate).
 
 use std::collections::BTreeMap;
 use std::time::Duration;
 
 use msgs::{Float32MultiArray, PoseStamped};
 use retarget::KeypointLayout;
-use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+use retarget::human_hand::{GloveScript, HumanHandShape, Motion, MotionKind, SimGlove};
 use serde::{Deserialize, Serialize};
 use tokio::sync::watch;
 
@@ -42,6 +45,10 @@ pub struct SimGloveConfig {
     pub wrist_topic: String,
     /// Seed of the noise.
     pub seed: u64,
+    /// A task script to play instead of `motion` (its wrist path moves the published wrist
+    /// pose); `None`: the periodic motion with the wrist in place.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub script: Option<GloveScript>,
 }
 
 impl Default for SimGloveConfig {
@@ -56,19 +63,36 @@ impl Default for SimGloveConfig {
             keypoints_topic: "/ingress/mano".into(),
             wrist_topic: "/ingress/wrist".into(),
             seed: 1,
+            script: None,
         }
     }
 }
 
 impl SimGloveConfig {
-    /// The glove model for this configuration.
+    /// The glove model for this configuration (performing the script if there is one).
     pub fn glove(&self) -> Result<SimGlove, SimError> {
         let shape = HumanHandShape::average().scaled(self.hand_scale);
         let glove = Motion::new(self.motion, self.period_s, &shape)
             .and_then(|motion| SimGlove::new(shape, motion, self.layout))
             .and_then(|g| g.with_jitter(self.jitter_m, self.seed))
+            .and_then(|g| match &self.script {
+                Some(script) => g.with_script(script),
+                None => Ok(g),
+            })
             .map_err(|source| SimError::Glove { source })?;
         Ok(glove)
+    }
+
+    /// What the glove performs, for a console line: the script's length or the motion.
+    pub fn describe_performance(&self) -> String {
+        match &self.script {
+            Some(script) => format!(
+                "task script of {} keyframes, {:.1} s",
+                script.keyframes.len(),
+                script.duration_s()
+            ),
+            None => format!("{:?}", self.motion),
+        }
     }
 }
 
@@ -113,7 +137,8 @@ pub enum GloveOrigin {
     Shared(watch::Receiver<Option<i64>>),
 }
 
-/// Publish until `shutdown`; returns what was published.
+/// Publish until `shutdown`; returns what was published. The motion's (or the script's) time
+/// starts when the first subscriber matched (or after a bounded wait).
 pub async fn run_sim_glove(
     config: SimGloveConfig,
     network: NetworkConfig,
@@ -182,4 +207,73 @@ pub async fn publish_glove(
         }
     }
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector3;
+    use retarget::human_hand::{HumanHandPose, ScriptKeyframe, ScriptPose};
+
+    use super::*;
+
+    fn script() -> GloveScript {
+        GloveScript {
+            keyframes: vec![
+                ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open),
+                ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::CylinderGrasp),
+                ScriptKeyframe::new(4.0, [0.0, 0.18, -0.15], ScriptPose::CylinderGrasp),
+            ],
+        }
+    }
+
+    #[test]
+    fn the_glove_of_a_scripted_config_follows_the_script_and_holds_its_end() {
+        let config = SimGloveConfig {
+            script: Some(script()),
+            jitter_m: 0.0,
+            ..SimGloveConfig::default()
+        };
+        let glove = config.glove().unwrap();
+        let wrist = |t: f64| glove.frame(t).1.translation.vector;
+        assert_eq!(wrist(0.0), Vector3::zeros());
+        assert!((wrist(2.0) - Vector3::new(0.0, 0.0, -0.25)).norm() < 1e-15);
+        assert!((wrist(3.0) - Vector3::new(0.0, 0.09, -0.2)).norm() < 1e-12);
+        for t in [4.0, 10.0, 3600.0] {
+            assert!((wrist(t) - Vector3::new(0.0, 0.18, -0.15)).norm() < 1e-15);
+            assert_eq!(glove.pose_at(t), HumanHandPose::cylinder_grasp());
+        }
+        let (points, _) = glove.frame(3.0);
+        let layout_wrist = points[config.layout.wrist()].coords;
+        assert!(
+            (layout_wrist - wrist(3.0)).norm() < 1e-12,
+            "keypoints move with it"
+        );
+        assert!(config.describe_performance().contains("3 keyframes, 4.0 s"));
+    }
+
+    #[test]
+    fn without_a_script_the_wrist_stays_and_the_config_reads_as_before() {
+        let glove = SimGloveConfig::default().glove().unwrap();
+        assert_eq!(glove.frame(3.0).1.translation.vector, Vector3::zeros());
+        let text = toml::to_string(&SimGloveConfig::default()).unwrap();
+        assert!(!text.contains("script"), "{text}");
+        let read: SimGloveConfig = toml::from_str(&text).unwrap();
+        assert_eq!(read, SimGloveConfig::default());
+        let scripted = SimGloveConfig {
+            script: Some(script()),
+            ..SimGloveConfig::default()
+        };
+        let text = toml::to_string(&scripted).unwrap();
+        assert_eq!(toml::from_str::<SimGloveConfig>(&text).unwrap(), scripted);
+    }
+
+    #[test]
+    fn an_invalid_script_is_a_glove_error() {
+        let config = SimGloveConfig {
+            script: Some(GloveScript { keyframes: vec![] }),
+            ..SimGloveConfig::default()
+        };
+        let err = config.glove().unwrap_err().to_string();
+        assert!(err.contains("keyframes"), "{err}");
+    }
 }

@@ -1,0 +1,527 @@
+//! [`GloveScript`]: a scripted glove task, the wrist's path and the hand's poses as keyframes.
+//!
+//! A periodic [`Motion`](super::Motion) plays hand poses with the wrist in place; a script
+//! performs a task once: the wrist moves down to an object, the hand closes, the wrist lifts,
+//! carries and lowers it, the hand opens. Keyframe `i` gives a time `tᵢ`, a wrist offset `wᵢ`
+//! (metres, glove frame, from the wrist's placement at `t = 0`) and a key pose
+//! `Pᵢ = lerp(open, named poseᵢ, closureᵢ)`. Between two keyframes (`tᵢ ≤ t < tᵢ₊₁`):
+//!
+//! ```text
+//! v = (t − tᵢ) / (tᵢ₊₁ − tᵢ),    s = 10v³ − 15v⁴ + 6v⁵          (minimum jerk)
+//! wrist(t) = wᵢ + s · (wᵢ₊₁ − wᵢ),    pose(t) = lerp(Pᵢ, Pᵢ₊₁, s)
+//! ```
+//!
+//! The minimum-jerk profile has zero velocity and acceleration at both ends, so the path
+//! passes every keyframe exactly and at rest and is twice continuously differentiable (C²)
+//! everywhere; a keyframe equal to the previous one is a hold. Before `t = 0` the first
+//! keyframe is held, after the last one the last.
+//!
+//! ## File format (TOML)
+//!
+//! ```toml
+//! [[keyframes]]
+//! t_s = 0.0                   # seconds; the first at 0, then strictly increasing
+//! wrist_m = [0.0, 0.0, 0.0]   # offset from the start, glove frame, each within ±1 m
+//! pose = "open"               # see ScriptPose
+//!
+//! [[keyframes]]
+//! t_s = 1.5
+//! wrist_m = [0.0, 0.0, -0.2]
+//! pose = "cylinder_grasp"
+//! closure = 0.8               # optional, default 1: 0 open … 1 the named pose
+//! ```
+//!
+//! Pinch poses depend on the hand's proportions: [`GloveScript::resolve`] solves them for a
+//! shape (as [`Motion::new`](super::Motion::new) does, with the same [`PINCH_GAP_M`] gap)
+//! and gives the [`ResolvedScript`] that samples the script.
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+use super::motion::PINCH_GAP_M;
+use super::pinch::pinch_pose;
+use super::pose::HumanHandPose;
+use super::shape::HumanHandShape;
+use crate::error::Error;
+use crate::finger::Finger;
+
+/// Largest wrist offset per axis accepted, metres.
+pub const MAX_WRIST_OFFSET_M: f64 = 1.0;
+
+/// The named hand poses a keyframe can ask for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ScriptPose {
+    /// [`HumanHandPose::open`].
+    Open,
+    /// [`HumanHandPose::open_spread`].
+    OpenSpread,
+    /// [`HumanHandPose::relaxed`].
+    Relaxed,
+    /// [`HumanHandPose::fist`].
+    Fist,
+    /// [`HumanHandPose::cylinder_grasp`].
+    CylinderGrasp,
+    /// The thumb pinching the index finger.
+    PinchIndex,
+    /// The thumb pinching the middle finger.
+    PinchMiddle,
+    /// The thumb pinching the ring finger.
+    PinchRing,
+    /// The thumb pinching the little finger.
+    PinchLittle,
+}
+
+impl ScriptPose {
+    /// All named poses.
+    pub const ALL: [ScriptPose; 9] = [
+        ScriptPose::Open,
+        ScriptPose::OpenSpread,
+        ScriptPose::Relaxed,
+        ScriptPose::Fist,
+        ScriptPose::CylinderGrasp,
+        ScriptPose::PinchIndex,
+        ScriptPose::PinchMiddle,
+        ScriptPose::PinchRing,
+        ScriptPose::PinchLittle,
+    ];
+
+    /// The finger the thumb pinches, for the pinch poses.
+    pub const fn pinched_finger(self) -> Option<Finger> {
+        match self {
+            ScriptPose::PinchIndex => Some(Finger::Index),
+            ScriptPose::PinchMiddle => Some(Finger::Middle),
+            ScriptPose::PinchRing => Some(Finger::Ring),
+            ScriptPose::PinchLittle => Some(Finger::Little),
+            _ => None,
+        }
+    }
+
+    /// The pose's joint angles for `shape` (pinches solved with a [`PINCH_GAP_M`] gap).
+    /// `Err` for an invalid shape.
+    pub fn angles(self, shape: &HumanHandShape) -> Result<HumanHandPose, Error> {
+        if let Some(finger) = self.pinched_finger() {
+            return Ok(pinch_pose(shape, finger, PINCH_GAP_M)?.pose);
+        }
+        Ok(match self {
+            ScriptPose::OpenSpread => HumanHandPose::open_spread(),
+            ScriptPose::Relaxed => HumanHandPose::relaxed(),
+            ScriptPose::Fist => HumanHandPose::fist(),
+            ScriptPose::CylinderGrasp => HumanHandPose::cylinder_grasp(),
+            _ => HumanHandPose::open(),
+        })
+    }
+}
+
+/// One keyframe of a [`GloveScript`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScriptKeyframe {
+    /// When the keyframe is reached, seconds from the script's start.
+    pub t_s: f64,
+    /// The wrist's offset from its placement at the start, glove frame, metres.
+    pub wrist_m: [f64; 3],
+    /// The named hand pose.
+    pub pose: ScriptPose,
+    /// How far from open towards `pose` the hand is: 0 open, 1 (the default) the named pose.
+    #[serde(default = "full_closure")]
+    pub closure: f64,
+}
+
+/// The default closure: the named pose itself.
+const fn full_closure() -> f64 {
+    1.0
+}
+
+impl ScriptKeyframe {
+    /// A keyframe at `t_s` with the wrist offset `wrist_m` and the full `pose`.
+    pub const fn new(t_s: f64, wrist_m: [f64; 3], pose: ScriptPose) -> ScriptKeyframe {
+        ScriptKeyframe {
+            t_s,
+            wrist_m,
+            pose,
+            closure: 1.0,
+        }
+    }
+}
+
+/// A scripted glove task: keyframes of the wrist's offset and the hand's pose, played once.
+/// See the module documentation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GloveScript {
+    /// The keyframes, in time order, the first at `t_s = 0`.
+    pub keyframes: Vec<ScriptKeyframe>,
+}
+
+/// A [`ConfigRange`](Error::ConfigRange) error for field `field` of keyframe `index`.
+fn keyframe_error(index: usize, field: &str, value: String, allowed: String) -> Error {
+    Error::ConfigRange {
+        key: format!("keyframes[{index}].{field}"),
+        value,
+        allowed,
+    }
+}
+
+/// `Err` unless keyframe `index`'s time is 0 (the first) or after `previous_t_s`.
+fn check_time(index: usize, t_s: f64, previous_t_s: Option<f64>) -> Result<(), Error> {
+    let (ok, allowed) = match previous_t_s {
+        None => (
+            t_s == 0.0,
+            "must be 0 (the script starts at t = 0 s)".to_string(),
+        ),
+        Some(previous) => (
+            t_s.is_finite() && t_s > previous,
+            format!(
+                "must be finite and greater than keyframes[{}].t_s = {previous} s (times strictly increasing)",
+                index - 1
+            ),
+        ),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(keyframe_error(index, "t_s", t_s.to_string(), allowed))
+    }
+}
+
+/// `Err` unless keyframe `index`'s wrist offset and closure are within their ranges.
+fn check_values(index: usize, keyframe: &ScriptKeyframe) -> Result<(), Error> {
+    let offset_ok = keyframe
+        .wrist_m
+        .iter()
+        .all(|v| v.is_finite() && v.abs() <= MAX_WRIST_OFFSET_M);
+    if !offset_ok {
+        return Err(keyframe_error(
+            index,
+            "wrist_m",
+            format!("{:?}", keyframe.wrist_m),
+            format!("every component must be finite and within ±{MAX_WRIST_OFFSET_M} m"),
+        ));
+    }
+    if !(0.0..=1.0).contains(&keyframe.closure) {
+        return Err(keyframe_error(
+            index,
+            "closure",
+            keyframe.closure.to_string(),
+            "must be in [0, 1] (0 open, 1 the named pose)".into(),
+        ));
+    }
+    Ok(())
+}
+
+impl GloveScript {
+    /// Parse and validate a script written in TOML (see the module documentation).
+    pub fn from_toml_str(text: &str) -> Result<GloveScript, Error> {
+        let script: GloveScript = toml::from_str(text).map_err(|e| Error::Syntax {
+            reason: e.to_string().trim_end().to_string(),
+        })?;
+        script.validate()?;
+        Ok(script)
+    }
+
+    /// Check the keyframes: at least one, the first at `t_s = 0`, times finite and strictly
+    /// increasing, wrist offsets finite and within ±[`MAX_WRIST_OFFSET_M`], closures in
+    /// `[0, 1]`. The error names the keyframe's field (`keyframes[2].t_s`).
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.keyframes.is_empty() {
+            return Err(Error::ConfigRange {
+                key: "keyframes".into(),
+                value: "[]".into(),
+                allowed: "at least one keyframe, the first at t_s = 0".into(),
+            });
+        }
+        let mut previous_t_s = None;
+        for (index, keyframe) in self.keyframes.iter().enumerate() {
+            check_time(index, keyframe.t_s, previous_t_s)?;
+            check_values(index, keyframe)?;
+            previous_t_s = Some(keyframe.t_s);
+        }
+        Ok(())
+    }
+
+    /// The time of the last keyframe, seconds: when the script ends (and holds).
+    pub fn duration_s(&self) -> f64 {
+        self.keyframes.last().map_or(0.0, |k| k.t_s)
+    }
+
+    /// The script ready to sample for a hand of `shape`: validated, and every key pose turned
+    /// into joint angles (pinches solved for the shape). `Err` for an invalid script or shape.
+    pub fn resolve(&self, shape: &HumanHandShape) -> Result<ResolvedScript, Error> {
+        self.validate()?;
+        let open = HumanHandPose::open();
+        let mut poses = Vec::with_capacity(self.keyframes.len());
+        for keyframe in &self.keyframes {
+            let named = keyframe.pose.angles(shape)?;
+            poses.push(HumanHandPose::lerp(&open, &named, keyframe.closure));
+        }
+        Ok(ResolvedScript {
+            times_s: self.keyframes.iter().map(|k| k.t_s).collect(),
+            wrists_m: self
+                .keyframes
+                .iter()
+                .map(|k| Vector3::from(k.wrist_m))
+                .collect(),
+            poses,
+        })
+    }
+}
+
+/// The script's state at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScriptSample {
+    /// The wrist's offset from its placement at the start, glove frame, metres.
+    pub wrist_m: Vector3<f64>,
+    /// The hand's joint angles.
+    pub pose: HumanHandPose,
+}
+
+/// A validated [`GloveScript`] with its key poses as joint angles for one hand shape; samples
+/// the script at any time (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResolvedScript {
+    times_s: Vec<f64>,
+    wrists_m: Vec<Vector3<f64>>,
+    poses: Vec<HumanHandPose>,
+}
+
+/// The minimum-jerk profile `10v³ − 15v⁴ + 6v⁵`: 0 → 1 with zero velocity and acceleration at
+/// both ends.
+fn minimum_jerk(v: f64) -> f64 {
+    v * v * v * (10.0 + v * (-15.0 + 6.0 * v))
+}
+
+impl ResolvedScript {
+    /// The time of the last keyframe, seconds.
+    pub fn duration_s(&self) -> f64 {
+        self.times_s.last().copied().unwrap_or(0.0)
+    }
+
+    /// The keyframes around `t_s` and the profile's progress between them: `(i, j, s)` with
+    /// the state `lerp(keyframe i, keyframe j, s)`; `i == j` outside the script's span.
+    fn segment(&self, t_s: f64) -> (usize, usize, f64) {
+        let next = self.times_s.partition_point(|&t| t <= t_s);
+        let last = self.times_s.len().saturating_sub(1);
+        match next {
+            0 => (0, 0, 0.0),
+            n if n > last => (last, last, 0.0),
+            n => {
+                let (t0, t1) = (self.times_s[n - 1], self.times_s[n]);
+                (n - 1, n, minimum_jerk((t_s - t0) / (t1 - t0)))
+            }
+        }
+    }
+
+    /// The wrist's offset from its start at `t_s`, glove frame, metres.
+    pub fn wrist_offset(&self, t_s: f64) -> Vector3<f64> {
+        let (i, j, s) = self.segment(t_s);
+        self.wrists_m[i] + (self.wrists_m[j] - self.wrists_m[i]) * s
+    }
+
+    /// The hand's joint angles at `t_s`.
+    pub fn pose(&self, t_s: f64) -> HumanHandPose {
+        let (i, j, s) = self.segment(t_s);
+        HumanHandPose::lerp(&self.poses[i], &self.poses[j], s)
+    }
+
+    /// The wrist offset and the hand pose at `t_s`.
+    pub fn sample(&self, t_s: f64) -> ScriptSample {
+        ScriptSample {
+            wrist_m: self.wrist_offset(t_s),
+            pose: self.pose(t_s),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EXAMPLE: &str = r#"
+[[keyframes]]
+t_s = 0.0
+wrist_m = [0.0, 0.0, 0.0]
+pose = "open"
+
+[[keyframes]]
+t_s = 2.0
+wrist_m = [0.0, 0.0, -0.25]
+pose = "open"
+
+[[keyframes]]
+t_s = 3.5
+wrist_m = [0.0, 0.0, -0.25]
+pose = "cylinder_grasp"
+
+[[keyframes]]
+t_s = 5.0
+wrist_m = [0.0, 0.18, -0.15]
+pose = "pinch_index"
+closure = 0.5
+"#;
+
+    fn example() -> ResolvedScript {
+        GloveScript::from_toml_str(EXAMPLE)
+            .unwrap()
+            .resolve(&HumanHandShape::average())
+            .unwrap()
+    }
+
+    /// The key of a `ConfigRange` error (panics for another error).
+    fn error_key(result: Result<GloveScript, Error>) -> String {
+        match result {
+            Err(Error::ConfigRange { key, allowed, .. }) => {
+                assert!(!allowed.is_empty());
+                key
+            }
+            other => panic!("expected a ConfigRange error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn keyframes_are_hit_exactly() {
+        let script = GloveScript::from_toml_str(EXAMPLE).unwrap();
+        let resolved = example();
+        let shape = HumanHandShape::average();
+        for keyframe in &script.keyframes {
+            let sample = resolved.sample(keyframe.t_s);
+            assert_eq!(sample.wrist_m, Vector3::from(keyframe.wrist_m));
+            let named = keyframe.pose.angles(&shape).unwrap();
+            let expected = HumanHandPose::lerp(&HumanHandPose::open(), &named, keyframe.closure);
+            assert!(sample.pose.max_difference_rad(&expected) < 1e-15);
+        }
+        assert_eq!(resolved.duration_s(), 5.0);
+        assert_eq!(script.duration_s(), 5.0);
+    }
+
+    #[test]
+    fn between_keyframes_the_path_is_smooth_and_starts_and_stops_at_rest() {
+        let resolved = example();
+        // Halfway through the approach: the minimum-jerk profile is at one half.
+        assert!((resolved.wrist_offset(1.0).z + 0.125).abs() < 1e-12);
+        // Monotonic on the way down, at rest at both ends (speed ~ v² near them).
+        let z = |t: f64| resolved.wrist_offset(t).z;
+        let steps: Vec<f64> = (0..=200).map(|k| z(k as f64 * 0.01)).collect();
+        assert!(steps.windows(2).all(|w| w[1] <= w[0]));
+        let h = 1e-4;
+        assert!((z(h) - z(0.0)).abs() / h < 1e-5, "starts at rest");
+        assert!((z(2.0) - z(2.0 - h)).abs() / h < 1e-5, "arrives at rest");
+        // Largest speed, at the middle: 15/8 · 0.25 m / 2 s.
+        let peak = (z(1.0 + h) - z(1.0 - h)).abs() / (2.0 * h);
+        assert!((peak - 15.0 / 8.0 * 0.125).abs() < 1e-6, "{peak}");
+        // The pose moves continuously into the grasp.
+        let a = resolved.pose(2.75);
+        let b = resolved.pose(2.75 + 1e-3);
+        assert!(a.max_difference_rad(&b) < 1e-2);
+        assert!(a.max_difference_rad(&HumanHandPose::open()) > 0.1);
+    }
+
+    #[test]
+    fn after_the_last_keyframe_it_holds_and_before_the_first_too() {
+        let resolved = example();
+        let end = resolved.sample(5.0);
+        for t in [5.0 + 1e-9, 6.0, 1e6, f64::INFINITY] {
+            assert_eq!(resolved.sample(t), end, "t = {t}");
+        }
+        assert_eq!(resolved.sample(-3.0), resolved.sample(0.0));
+        assert_eq!(resolved.wrist_offset(-3.0), Vector3::zeros());
+    }
+
+    #[test]
+    fn a_single_keyframe_is_a_still_hand() {
+        let script = GloveScript {
+            keyframes: vec![ScriptKeyframe::new(0.0, [0.0, 0.1, 0.0], ScriptPose::Fist)],
+        };
+        let resolved = script.resolve(&HumanHandShape::average()).unwrap();
+        assert_eq!(resolved.duration_s(), 0.0);
+        assert_eq!(resolved.wrist_offset(4.0), Vector3::new(0.0, 0.1, 0.0));
+        assert_eq!(resolved.pose(4.0), HumanHandPose::fist());
+    }
+
+    #[test]
+    fn pinches_are_solved_for_the_shape_and_closure_blends_from_open() {
+        let shape = HumanHandShape::average().scaled(1.1);
+        let expected = pinch_pose(&shape, Finger::Middle, PINCH_GAP_M)
+            .unwrap()
+            .pose;
+        assert_eq!(ScriptPose::PinchMiddle.angles(&shape).unwrap(), expected);
+        let resolved = example();
+        let half = HumanHandPose::lerp(
+            &HumanHandPose::open(),
+            &ScriptPose::PinchIndex
+                .angles(&HumanHandShape::average())
+                .unwrap(),
+            0.5,
+        );
+        assert!(resolved.pose(5.0).max_difference_rad(&half) < 1e-15);
+        for pose in ScriptPose::ALL {
+            assert!(pose.angles(&shape).unwrap().within_ranges(), "{pose:?}");
+        }
+    }
+
+    #[test]
+    fn validation_errors_name_the_keyframe_field() {
+        let script = |keyframes: Vec<ScriptKeyframe>| GloveScript { keyframes };
+        let check = |s: GloveScript| s.validate().map(|()| s);
+        let open = |t: f64| ScriptKeyframe::new(t, [0.0; 3], ScriptPose::Open);
+        assert_eq!(error_key(check(script(vec![]))), "keyframes");
+        assert_eq!(
+            error_key(check(script(vec![open(0.5)]))),
+            "keyframes[0].t_s"
+        );
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), open(1.0), open(1.0)]))),
+            "keyframes[2].t_s"
+        );
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), open(f64::NAN)]))),
+            "keyframes[1].t_s"
+        );
+        let mut far = open(1.0);
+        far.wrist_m = [0.0, -1.2, 0.0];
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), far]))),
+            "keyframes[1].wrist_m"
+        );
+        far.wrist_m = [f64::INFINITY, 0.0, 0.0];
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), far]))),
+            "keyframes[1].wrist_m"
+        );
+        let mut over = open(1.0);
+        over.closure = 1.5;
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), over]))),
+            "keyframes[1].closure"
+        );
+        let message = check(script(vec![open(0.0), open(2.0), open(1.0)]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("keyframes[2].t_s") && message.contains("keyframes[1].t_s = 2"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn the_toml_format_is_strict_and_closure_defaults_to_one() {
+        let script = GloveScript::from_toml_str(EXAMPLE).unwrap();
+        assert_eq!(script.keyframes[1].closure, 1.0);
+        assert_eq!(script.keyframes[3].pose, ScriptPose::PinchIndex);
+        let round_trip = toml::to_string(&script).unwrap();
+        assert_eq!(GloveScript::from_toml_str(&round_trip).unwrap(), script);
+        for bad in [
+            "[[keyframes]]\nt_s = 0.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\nspeed = 1.0\n",
+            "[[keyframes]]\nt_s = 0.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"wave\"\n",
+            "[[keyframes]]\nt_s = 0.0\npose = \"open\"\n",
+            "name = \"x\"\n[[keyframes]]\nt_s = 0.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\n",
+        ] {
+            let err = GloveScript::from_toml_str(bad).unwrap_err();
+            assert!(matches!(err, Error::Syntax { .. }), "{bad}: {err:?}");
+        }
+        assert!(
+            GloveScript::from_toml_str("").is_err(),
+            "keyframes is required"
+        );
+    }
+}
