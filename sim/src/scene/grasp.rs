@@ -5,8 +5,9 @@
 //! are the V handles, the C base plate and clutch rotor and the V tower reused. This
 //! project's model (sizes, masses, supports and the target's place are guesses): the object
 //! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
-//! under it (wheel and disk on a pedestal; the thin cylinder across two 10 cm posts, and two
-//! more in the target region to set it down on); the target is a 12 × 12 cm region at (0.5, 0.15) drawn on the table (a non-colliding marker).
+//! under it (wheel and disk on a pedestal; the small cylinder across two 10 cm posts, set down
+//! in a low bin around the target); the target is a 16 × 18 cm region at (0.7, −0.2), 0.2 m along
+//! +x, drawn on the table (a non-colliding marker).
 //! It counts as relocated when the object's origin rests inside the region no more than 1 cm
 //! above the highest it rests stably on the table (a cylinder standing or lying, the wheel
 //! on its face or edge, the disk and the thin cylinder flat), so that it must be set down
@@ -20,9 +21,9 @@ use super::mjcf::nums;
 /// Where the object starts (world x, y), m.
 const START_XY: [f64; 2] = [0.5, -0.2];
 /// The target region's centre (world x, y), m.
-const TARGET_XY: [f64; 2] = [0.5, 0.15];
-/// The target region's half width, m.
-const TARGET_HALF: f64 = 0.06;
+const TARGET_XY: [f64; 2] = [0.7, -0.2];
+/// The target region's half extents along x and y, m.
+const TARGET_HALF: [f64; 2] = [0.08, 0.09];
 /// How far above its highest stable rest on the table the origin may rest and count, m.
 const TARGET_SLACK_Z: f64 = 0.01;
 
@@ -35,9 +36,9 @@ pub(super) enum Object {
     Sphere,
     /// G3: a disk, 120 mm across, 4 mm thick, 40 g, flat on a pedestal.
     Disk,
-    /// G4: a cylinder, 16 mm across, 140 mm long, 35 g, lying along y across two 10 cm posts, and
-    /// set down across two posts in the target region (a thumb–index pinch from above reaches
-    /// under it between the posts; the other fingers hang below the pinch beside them).
+    /// G4: a cylinder, 30 mm across, 140 mm long, 40 g, lying along y across two 10 cm posts
+    /// (the fingers of a hand coming down from above pass behind it and close around it), to be
+    /// set down in a low bin around the target region.
     CylinderSmall,
     /// G5: a cylinder, 28 mm across, 120 mm tall, 30 g, standing.
     CylinderMedium,
@@ -57,6 +58,9 @@ struct Layout {
     max_rest_z: f64,
     /// The geoms the target region holds (maybe none: the object is set down on the table).
     target_support: &'static str,
+    /// The highest the origin may rest in the target and count (default: `max_rest_z` plus
+    /// [`TARGET_SLACK_Z`]); a bin's walls hold an object leaning on them higher.
+    target_max_z: Option<f64>,
 }
 
 /// Two posts 10 cm high, 124 mm apart along y: the thin cylinder lies across them, and a
@@ -66,10 +70,13 @@ const POSTS: &str = concat!(
     "      <geom name=\"post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.062 0.05\"/>\n",
     "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 -0.062 0.05\"/>\n",
 );
-/// The same posts under the target region (relative to the start's support body).
-const TARGET_POSTS: &str = concat!(
-    "      <geom name=\"target_post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.412 0.05\"/>\n",
-    "      <geom name=\"target_post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.288 0.05\"/>\n",
+/// A bin around the target region, walls 60 mm high (relative to the start's support body:
+/// the target is 0.2 m along +x): a rolling cylinder set down in it stays in it.
+const TARGET_BIN: &str = concat!(
+    "      <geom name=\"bin_near\" class=\"pomdar_fixture\" type=\"box\" size=\"0.0025 0.0925 0.03\" pos=\"0.1175 0 0.03\"/>\n",
+    "      <geom name=\"bin_far\" class=\"pomdar_fixture\" type=\"box\" size=\"0.0025 0.0925 0.03\" pos=\"0.2825 0 0.03\"/>\n",
+    "      <geom name=\"bin_right\" class=\"pomdar_fixture\" type=\"box\" size=\"0.08 0.0025 0.03\" pos=\"0.2 -0.0925 0.03\"/>\n",
+    "      <geom name=\"bin_left\" class=\"pomdar_fixture\" type=\"box\" size=\"0.08 0.0025 0.03\" pos=\"0.2 0.0925 0.03\"/>\n",
 );
 const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
 
@@ -81,6 +88,7 @@ fn layout(object: Object) -> Layout {
             start_z: 0.038,
             max_rest_z: 0.03,
             target_support: "",
+            target_max_z: None,
         },
         Object::Sphere => Layout {
             geom: r#"type="sphere" size="0.0275" mass="0.04""#,
@@ -88,6 +96,7 @@ fn layout(object: Object) -> Layout {
             start_z: 0.0275,
             max_rest_z: 0.0275,
             target_support: "",
+            target_max_z: None,
         },
         Object::Disk => Layout {
             geom: r#"type="cylinder" size="0.06 0.002" mass="0.04""#,
@@ -95,13 +104,15 @@ fn layout(object: Object) -> Layout {
             start_z: 0.032,
             max_rest_z: 0.002,
             target_support: "",
+            target_max_z: None,
         },
         Object::CylinderSmall => Layout {
-            geom: r#"type="cylinder" size="0.008 0.07" quat="0.707107 0.707107 0 0" mass="0.035""#,
+            geom: r#"type="cylinder" size="0.015 0.07" quat="0.707107 0.707107 0 0" mass="0.04""#,
             support: POSTS,
-            start_z: 0.108,
-            max_rest_z: 0.108,
-            target_support: TARGET_POSTS,
+            start_z: 0.115,
+            max_rest_z: 0.015,
+            target_support: TARGET_BIN,
+            target_max_z: Some(0.075),
         },
         Object::CylinderMedium => Layout {
             geom: r#"type="cylinder" size="0.014 0.06" mass="0.03""#,
@@ -109,6 +120,7 @@ fn layout(object: Object) -> Layout {
             start_z: 0.06,
             max_rest_z: 0.06,
             target_support: "",
+            target_max_z: None,
         },
         Object::CylinderLarge => Layout {
             geom: r#"type="cylinder" size="0.03 0.03" mass="0.05""#,
@@ -116,6 +128,7 @@ fn layout(object: Object) -> Layout {
             start_z: 0.03,
             max_rest_z: 0.03,
             target_support: "",
+            target_max_z: None,
         },
     }
 }
@@ -131,7 +144,7 @@ pub(super) fn scaffold(object: Object) -> Scaffold {
     bodies.push_str(layout.target_support);
     bodies.push_str(&format!(
         "      <geom name=\"target_region\" class=\"pomdar_marker\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n    </body>\n",
-        nums(&[TARGET_HALF, TARGET_HALF, 0.0005]),
+        nums(&[TARGET_HALF[0], TARGET_HALF[1], 0.0005]),
         nums(&[TARGET_XY[0] - START_XY[0], TARGET_XY[1] - START_XY[1], 0.0005]),
     ));
     bodies.push_str(&format!(
@@ -140,11 +153,17 @@ pub(super) fn scaffold(object: Object) -> Scaffold {
         layout.geom
     ));
     let grasp = GraspMapping::with_target(
-        [TARGET_XY[0] - TARGET_HALF, TARGET_XY[1] - TARGET_HALF, 0.0],
         [
-            TARGET_XY[0] + TARGET_HALF,
-            TARGET_XY[1] + TARGET_HALF,
-            layout.max_rest_z + TARGET_SLACK_Z,
+            TARGET_XY[0] - TARGET_HALF[0],
+            TARGET_XY[1] - TARGET_HALF[1],
+            0.0,
+        ],
+        [
+            TARGET_XY[0] + TARGET_HALF[0],
+            TARGET_XY[1] + TARGET_HALF[1],
+            layout
+                .target_max_z
+                .unwrap_or(layout.max_rest_z + TARGET_SLACK_Z),
         ],
     );
     Scaffold {

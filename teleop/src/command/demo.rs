@@ -38,6 +38,10 @@ pub struct DemoArgs {
     /// the first frame, so the arm follows the wrist's path.
     #[arg(long, value_name = "FILE", conflicts_with = "motion")]
     pub glove_script: Option<PathBuf>,
+    /// Keypoint noise of the simulated glove, standard deviation per axis, mm (0–50; default
+    /// 1, or 0 with --glove-script: a task script plays exactly unless given noise).
+    #[arg(long, value_name = "MM")]
+    pub glove_jitter_mm: Option<f64>,
     /// Glove publishing rate, Hz.
     #[arg(long, default_value_t = 100.0)]
     pub glove_rate_hz: f64,
@@ -84,6 +88,7 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             .as_deref()
             .map(load_glove_script)
             .transpose()?,
+        jitter_m: glove_jitter_m(args.glove_jitter_mm, args.glove_script.is_some())?,
         ..SimGloveConfig::default()
     };
     if !(args.duration > 0.0 && args.duration <= 86_400.0) {
@@ -176,6 +181,18 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// The glove's keypoint noise, metres: `--glove-jitter-mm`, else 1 mm, or none for a script.
+pub(crate) fn glove_jitter_m(jitter_mm: Option<f64>, scripted: bool) -> anyhow::Result<f64> {
+    match jitter_mm {
+        Some(mm) if !(0.0..=50.0).contains(&mm) => {
+            anyhow::bail!("--glove-jitter-mm {mm} must be in [0, 50] mm")
+        }
+        Some(mm) => Ok(mm * 1e-3),
+        None if scripted => Ok(0.0),
+        None => Ok(SimGloveConfig::default().jitter_m),
+    }
 }
 
 /// `--physics`: the task from the catalog, and the scene.

@@ -26,3 +26,4 @@ pub mod study;
 pub mod study_report;
 pub mod tracking;
 pub mod trial;
+mod trial_physics;

@@ -94,6 +94,9 @@ impl StudyArgs {
             simulate_motion: motion,
             // A study's glove is a participant's: it plays motions, not task scripts.
             simulate_glove_script: None,
+            physics: false,
+            scene: None,
+            simulate_glove_jitter_mm: None,
             simulate_hand_scale: self.simulate_hand_scale,
             node: self.node.clone(),
             // The human study drives no robot: nothing to view.

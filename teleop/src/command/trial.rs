@@ -18,6 +18,7 @@ use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
+use super::trial_physics::{PhysicsLink, next_progress, progress_action};
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
 use crate::ros::NetworkConfig;
@@ -26,7 +27,7 @@ use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::{ScoringFileArgs, ScoringInputs};
 use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::mock_robot::spawn_mock_robot;
-use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::sim::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
 use crate::station_node::recorder::{RecordingOptions, config_digest};
 use crate::station_node::ros_node::{
     OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
@@ -115,6 +116,21 @@ pub struct TrialArgs {
         conflicts_with = "simulate_motion"
     )]
     pub simulate_glove_script: Option<PathBuf>,
+    /// With --simulate: the robot is the simulated one in the task's MuJoCo scene (needs the
+    /// `physics` build: `bash sim/setup_mujoco.sh`, then `--features physics`). Its physics
+    /// marks the progress as the operator's keys would (the operator can still correct a
+    /// mark); every trial starts from the scene's initial state, and a
+    /// --simulate-glove-script plays from each trial's start.
+    #[arg(long, requires = "simulate")]
+    pub physics: bool,
+    /// With --physics: a lab's own task MJCF instead of the project's scaffold (see
+    /// `pomdar sim --help`).
+    #[arg(long, value_name = "FILE", requires = "physics")]
+    pub scene: Option<PathBuf>,
+    /// With --simulate: the simulated glove's keypoint noise, standard deviation per axis, mm
+    /// (0–50; default 1, or 0 with --simulate-glove-script).
+    #[arg(long, value_name = "MM", requires = "simulate")]
+    pub simulate_glove_jitter_mm: Option<f64>,
     /// With --simulate: the simulated hand's size relative to an average adult hand
     /// (0.8–1.25; default: 1, or a size drawn from the user's name for `--embodiment human`,
     /// so each simulated participant has their own hand).
@@ -252,7 +268,7 @@ pub async fn run_session(
     for line in opened {
         flow.say(line);
     }
-    let mut info = session_info(args, &plan, &config, &dir, &inputs, task, limits)?;
+    let mut info = session_info(args, &plan, &config, &dir, &inputs, task.clone(), limits)?;
     info.setup.splice(0..0, study);
 
     // The live view, then the station (and, with --simulate, the glove and the robot).
@@ -262,7 +278,7 @@ pub async fn run_session(
     }
     let clock = StationClock::new();
     let tap = view.as_ref().map(|v| v.tap.clone());
-    let station = spawn_station(args, &config, &model, clock, tap, glove_script)?;
+    let station = spawn_station(args, (&config, &task), &model, clock, tap, glove_script)?;
     let operator = OperatorSide::open(args.console.plain, script)?;
     let mut console = TrialConsole {
         operator,
@@ -470,13 +486,15 @@ struct StationHandles {
     _shutdown_rx: watch::Receiver<bool>,
     /// `--simulate`: the hand's, the arm's and the glove's tasks.
     simulated: Vec<JoinHandle<Result<(), crate::sim::SimError>>>,
+    /// `--physics`: the simulated robot's progress events and resets.
+    physics: Option<PhysicsLink>,
 }
 
 /// Starts the station (status and trial-log events back to the console) and, with
 /// `--simulate`, the glove (playing `glove_script` if given) and the robot.
 fn spawn_station(
     args: &TrialArgs,
-    config: &StationConfig,
+    (config, task): (&StationConfig, &TaskSpec),
     model: &HandModel,
     clock: StationClock,
     tap: Option<crate::station_node::tap::Tap>,
@@ -501,8 +519,14 @@ fn spawn_station(
         },
     ));
     let mut simulated = Vec::new();
+    let mut physics = None;
     if args.simulate {
-        simulated = spawn_simulation(args, config, model, clock, &shutdown_rx, glove_script)?;
+        let robot = SimulatedRobot {
+            config,
+            model,
+            task,
+        };
+        (simulated, physics) = spawn_simulation(args, &robot, clock, &shutdown_rx, glove_script)?;
     }
     Ok(StationHandles {
         task: station,
@@ -512,6 +536,7 @@ fn spawn_station(
         shutdown_tx,
         _shutdown_rx: shutdown_rx,
         simulated,
+        physics,
     })
 }
 
@@ -760,6 +785,12 @@ impl TrialConsole {
             Ok(()) = self.station.status_rx.changed() => self.status_changed(),
             Some(input) = self.operator.input_rx.recv() => self.input(input, &mut turn.actions),
             Some(event) = self.station.events_rx.recv() => self.station_event(event, turn),
+            Some(progress) = next_progress(&mut self.station.physics) => {
+                // Marks count only in a running trial; between trials the physics is ignored.
+                if matches!(self.session.flow.phase(), Phase::Running { .. }) {
+                    turn.actions.push(progress_action(&progress));
+                }
+            }
             result = &mut self.station.task => return Err(station_stopped(result)),
             _ = self.wakeups.interrupt.recv() => turn.actions.push(Action::Interrupt),
             _ = self.wakeups.terminate.recv() => turn.actions.push(Action::Interrupt),
@@ -889,6 +920,9 @@ impl TrialConsole {
                 Effect::TrialEvent(event) => send(operator_tx, OperatorCommand::TrialEvent(event)),
                 Effect::StopTrial => send(operator_tx, OperatorCommand::StopTrial),
                 Effect::StartTrial { file, slot } => {
+                    if let Some(physics) = &self.station.physics {
+                        physics.trial_started(self.clock.now_ns());
+                    }
                     let metadata = self.session.trial_metadata(&slot);
                     let dir = &self.session.dir;
                     send(
@@ -1040,20 +1074,42 @@ fn write_session_report(
     Ok(out.join("report.md"))
 }
 
+/// What the simulated robot is for.
+struct SimulatedRobot<'a> {
+    config: &'a StationConfig,
+    model: &'a HandModel,
+    #[cfg_attr(not(feature = "physics"), allow(dead_code))] // read by the simulator only
+    task: &'a TaskSpec,
+}
+
+/// The simulated robot's tasks and, with `--physics`, the console's link to it.
+type SimulatedTasks = (
+    Vec<JoinHandle<Result<(), crate::sim::SimError>>>,
+    Option<PhysicsLink>,
+);
+
 /// `--simulate`: a simulated glove (its motion, or `glove_script`), and for a robot a mock
-/// hand and a mock Franka, on the station's loopback domain, until `shutdown`.
+/// hand and a mock Franka, or with `--physics` the simulated robot in the task's scene, on the
+/// station's loopback domain, until `shutdown`.
 fn spawn_simulation(
     args: &TrialArgs,
-    config: &StationConfig,
-    model: &HandModel,
+    robot: &SimulatedRobot<'_>,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
     glove_script: Option<GloveScript>,
-) -> anyhow::Result<Vec<JoinHandle<Result<(), crate::sim::SimError>>>> {
+) -> anyhow::Result<SimulatedTasks> {
+    let config = robot.config;
     let mut tasks = Vec::new();
-    if config.drives_robot() {
-        let robot = spawn_mock_robot(config, model, clock, shutdown)?;
-        tasks.extend([robot.hand, robot.arm]);
+    let mut physics = None;
+    let mut origin = GloveOrigin::FirstSubscriber;
+    if args.physics {
+        let (task, link, origin_rx) = spawn_physics(args, robot, clock, shutdown)?;
+        tasks.push(task);
+        physics = Some(link);
+        origin = GloveOrigin::Shared(origin_rx);
+    } else if config.drives_robot() {
+        let mock = spawn_mock_robot(config, robot.model, clock, shutdown)?;
+        tasks.extend([mock.hand, mock.arm]);
     }
     let motion = MotionKind::from(args.simulate_motion);
     let glove_config = SimGloveConfig {
@@ -1064,19 +1120,63 @@ fn spawn_simulation(
         period_s: motion.default_period_s(),
         hand_scale: simulated_hand_scale(args),
         seed: name_seed(&args.user),
+        jitter_m: super::demo::glove_jitter_m(
+            args.simulate_glove_jitter_mm,
+            glove_script.is_some(),
+        )?,
         script: glove_script,
         ..SimGloveConfig::default()
     };
+    let glove = glove_config.glove()?;
     let network = config.network.clone();
     let glove = tokio::spawn({
         let shutdown = shutdown.clone();
         async move {
-            run_sim_glove(glove_config, network, clock, shutdown).await?;
+            publish_glove(glove, &glove_config, network, clock, origin, shutdown).await?;
             Ok(())
         }
     });
     tasks.push(glove);
-    Ok(tasks)
+    Ok((tasks, physics))
+}
+
+/// `--physics`: the simulated robot in the session task's scene.
+#[cfg(feature = "physics")]
+fn spawn_physics(
+    args: &TrialArgs,
+    robot: &SimulatedRobot<'_>,
+    clock: StationClock,
+    shutdown: &watch::Receiver<bool>,
+) -> anyhow::Result<(
+    JoinHandle<Result<(), crate::sim::SimError>>,
+    PhysicsLink,
+    watch::Receiver<Option<i64>>,
+)> {
+    super::trial_physics::spawn_physics_robot(
+        robot.config,
+        robot.model,
+        robot.task,
+        args.scene.as_deref(),
+        clock,
+        shutdown,
+    )
+}
+
+/// `--physics` in a build without the simulator.
+#[cfg(not(feature = "physics"))]
+fn spawn_physics(
+    _args: &TrialArgs,
+    _robot: &SimulatedRobot<'_>,
+    _clock: StationClock,
+    _shutdown: &watch::Receiver<bool>,
+) -> anyhow::Result<(
+    JoinHandle<Result<(), crate::sim::SimError>>,
+    PhysicsLink,
+    watch::Receiver<Option<i64>>,
+)> {
+    anyhow::bail!(
+        "--physics: this pomdar was built without the simulator: run `bash sim/setup_mujoco.sh` once, then build with `--features physics`"
+    )
 }
 
 /// The simulated hand's size: the flag, else 1 for a robot session, else one drawn from the

@@ -19,16 +19,16 @@ use nalgebra::Isometry3;
 use retarget::HandModel;
 use ros2_client::Publisher;
 use scoring::CorrectnessKind;
-use simulation::progress::{PhysicsMapping, ProgressEvent, ProgressTracker};
+use simulation::progress::PhysicsMapping;
 use tokio::sync::{mpsc, watch};
 
 use super::engine::PhysicsEngine;
 use super::error::PhysicsError;
 use super::setup::SimulatedTask;
+use super::sim_state::SimState;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::sim::mock_franka::slew_pose;
 pub use crate::sim::progress_message::ProgressMessage;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
@@ -180,102 +180,6 @@ pub struct PhysicsRobotRun {
 pub struct PhysicsRobotOptions {
     /// Keep every published state and its target in the report (grows without bound).
     pub record_states: bool,
-}
-
-/// The simulation between ticks.
-struct SimState {
-    engine: PhysicsEngine,
-    arm_pose: Isometry3<f64>,
-    arm_target: Isometry3<f64>,
-    tracker: Option<ProgressTracker>,
-    reset_sim_time_s: f64,
-}
-
-impl SimState {
-    fn new(engine: PhysicsEngine, config: &PhysicsRobotConfig) -> Result<SimState, PhysicsError> {
-        let mut state = SimState {
-            engine,
-            arm_pose: config.arm_start,
-            arm_target: config.arm_start,
-            tracker: None,
-            reset_sim_time_s: 0.0,
-        };
-        state.reset(config)?;
-        Ok(state)
-    }
-
-    /// Back to the scene's initial state, the arm at its start, progress from zero.
-    fn reset(&mut self, config: &PhysicsRobotConfig) -> Result<(), PhysicsError> {
-        self.engine.reset();
-        self.arm_pose = config.arm_start;
-        self.arm_target = config.arm_start;
-        self.engine.set_mount_pose(&self.arm_pose);
-        self.engine.settle();
-        self.reset_sim_time_s = self.engine.time_s();
-        self.tracker = match &config.progress {
-            Some((kind, mapping)) => {
-                let initial =
-                    self.engine
-                        .reading(&mapping.joint)
-                        .ok_or_else(|| PhysicsError::Missing {
-                            origin: "scene".into(),
-                            kind: "progress joint",
-                            names: vec![mapping.joint.clone()],
-                        })?;
-                Some(ProgressTracker::new(kind, mapping, initial).map_err(|e| {
-                    PhysicsError::Progress {
-                        message: e.to_string(),
-                    }
-                })?)
-            }
-            None => None,
-        };
-        Ok(())
-    }
-
-    /// Advance by `dt_s`: the arm slews toward its target, the mount follows, the physics
-    /// steps; the progress events of the step.
-    fn advance(&mut self, dt_s: f64, config: &PhysicsRobotConfig) -> Vec<ProgressEvent> {
-        slew_pose(
-            &mut self.arm_pose,
-            &self.arm_target,
-            config.arm_max_speed_m_s * dt_s,
-            config.arm_max_rate_rad_s * dt_s,
-        );
-        self.engine.set_mount_pose(&self.arm_pose);
-        self.engine.advance(dt_s);
-        let t = self.engine.time_s() - self.reset_sim_time_s;
-        match (&mut self.tracker, &config.progress) {
-            (Some(tracker), Some((_, mapping))) => match self.engine.reading(&mapping.joint) {
-                Some(reading) => tracker.update(reading, t),
-                None => Vec::new(),
-            },
-            _ => Vec::new(),
-        }
-    }
-
-    fn progress_message(
-        &self,
-        event: &ProgressEvent,
-        config: &PhysicsRobotConfig,
-    ) -> ProgressMessage {
-        let unit = config
-            .progress
-            .as_ref()
-            .map_or("", |(kind, _)| kind.progress_unit());
-        let (name, value) = match event {
-            ProgressEvent::Progress(v) => ("progress", Some(*v)),
-            ProgressEvent::Drop => ("drop", None),
-        };
-        ProgressMessage {
-            task: config.task_id.clone(),
-            event: name.to_string(),
-            value,
-            unit: unit.to_string(),
-            total: self.tracker.as_ref().map_or(0.0, ProgressTracker::total),
-            sim_time_s: self.engine.time_s() - self.reset_sim_time_s,
-        }
-    }
 }
 
 /// The endpoints of the simulated robot.

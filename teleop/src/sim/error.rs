@@ -23,6 +23,12 @@ pub enum SimError {
         #[source]
         source: station::arm::ArmError,
     },
+    /// The simulated robot in a MuJoCo scene failed (`--physics`).
+    #[error("simulated robot: {message}")]
+    Physics {
+        /// What went wrong.
+        message: String,
+    },
     /// A glove frame's keypoints do not fit a ROS point matrix.
     #[error(transparent)]
     Keypoints(#[from] msgs::Error),

@@ -127,13 +127,19 @@ impl SimGloveReport {
     }
 }
 
+/// Keypoint noise of a glove at rest before its shared time origin, metres (standard
+/// deviation per axis), when the glove itself has none: a worn glove is never perfectly still,
+/// and the station takes identical frames for a stalled stream.
+pub const REST_JITTER_M: f64 = 0.0005;
+
 /// Where a published glove's motion time starts.
 #[derive(Debug, Clone)]
 pub enum GloveOrigin {
     /// When the first subscriber matched (or after a bounded wait).
     FirstSubscriber,
     /// A time origin (station-clock ns) shared with another node, e.g. a calibration
-    /// session's start; until it is known the glove holds the motion's first posture.
+    /// session's or a trial's start; until it is known the glove holds the motion's first
+    /// posture (with [`REST_JITTER_M`] of noise if it has none of its own).
     Shared(watch::Receiver<Option<i64>>),
 }
 
@@ -183,6 +189,15 @@ pub async fn publish_glove(
         }
     }
     let first_subscriber_ns = clock.now_ns();
+    let resting = match &origin {
+        GloveOrigin::Shared(_) if glove.jitter_sd_m() == 0.0 => Some(
+            glove
+                .clone()
+                .with_jitter(REST_JITTER_M, config.seed)
+                .map_err(|source| SimError::Glove { source })?,
+        ),
+        _ => None,
+    };
     let start_ns = || match &origin {
         GloveOrigin::FirstSubscriber => Some(first_subscriber_ns),
         GloveOrigin::Shared(rx) => *rx.borrow(),
@@ -195,8 +210,15 @@ pub async fn publish_glove(
             _ = shutdown.changed() => if *shutdown.borrow() { break },
             _ = interval.tick() => {
                 let now = clock.now_ns();
-                let t_s = start_ns().map_or(0.0, |start| (now - start) as f64 * 1e-9);
-                let (points, wrist) = glove.frame(t_s);
+                let (points, wrist) = match (start_ns(), &resting) {
+                    (Some(start), _) => glove.frame((now - start) as f64 * 1e-9),
+                    // A script holds its first keyframe before its time 0; the noise is keyed
+                    // by the (negative) time, so every frame differs.
+                    (None, Some(rest)) => {
+                        rest.frame(-1e-3 - (now - first_subscriber_ns) as f64 * 1e-9)
+                    }
+                    (None, None) => glove.frame(0.0),
+                };
                 let rows: Vec<[f32; 3]> = points.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
                 let array = Float32MultiArray::from_points(&rows)?;
                 let keypoints_sent = keypoints_pub.async_publish(array).await.is_ok();
