@@ -49,6 +49,7 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
             live: false,
             out: None,
             tap: None,
+            physics: None,
         }))
         .unwrap()
         .summary;

@@ -11,7 +11,6 @@ pub mod clock;
 pub mod command;
 pub mod console;
 pub mod demo;
-pub mod demo_robot;
 pub mod eval;
 pub mod hand_check;
 pub mod hand_source;

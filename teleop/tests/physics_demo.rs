@@ -3,12 +3,13 @@
 //! scripted grasp of G4 is measured by the physics as relocated, a scripted miss as not
 //! lifted. (`physics` feature.)
 #![cfg(feature = "physics")]
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use retarget::human_hand::MotionKind;
 use scoring::TaskCatalog;
 use station::StationConfig;
+use teleop::demo::PhysicsTask;
 use teleop::demo::{DemoOptions, DemoOutcome, run_demo};
-use teleop::demo_robot::PhysicsTask;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
 /// A domain id of this test process's own (`slot` 0–9).

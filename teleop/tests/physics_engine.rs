@@ -1,6 +1,7 @@
 //! The physics engine on a scene written here: a one-joint "hand" under a mocap mount and a
 //! free box on the floor (real MuJoCo; only with the `physics` feature).
 #![cfg(feature = "physics")]
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use nalgebra::{Isometry3, Vector3};
 use simulation::progress::Reading;

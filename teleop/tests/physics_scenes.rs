@@ -4,6 +4,7 @@
 //! simulated robot runs and scored by `scoring::correctness`. A lab's own MJCF, written here
 //! with the lab's joint names, loads by path and its progress is read. (`physics` feature.)
 #![cfg(feature = "physics")]
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use nalgebra::Isometry3;
 use retarget::HandModel;

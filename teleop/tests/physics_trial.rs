@@ -5,6 +5,7 @@
 //! scripted miss. The same scripts in lock step (no DDS, simulated time) give the same.
 //! (`physics` feature.)
 #![cfg(feature = "physics")]
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,23 +1,33 @@
 //! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`,
-//! `scoring`, `study` and `station` never depend, directly or transitively, on ros2-client, rustdds or tokio, and
-//! their sources do no I/O and read no clock. Only `teleop` does.
+//! `scoring`, `study`, `station` and `simulation` never depend, directly or transitively, on
+//! ros2-client, rustdds, tokio or MuJoCo (mujoco-rs), and their sources do no I/O and read no
+//! clock. Only `teleop` does.
 
 use std::collections::{BTreeSet, HashMap};
 
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 6] = [
+pub const CORE_CRATES: [&str; 7] = [
     "msgs",
     "retarget",
     "calibration",
     "scoring",
     "study",
     "station",
+    "simulation",
 ];
 
+/// The directory of a workspace crate (its package name, but `simulation` lives in `sim/`).
+pub fn crate_dir(package: &str) -> &str {
+    match package {
+        "simulation" => "sim",
+        other => other,
+    }
+}
+
 /// Packages a core crate must never pull in.
-pub const BANNED_PACKAGES: [&str; 3] = ["ros2-client", "rustdds", "tokio"];
+pub const BANNED_PACKAGES: [&str; 4] = ["ros2-client", "rustdds", "tokio", "mujoco-rs"];
 
 /// Source patterns a core crate must not use: file/network/process I/O and wall clocks.
 pub const BANNED_SOURCE_PATTERNS: [&str; 7] = [

@@ -27,6 +27,7 @@ pub(crate) fn tiny_hand() -> HandMjcf {
         dof_actuators: vec!["tiny_finger_act".into()],
         tip_bodies: std::array::from_fn(|_| "tiny_finger".to_string()),
         palm_body: "tiny_palm".into(),
+        root_body: "tiny_palm".into(),
         max_speed_rad_s: 5.0,
         mount: Isometry3::from_parts(Translation3::new(0.0, 0.0, 0.01), UnitQuaternion::identity()),
     }

@@ -6,8 +6,8 @@ use clap::Args;
 use retarget::human_hand::MotionKind;
 
 use super::common::{MotionArg, ViewArgs};
-use crate::demo::{DemoOptions, run_demo};
-use crate::demo_robot::PhysicsTask;
+use crate::demo::PhysicsTask;
+use crate::demo::{DemoOptions, DemoSummary, run_demo};
 use crate::ros::default_domain_id;
 use crate::score::score_inputs::ScoringInputs;
 use crate::sim::glove_script_file::load_glove_script;
@@ -136,51 +136,54 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
         view.stop().await;
     }
     let outcome = outcome?;
-    let recorded = outcome.recorded.clone();
-    let summary = outcome.summary;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
     } else {
-        let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2} ms"));
-        println!("summary over {:.1} s:", summary.duration_s);
-        println!("  glove frames       {:.1} /s", summary.input_rate_hz);
-        println!(
-            "  joint targets      {:.1} /s ({} received)",
-            summary.output_rate_hz, summary.hand_targets
-        );
-        println!("  arm targets        {}", summary.arm_targets);
-        println!(
-            "  end-to-end latency p50 {}, p99 {} (glove publish → joint target received, {control})",
-            ms(summary.latency_ms_p50),
-            ms(summary.latency_ms_p99)
-        );
-        println!(
-            "  control step       p50 {}, p99 {}",
-            ms(summary.solver_ms_p50),
-            ms(summary.solver_ms_p99)
-        );
-        println!("  rejected frames    {}", summary.rejected_frames);
-        if let Some(path) = &recorded {
-            println!("  recorded           {}", path.display());
-        }
-        println!(
-            "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",
-            summary
-                .fingertip_error_mm
-                .map_or("-".into(), |v| format!("{v:.1} mm"))
-        );
-        if let Some(p) = &summary.physics {
-            println!(
-                "  task {}           progress {} {}, correctness {} (measured by the physics); physics {:.1}× real time",
-                p.task,
-                p.progress,
-                p.unit,
-                p.correctness.map_or("-".into(), |c| format!("{c:.2}")),
-                p.realtime_factor
-            );
-        }
+        print_summary(&outcome.summary, outcome.recorded.as_deref(), &control);
     }
     Ok(())
+}
+
+/// The demo's summary for a person.
+fn print_summary(summary: &DemoSummary, recorded: Option<&std::path::Path>, control: &str) {
+    let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2} ms"));
+    println!("summary over {:.1} s:", summary.duration_s);
+    println!("  glove frames       {:.1} /s", summary.input_rate_hz);
+    println!(
+        "  joint targets      {:.1} /s ({} received)",
+        summary.output_rate_hz, summary.hand_targets
+    );
+    println!("  arm targets        {}", summary.arm_targets);
+    println!(
+        "  end-to-end latency p50 {}, p99 {} (glove publish → joint target received, {control})",
+        ms(summary.latency_ms_p50),
+        ms(summary.latency_ms_p99)
+    );
+    println!(
+        "  control step       p50 {}, p99 {}",
+        ms(summary.solver_ms_p50),
+        ms(summary.solver_ms_p99)
+    );
+    println!("  rejected frames    {}", summary.rejected_frames);
+    if let Some(path) = recorded {
+        println!("  recorded           {}", path.display());
+    }
+    println!(
+        "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",
+        summary
+            .fingertip_error_mm
+            .map_or("-".into(), |v| format!("{v:.1} mm"))
+    );
+    if let Some(p) = &summary.physics {
+        println!(
+            "  task {}           progress {} {}, correctness {} (measured by the physics); physics {:.1}× real time",
+            p.task,
+            p.progress,
+            p.unit,
+            p.correctness.map_or("-".into(), |c| format!("{c:.2}")),
+            p.realtime_factor
+        );
+    }
 }
 
 /// The glove's keypoint noise, metres: `--glove-jitter-mm`, else 1 mm, or none for a script.

@@ -18,7 +18,7 @@ use tokio::signal::unix::Signal;
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
-use super::trial_physics::{PhysicsLink, next_progress, progress_action};
+use super::trial_physics::{PhysicsLink, PhysicsParts, next_progress, progress_action};
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
 use crate::ros::NetworkConfig;
@@ -371,7 +371,7 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
         // No robot: nothing is retargeted, so no user's calibration applies.
         config.calibration_profile = None;
     }
-    config.arm.constraint = crate::demo_robot::station_constraint(task.arm);
+    config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
     config.control.auto_engage = false;
     config.validate()?;
     Ok(config)
@@ -1147,11 +1147,7 @@ fn spawn_physics(
     robot: &SimulatedRobot<'_>,
     clock: StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<(
-    JoinHandle<Result<(), crate::sim::SimError>>,
-    PhysicsLink,
-    watch::Receiver<Option<i64>>,
-)> {
+) -> anyhow::Result<PhysicsParts> {
     super::trial_physics::spawn_physics_robot(
         robot.config,
         robot.model,
@@ -1169,11 +1165,7 @@ fn spawn_physics(
     _robot: &SimulatedRobot<'_>,
     _clock: StationClock,
     _shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<(
-    JoinHandle<Result<(), crate::sim::SimError>>,
-    PhysicsLink,
-    watch::Receiver<Option<i64>>,
-)> {
+) -> anyhow::Result<PhysicsParts> {
     anyhow::bail!(
         "--physics: this pomdar was built without the simulator: run `bash sim/setup_mujoco.sh` once, then build with `--features physics`"
     )

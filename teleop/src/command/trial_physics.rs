@@ -9,6 +9,14 @@ use tokio::sync::{mpsc, watch};
 use crate::console::keys::Action;
 use crate::sim::progress_message::ProgressMessage;
 
+/// What starting the simulated robot gives the console: its task, the link, and the glove's
+/// time origin to play a script from.
+pub(crate) type PhysicsParts = (
+    tokio::task::JoinHandle<Result<(), crate::sim::SimError>>,
+    PhysicsLink,
+    watch::Receiver<Option<i64>>,
+);
+
 /// The console's side of the simulated robot.
 #[cfg_attr(not(feature = "physics"), allow(dead_code))] // only built with the simulator
 pub(crate) struct PhysicsLink {
@@ -61,11 +69,7 @@ pub(crate) fn spawn_physics_robot(
     scene: Option<&std::path::Path>,
     clock: crate::clock::StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<(
-    tokio::task::JoinHandle<Result<(), crate::sim::SimError>>,
-    PhysicsLink,
-    watch::Receiver<Option<i64>>,
-)> {
+) -> anyhow::Result<PhysicsParts> {
     use crate::physics::robot_node::{PhysicsRobotOptions, spawn_physics_robot as spawn};
     use crate::physics::setup::{SceneSource, load_task};
     let source = match scene {

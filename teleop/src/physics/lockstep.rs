@@ -13,9 +13,10 @@ use station::convert::isometry_to_pose;
 use station::{ControlInput, KeypointFrame, Station, StationConfig, StationInput};
 
 use super::error::PhysicsError;
-use super::robot_node::{PhysicsRobotConfig, ProgressMessage};
+use super::robot_config::PhysicsRobotConfig;
 use super::setup::SimulatedTask;
 use super::sim_state::SimState;
+use crate::sim::progress_message::ProgressMessage;
 
 /// What a lock-step trial produced.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -4,6 +4,7 @@
 pub mod engine;
 pub mod error;
 pub mod lockstep;
+pub mod robot_config;
 pub mod robot_node;
 pub mod setup;
 pub mod sim_state;

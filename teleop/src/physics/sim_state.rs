@@ -7,8 +7,9 @@ use simulation::progress::{ProgressEvent, ProgressTracker};
 
 use super::engine::PhysicsEngine;
 use super::error::PhysicsError;
-use super::robot_node::{PhysicsRobotConfig, ProgressMessage};
+use super::robot_config::PhysicsRobotConfig;
 use crate::sim::mock_franka::slew_pose;
+use crate::sim::progress_message::ProgressMessage;
 
 /// The simulation between ticks.
 pub struct SimState {

@@ -10,8 +10,8 @@ use scoring::{ArmConstraint, Mark, TaskSpec};
 use serde::Serialize;
 use tokio::sync::watch;
 
+use super::DemoError;
 use crate::clock::StationClock;
-use crate::demo::DemoError;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
 use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
@@ -73,7 +73,7 @@ pub enum DemoRobot {
     Mock(MockRobot),
     /// The simulated robot.
     #[cfg(feature = "physics")]
-    Physics(crate::physics::robot_node::PhysicsRobot, TaskSpec),
+    Physics(Box<(crate::physics::robot_node::PhysicsRobot, TaskSpec)>),
 }
 
 impl DemoRobot {
@@ -101,7 +101,7 @@ impl DemoRobot {
         match self {
             DemoRobot::Mock(robot) => mock_status(&robot.hand_report, clock),
             #[cfg(feature = "physics")]
-            DemoRobot::Physics(robot, _) => match robot.report.lock() {
+            DemoRobot::Physics(physics) => match physics.0.report.lock() {
                 Ok(r) => format!(
                     "hand targets {:>6}  simulated {:>6.1} s  progress {}",
                     r.hand_targets, r.sim_time_s, r.progress_total
@@ -115,8 +115,8 @@ impl DemoRobot {
     pub async fn finish(self) -> Result<RobotReports, DemoError> {
         match self {
             DemoRobot::Mock(robot) => {
-                crate::demo::join("mock hand task", robot.hand).await?;
-                crate::demo::join("mock arm task", robot.arm).await?;
+                super::join("mock hand task", robot.hand).await?;
+                super::join("mock arm task", robot.arm).await?;
                 Ok(RobotReports {
                     hand: lock_clone(&robot.hand_report),
                     arm: lock_clone(&robot.arm_report),
@@ -124,8 +124,9 @@ impl DemoRobot {
                 })
             }
             #[cfg(feature = "physics")]
-            DemoRobot::Physics(robot, task) => {
-                crate::demo::join("simulated robot task", robot.task).await?;
+            DemoRobot::Physics(physics) => {
+                let (robot, task) = *physics;
+                super::join("simulated robot task", robot.task).await?;
                 Ok(physics_reports(&lock_clone(&robot.report), &task))
             }
         }
@@ -155,7 +156,7 @@ fn spawn_physics(
         record_states: physics.record_states,
     };
     let robot = spawn_physics_robot(station, model, loaded, clock, stop, options, None)?;
-    Ok(DemoRobot::Physics(robot, physics.task.clone()))
+    Ok(DemoRobot::Physics(Box::new((robot, physics.task.clone()))))
 }
 
 /// The reports of a simulated robot run of `task`.

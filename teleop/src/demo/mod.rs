@@ -11,7 +11,8 @@ use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
-use crate::demo_robot::{DemoRobot, PhysicsOutcome, PhysicsTask, RobotReports};
+pub mod robot;
+
 use crate::ros::NetworkConfig;
 use crate::sim::SimError;
 use crate::sim::mock_franka::MockFrankaReport;
@@ -23,6 +24,8 @@ use crate::station_node::recorder::RecordingOptions;
 use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station_observed};
 use crate::station_node::tap::Tap;
 use crate::station_setup::SetupError;
+use robot::{DemoRobot, RobotReports};
+pub use robot::{PhysicsOutcome, PhysicsTask};
 use station::StationConfig;
 use station::arm::Constraint;
 
@@ -203,7 +206,7 @@ fn demo_station_config(
     station.network = network.clone();
     station.control.auto_engage = true;
     if let Some(physics) = physics {
-        station.arm.constraint = crate::demo_robot::station_constraint(physics.task.arm);
+        station.arm.constraint = robot::station_constraint(physics.task.arm);
     } else if station.arm.constraint == Constraint::Fixed {
         station.arm.constraint = Constraint::Free;
     }
