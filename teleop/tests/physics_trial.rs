@@ -34,12 +34,8 @@ fn domain(slot: u16) -> u16 {
 /// One recorded G4 trial with the glove playing `script`; its scored log.
 fn simulated_trial(root: &Path, script: &str, slot: u16) -> scoring::TrialScore {
     std::fs::create_dir_all(root).unwrap();
-    let console = root.join("console.script");
-    std::fs::write(
-        &console,
-        "engage\nwait ready 60\nstart\nwait running 60\n+12 stop\nwait complete 60\nquit\n",
-    )
-    .unwrap();
+    // The console script the README's simulated trial uses.
+    let console = shipped("one_trial.script");
     let baseline = root.join("baseline.toml");
     std::fs::write(&baseline, format!("[baseline]\nexample = false\nsource = \"physics_trial test\"\n\n[[task]]\nid = \"G4\"\nmean_s = {BASELINE_G4_S}\nn = 3\n")).unwrap();
     let out = root.join("sessions");
