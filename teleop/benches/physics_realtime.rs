@@ -6,6 +6,8 @@
 //! the slowest. `cargo bench -p teleop --features physics --bench physics_realtime`
 //! (after `bash sim/setup_mujoco.sh`).
 
+#![allow(clippy::expect_used)] // a benchmark stops on a broken set-up
+
 use std::time::Instant;
 
 use nalgebra::{Isometry3, Translation3};

@@ -203,6 +203,9 @@ fn physics_task(args: &DemoArgs) -> anyhow::Result<Option<PhysicsTask>> {
     if !args.physics {
         return Ok(None);
     }
+    if cfg!(not(feature = "physics")) {
+        return Err(crate::demo::DemoError::NoPhysics.into());
+    }
     let inputs = ScoringInputs::load(args.catalog.as_deref(), None, None)?;
     let task = inputs.catalog.get(&args.task).cloned().ok_or_else(|| {
         anyhow::anyhow!(
