@@ -11,7 +11,7 @@ use retarget::HandModel;
 use scoring::{CorrectnessKind, Mark, PhysicsMapping, TaskCatalog, correctness};
 use simulation::progress::{ProgressTracker, Reading};
 use teleop::physics::engine::PhysicsEngine;
-use teleop::physics::setup::{SceneSource, load_task};
+use teleop::physics::setup::{SceneSource, SimulatedTask, load_task};
 
 /// The arm's default start pose (flange down, above the table).
 fn arm_start() -> Isometry3<f64> {
@@ -132,6 +132,28 @@ fn grasp_states(mapping: &PhysicsMapping, start: [f64; 3], script: Script) -> Ve
     }
 }
 
+/// Play `script` on `loaded`'s progress joint and check the correctness it scores.
+fn assert_scores(
+    id: &str,
+    task: &scoring::TaskSpec,
+    loaded: &mut SimulatedTask,
+    script: Script,
+    expected: f64,
+) {
+    let marks = play(
+        &mut loaded.engine,
+        &task.correctness,
+        &loaded.progress,
+        script,
+    );
+    let c = correctness(&task.correctness, &marks, None).unwrap();
+    assert!(
+        (c.value - expected).abs() < 0.01,
+        "{id} {script:?}: correctness {} (expected {expected}), marks {marks:?}",
+        c.value
+    );
+}
+
 #[test]
 fn every_scene_scores_its_scripted_progress_as_the_paper_does() {
     let catalog = TaskCatalog::builtin();
@@ -161,18 +183,7 @@ fn every_scene_scores_its_scripted_progress_as_the_paper_does() {
     for &(id, script, expected) in table {
         let task = catalog.get(id).unwrap();
         let mut loaded = load_task(task, &model, SceneSource::Project, arm_start()).unwrap();
-        let marks = play(
-            &mut loaded.engine,
-            &task.correctness,
-            &loaded.progress,
-            script,
-        );
-        let c = correctness(&task.correctness, &marks, None).unwrap();
-        assert!(
-            (c.value - expected).abs() < 0.01,
-            "{id} {script:?}: correctness {} (expected {expected}), marks {marks:?}",
-            c.value
-        );
+        assert_scores(id, task, &mut loaded, script, expected);
     }
 }
 
@@ -233,18 +244,7 @@ fn a_labs_own_file_loads_by_path_and_its_progress_is_read() {
             .expect("the catalog maps the lab's joint");
         let mut loaded = load_task(task, &model, SceneSource::LabFile(&path), arm_start()).unwrap();
         assert_eq!(&loaded.progress, mapping);
-        let marks = play(
-            &mut loaded.engine,
-            &task.correctness,
-            &loaded.progress,
-            script,
-        );
-        let c = correctness(&task.correctness, &marks, None).unwrap();
-        assert!(
-            (c.value - expected).abs() < 0.01,
-            "{id}: {} (expected {expected}), {marks:?}",
-            c.value
-        );
+        assert_scores(id, task, &mut loaded, script, expected);
     }
     // A task the catalog does not map is refused with what to add.
     let h1 = catalog.get("H1").unwrap();

@@ -135,6 +135,11 @@ impl PhysicsEngine {
         Ok(())
     }
 
+    /// The hand's targets in force, radians, per degree of freedom.
+    pub fn hand_targets(&self) -> &[f64] {
+        &self.targets
+    }
+
     /// Move the arm's mount (the mocap body) to `pose`, world frame.
     pub fn set_mount_pose(&mut self, pose: &Isometry3<f64>) {
         let p = pose.translation.vector;

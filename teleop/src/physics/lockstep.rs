@@ -16,6 +16,7 @@ use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
 use super::setup::SimulatedTask;
 use super::sim_state::SimState;
+use crate::sim::mock_hand::joint_state_target;
 use crate::sim::progress_message::ProgressMessage;
 
 /// What a lock-step trial produced.
@@ -61,6 +62,7 @@ pub fn run_lockstep(
         })?;
     let mut sim = SimState::new(loaded.engine, &robot)?;
     let mut outcome = LockstepOutcome::default();
+    let limits: Vec<_> = model.limits().collect();
     let dt = 1.0 / rate_hz;
     let tick_every = (rate_hz / config.control.rate_hz).round().max(1.0) as u64;
     let steps = (duration_s / dt).round() as u64;
@@ -81,7 +83,12 @@ pub fn run_lockstep(
             inputs.push(StationInput::Control(ControlInput::Tick));
         }
         for input in inputs {
-            apply(&mut sim, model, station.step(input, now_ns), &mut outcome);
+            apply(
+                &mut sim,
+                (model, &limits),
+                station.step(input, now_ns),
+                &mut outcome,
+            );
         }
         for event in sim.advance(dt, &robot) {
             outcome.events.push(sim.progress_message(&event, &robot));
@@ -99,20 +106,14 @@ pub fn run_lockstep(
 /// Hand commands and arm targets from the station to the simulated robot.
 fn apply(
     sim: &mut SimState,
-    model: &HandModel,
+    (model, limits): (&HandModel, &[retarget::Limits]),
     outputs: station::StationOutputs,
     outcome: &mut LockstepOutcome,
 ) {
     if let Some(hand) = outputs.hand {
-        let current = sim.engine.hand_positions();
-        let names = &hand.joint_state.name;
-        let mut targets = current.clone();
-        for (name, value) in names.iter().zip(&hand.joint_state.position) {
-            if let Some(dof) = station::ros_tools::dof_of_published_name(model, name, None) {
-                targets[dof] = *value;
-            }
-        }
-        if sim.engine.set_hand_targets(&targets).is_ok() {
+        let targets =
+            joint_state_target(model, limits, sim.engine.hand_targets(), &hand.joint_state);
+        if targets.is_some_and(|t| sim.engine.set_hand_targets(&t).is_ok()) {
             outcome.hand_commands += 1;
         }
     }

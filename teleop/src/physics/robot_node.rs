@@ -27,6 +27,7 @@ use super::sim_state::SimState;
 use crate::clock::StationClock;
 use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
+use crate::sim::mock_hand::joint_state_target;
 pub use crate::sim::progress_message::ProgressMessage;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
@@ -141,6 +142,7 @@ pub async fn run_physics_robot(
     let mut arm_targets = Box::pin(arm_sub.async_stream());
     let mut sim = SimState::new(engine, &config)?;
     let mut hand_target = sim.engine.hand_positions();
+    let limits: Vec<_> = model.limits().collect();
     let mut ticks = tokio::time::interval(Duration::from_secs_f64(config.tick_s));
     let publish_every = (1.0 / (config.state_rate_hz * config.tick_s))
         .round()
@@ -158,7 +160,7 @@ pub async fn run_physics_robot(
                 }
             },
             Some(Ok((message, _))) = hand_targets.next() => {
-                let accepted = hand_target_of(&model, &hand_target, &message)
+                let accepted = joint_state_target(&model, &limits, &hand_target, &message)
                     .filter(|next| sim.engine.set_hand_targets(next).is_ok());
                 let Ok(mut r) = report.lock() else { break };
                 r.hand_targets += 1;
@@ -264,23 +266,6 @@ async fn publish_states(
         failed += u64::from(out.object_pose.async_publish(message).await.is_err());
     }
     failed
-}
-
-/// The hand target a `JointState` sets, from `current`; `None` when it names a joint the hand
-/// lacks, or its lengths differ, or a value is not finite.
-fn hand_target_of(model: &HandModel, current: &[f64], message: &JointState) -> Option<Vec<f64>> {
-    if message.name.len() != message.position.len() {
-        return None;
-    }
-    let mut next = current.to_vec();
-    for (name, value) in message.name.iter().zip(&message.position) {
-        let dof = station::ros_tools::dof_of_published_name(model, name, None)?;
-        if !value.is_finite() {
-            return None;
-        }
-        next[dof] = *value;
-    }
-    Some(next)
 }
 
 /// A simulated robot running in this process.

@@ -184,8 +184,9 @@ pub async fn run_mock_hand(
 }
 
 /// The target a `JointState` sets (clamped to the limits), from `target`; `None` when it
-/// names a joint the hand lacks or carries a non-finite value.
-fn joint_state_target(
+/// names a joint the hand lacks or carries a non-finite value. (The mock hand's, the simulated
+/// robot's and the lock-step trial's reading of a hand command.)
+pub(crate) fn joint_state_target(
     model: &HandModel,
     limits: &[retarget::Limits],
     target: &[f64],
