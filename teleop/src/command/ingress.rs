@@ -1,4 +1,4 @@
-//! `pomdar ingress rokoko`: the command line of the Rokoko ingress.
+//! `pomdar ingress rokoko|avp`: the command lines of the hand-tracking ingresses.
 
 use std::net::IpAddr;
 use std::path::PathBuf;
@@ -7,8 +7,10 @@ use clap::{Args, Subcommand};
 
 use crate::clock::StationClock;
 use crate::command::common::{NodeArgs, ctrl_c_shutdown};
+use crate::ingress::avp_config::AvpConfig;
+use crate::ingress::avp_node::{avp_source, run_avp_ingress};
 use crate::ingress::ingress_config::{Hand, IngressConfig};
-use crate::ingress::rokoko_node::{run_rokoko_ingress, status_line};
+use crate::ingress::rokoko_node::{rokoko_source, run_rokoko_ingress, status_line};
 
 /// The glove streams `pomdar ingress` reads.
 #[derive(Debug, Subcommand)]
@@ -31,6 +33,42 @@ pub enum IngressCommand {
     ///   pomdar ingress rokoko --config launch_configs/ingress/rokoko.toml --domain-id 7
     #[command(verbatim_doc_comment)]
     Rokoko(RokokoArgs),
+    /// Apple Vision Pro hand tracking (the VisionProTeleop app's gRPC stream) to the lab's topics.
+    ///
+    /// Connects to the headset's app (gRPC, port 12345, no TLS) and publishes, for each new
+    /// hand update, the hand's keypoints on /ingress/mano (std_msgs/Float32MultiArray, 22 × 3
+    /// or 21 × 3, metres; the four metacarpals dropped; the forearm point from the app's
+    /// forearm joint, else the wrist) and the wrist's pose on /ingress/wrist
+    /// (geometry_msgs/PoseStamped, stamped at receipt), both in ROS axes (x forward, y left,
+    /// z up; ARKit's world is y-up). When the headset goes away it reconnects with backoff
+    /// (0.25 s doubling to 4 s). Undecodable, untracked, non-finite and repeated updates are
+    /// dropped and counted (each kind logged once); the counts, the rate and the connection
+    /// state go out as JSON on /ingress/status every second and as a line on stderr every 5 s.
+    /// On the headset: start the app; it shows its address.
+    ///
+    /// Examples:
+    ///   pomdar ingress avp --address 192.168.1.42
+    ///   pomdar ingress avp --address vision-pro.local:12345 --hand left
+    ///   pomdar ingress avp --config launch_configs/ingress/avp.toml --address 10.0.0.7 --domain-id 7
+    #[command(verbatim_doc_comment)]
+    Avp(AvpArgs),
+}
+
+/// `pomdar ingress avp` options (each overrides the configuration file's key).
+#[derive(Debug, Args)]
+pub struct AvpArgs {
+    /// The headset: HOST or HOST:PORT [port default: 12345]; required unless the file names it.
+    #[arg(long, value_name = "HOST[:PORT]")]
+    pub address: Option<String>,
+    /// Settings file (launch_configs/ingress/avp.toml shows every key and its default).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Which hand to publish [default: right].
+    #[arg(long, value_enum)]
+    pub hand: Option<Hand>,
+    /// DDS settings.
+    #[command(flatten)]
+    pub node: NodeArgs,
 }
 
 /// `pomdar ingress rokoko` options (each overrides the configuration file's key).
@@ -58,7 +96,39 @@ pub struct RokokoArgs {
 
 /// Run an ingress command until Ctrl-C.
 pub async fn run(command: IngressCommand) -> anyhow::Result<()> {
-    let IngressCommand::Rokoko(args) = command;
+    match command {
+        IngressCommand::Rokoko(args) => run_rokoko(args).await,
+        IngressCommand::Avp(args) => run_avp(args).await,
+    }
+}
+
+async fn run_avp(args: AvpArgs) -> anyhow::Result<()> {
+    let mut config = match &args.config {
+        Some(path) => AvpConfig::from_file(path)?,
+        None => AvpConfig::default(),
+    };
+    if let Some(address) = &args.address {
+        config.set_address(address)?;
+    }
+    config.hand = args.hand.unwrap_or(config.hand);
+    config.network = args.node.network(&config.network);
+    config.validate()?;
+    eprintln!(
+        "pomdar ingress avp: {} ({} hand) -> {} and {} on domain {}; Ctrl-C stops",
+        config.device(),
+        config.hand.bone_prefix(),
+        config.keypoints_topic,
+        config.wrist_topic,
+        crate::ros::domain_id(config.network.domain_id)?,
+    );
+    let source = avp_source(&config);
+    let clock = StationClock::new();
+    let mut counters = run_avp_ingress(config, clock, ctrl_c_shutdown(), true).await?;
+    eprintln!("{}", status_line(&counters.status(clock.now_ns(), &source)));
+    Ok(())
+}
+
+async fn run_rokoko(args: RokokoArgs) -> anyhow::Result<()> {
     let mut config = match &args.config {
         Some(path) => IngressConfig::from_file(path)?,
         None => IngressConfig::default(),
@@ -79,9 +149,9 @@ pub async fn run(command: IngressCommand) -> anyhow::Result<()> {
         config.wrist_topic,
         crate::ros::domain_id(config.network.domain_id)?,
     );
-    let port = config.port;
+    let source = rokoko_source(&config, (config.bind_address, config.port).into());
     let clock = StationClock::new();
     let mut counters = run_rokoko_ingress(config, clock, ctrl_c_shutdown(), None, true).await?;
-    eprintln!("{}", status_line(&counters.status(clock.now_ns(), port)));
+    eprintln!("{}", status_line(&counters.status(clock.now_ns(), &source)));
     Ok(())
 }

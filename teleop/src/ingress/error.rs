@@ -68,6 +68,30 @@ pub enum IngressError {
         /// The topic given.
         topic: String,
     },
+    /// A headset address that cannot be used.
+    #[error("address '{address}': {reason}")]
+    Address {
+        /// The address given.
+        address: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A duration out of range.
+    #[error("{key} = {value} must be in [{}, {}] seconds", range.0, range.1)]
+    Seconds {
+        /// The setting.
+        key: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range.
+        range: (f64, f64),
+    },
+    /// A message size limit out of range.
+    #[error("max_message_bytes = {bytes} must be in 1024..=16777216")]
+    MaxMessageBytes {
+        /// The limit given.
+        bytes: usize,
+    },
     /// An actor name that is empty.
     #[error("actor = '' must be a name, or be left out to follow the first actor")]
     EmptyActor,

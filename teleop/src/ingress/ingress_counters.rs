@@ -13,7 +13,17 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use serde::Serialize;
 use serde_json::{Value, json};
+
+/// The device an ingress reads, as its status report and the trial logs name it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct SourceInfo {
+    /// The kind of source: `rokoko`, `avp`, `simulated`.
+    pub kind: &'static str,
+    /// Which device, for a person: its address or port.
+    pub device: String,
+}
 
 /// A packet's place in the stream.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -46,6 +56,10 @@ pub struct IngressCounters {
     pub refused: BTreeMap<&'static str, u64>,
     /// Messages whose publishing failed (not sent), by topic.
     pub publish_failed: BTreeMap<String, u64>,
+    /// For a source the ingress connects to: whether it is connected now.
+    pub connected: Option<bool>,
+    /// Connections made after the first (the source went away and came back).
+    pub reconnects: u64,
     newest_timestamp_s: Option<f64>,
     logged: BTreeSet<&'static str>,
     window_start_ns: Option<i64>,
@@ -130,8 +144,8 @@ impl IngressCounters {
         self.duplicates + self.out_of_order + self.refused.values().sum::<u64>()
     }
 
-    /// The status report at `now_ns` (also closes the rate window).
-    pub fn status(&mut self, now_ns: i64, port: u16) -> Value {
+    /// The status report at `now_ns` for `source` (also closes the rate window).
+    pub fn status(&mut self, now_ns: i64, source: &SourceInfo) -> Value {
         if let Some(start) = self.window_start_ns
             && now_ns > start
         {
@@ -140,8 +154,10 @@ impl IngressCounters {
         self.window_start_ns = Some(now_ns);
         self.window_published = 0;
         json!({
-            "node": "rokoko_ingress",
-            "port": port,
+            "node": format!("{}_ingress", source.kind),
+            "source": source,
+            "connected": self.connected,
+            "reconnects": self.reconnects,
             "received": self.received,
             "published": self.published,
             "rate_hz": (self.rate_hz * 10.0).round() / 10.0,
@@ -159,6 +175,13 @@ impl IngressCounters {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn rokoko() -> SourceInfo {
+        SourceInfo {
+            kind: "rokoko",
+            device: "UDP 0.0.0.0:14043".into(),
+        }
+    }
 
     #[test]
     fn packets_are_ordered_by_their_timestamps() {
@@ -194,7 +217,7 @@ mod tests {
         c.frame_sent(("/k", false), ("/w", false));
         c.publish_failed("/s");
         assert_eq!(c.published, 1);
-        let status = c.status(0, 14043);
+        let status = c.status(0, &rokoko());
         assert_eq!(status["publish_failed"]["/k"], 2);
         assert_eq!(status["publish_failed"]["/w"], 1);
         assert_eq!(status["publish_failed"]["/s"], 1);
@@ -204,14 +227,17 @@ mod tests {
     #[test]
     fn the_status_reports_the_rate_over_its_window() {
         let mut c = IngressCounters::default();
-        c.status(0, 14043);
+        c.status(0, &rokoko());
         for k in 0..50 {
             c.received(k * 20_000_000);
             c.published();
         }
-        let status = c.status(1_000_000_000, 14043);
+        let status = c.status(1_000_000_000, &rokoko());
         assert_eq!(status["rate_hz"], 50.0);
         assert_eq!(status["published"], 50);
+        assert_eq!(status["node"], "rokoko_ingress");
+        assert_eq!(status["source"]["kind"], "rokoko");
+        assert_eq!(status["source"]["device"], "UDP 0.0.0.0:14043");
         assert!((status["last_packet_age_s"].as_f64().unwrap() - 0.02).abs() < 1e-9);
     }
 }

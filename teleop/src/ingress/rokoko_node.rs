@@ -18,7 +18,7 @@ use tokio::sync::{oneshot, watch};
 use crate::clock::StationClock;
 use crate::ingress::error::IngressError;
 use crate::ingress::ingress_config::IngressConfig;
-use crate::ingress::ingress_counters::{IngressCounters, Order};
+use crate::ingress::ingress_counters::{IngressCounters, Order, SourceInfo};
 use crate::ingress::rokoko_packet::{PacketError, Selection, parse_packet};
 use crate::ros::NetworkContext as _;
 use crate::ros::{QosConfig, RosNode};
@@ -107,8 +107,9 @@ pub async fn run_rokoko_ingress(
     };
     // One byte more than the limit, so an oversized datagram shows as such.
     let mut buffer = vec![0u8; config.max_packet_bytes + 1];
+    let source = rokoko_source(&config, local);
     let mut counters = IngressCounters::default();
-    counters.status(clock.now_ns(), local.port());
+    counters.status(clock.now_ns(), &source);
     let mut ticks = 0u64;
     let mut status_tick = tokio::time::interval(STATUS_PERIOD);
     status_tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
@@ -116,7 +117,7 @@ pub async fn run_rokoko_ingress(
         tokio::select! {
             _ = shutdown.changed() => if *shutdown.borrow() { break },
             _ = status_tick.tick() => {
-                let status = counters.status(clock.now_ns(), local.port());
+                let status = counters.status(clock.now_ns(), &source);
                 ticks += 1;
                 if print_status && ticks.is_multiple_of(PRINT_EVERY) {
                     eprintln!("{}", status_line(&status));
@@ -165,11 +166,22 @@ pub async fn run_rokoko_ingress(
             }
         }
     }
-    let status = counters.status(clock.now_ns(), local.port());
+    let status = counters.status(clock.now_ns(), &source);
     publishers
         .status(&config, &mut counters, status.to_string())
         .await;
     Ok(counters)
+}
+
+/// The source as the status names it.
+pub fn rokoko_source(config: &IngressConfig, local: SocketAddr) -> SourceInfo {
+    SourceInfo {
+        kind: "rokoko",
+        device: format!(
+            "Rokoko Studio Live on UDP {local}, actor {}",
+            config.actor.as_deref().unwrap_or("(first)")
+        ),
+    }
 }
 
 /// One line for the operator from a status report.
@@ -191,8 +203,14 @@ pub fn status_line(status: &serde_json::Value) -> String {
             format!("; not published: {}", topics.join(", "))
         })
         .unwrap_or_default();
+    let connection = match status["connected"].as_bool() {
+        Some(true) => "connected, ".to_string(),
+        Some(false) => "NOT CONNECTED, ".to_string(),
+        None => String::new(),
+    };
     format!(
-        "rokoko ingress: {} Hz, {} received, {} published, dropped {} (duplicates {}, out of order {}{}{}){}",
+        "{} ingress: {connection}{} Hz, {} received, {} published, dropped {} (duplicates {}, out of order {}{}{}){}",
+        status["source"]["kind"].as_str().unwrap_or("glove"),
         status["rate_hz"],
         status["received"],
         status["published"],
