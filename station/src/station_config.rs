@@ -71,6 +71,10 @@ pub struct InputConfig {
     /// with the commands where the hand publishes one (the mock hand does; the ETH stack
     /// publishes none today); empty: not read.
     pub hand_state_topic: String,
+    /// The ingress's status (`std_msgs/String` carrying JSON, as `pomdar ingress` and the
+    /// simulated glove publish it): its `source` (kind and device) goes into every trial log's
+    /// metadata as `keypoint_source` and `keypoint_device`; empty: not read (`unknown`).
+    pub ingress_status_topic: String,
     /// QoS of the glove topics: deep enough for the lab's 200 Hz republishing.
     pub qos: QosConfig,
 }
@@ -157,6 +161,7 @@ impl Default for InputConfig {
             wrist_topic: "/ingress/wrist".into(),
             arm_feedback_topic: "/franka/end_effector_pose".into(),
             hand_state_topic: "/pomdar/hand/joint_states".into(),
+            ingress_status_topic: "/ingress/status".into(),
             qos: QosConfig::best_effort(400),
         }
     }
@@ -223,8 +228,13 @@ impl StationConfig {
                 &self.output.joint_targets_topic,
             ),
             ("output.status_topic", &self.output.status_topic),
+            (
+                "input.ingress_status_topic",
+                &self.input.ingress_status_topic,
+            ),
         ] {
-            if !topic.starts_with('/') {
+            if !topic.starts_with('/') && !(key == "input.ingress_status_topic" && topic.is_empty())
+            {
                 return Err(ConfigError::out_of_range(
                     key,
                     format!("'{topic}'"),

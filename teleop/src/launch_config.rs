@@ -168,11 +168,20 @@ pub fn check_file(path: &Path) -> Result<LaunchConfigKind, LaunchConfigError> {
             )?;
         }
         LaunchConfigKind::Ingress => {
-            crate::ingress::ingress_config::IngressConfig::from_toml_str(&text).map_err(|e| {
-                LaunchConfigError::Ingress {
-                    path: path.to_path_buf(),
-                    source: Box::new(e),
+            // `avp*.toml`: the Vision Pro ingress's settings; any other: the Rokoko ingress's.
+            let avp = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .is_some_and(|s| s.starts_with("avp"));
+            let checked = match avp {
+                true => crate::ingress::avp_config::AvpConfig::from_toml_str(&text).map(drop),
+                false => {
+                    crate::ingress::ingress_config::IngressConfig::from_toml_str(&text).map(drop)
                 }
+            };
+            checked.map_err(|e| LaunchConfigError::Ingress {
+                path: path.to_path_buf(),
+                source: Box::new(e),
             })?;
         }
         LaunchConfigKind::GloveScript => {

@@ -228,7 +228,12 @@ async fn a_fake_headset_streams_through_the_ingress_to_dds() {
 
     // The first request: the discovery marker, this computer's address, the version code.
     let head = headset.wait("client")["head"].clone();
-    let head: Vec<f64> = head.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let head: Vec<f64> = head
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert_eq!(
         [head[0], head[1], head[2], head[3], head[4], head[12]],
         [888.0, 127.0, 0.0, 0.0, 1.0, 25_000.0]
@@ -246,7 +251,10 @@ async fn a_fake_headset_streams_through_the_ingress_to_dds() {
     let report = headset.wait("report");
     let expected = report["expected"].as_array().unwrap().clone();
     assert_eq!(report["requests"], 2, "the ingress reconnected once");
-    wait_for(&heard, "every frame", |h| h.keypoints.len() >= expected.len()).await;
+    wait_for(&heard, "every frame", |h| {
+        h.keypoints.len() >= expected.len()
+    })
+    .await;
     tokio::time::sleep(Duration::from_millis(300)).await;
     check_frames(&heard.lock().unwrap(), &expected);
 
@@ -257,7 +265,10 @@ async fn a_fake_headset_streams_through_the_ingress_to_dds() {
         .filter(|(k, _)| *k != "duplicate")
         .map(|(_, n)| n.as_u64().unwrap() as usize)
         .sum();
-    assert_eq!(want_refused, 6, "the script sends six kinds of malformed update");
+    assert_eq!(
+        want_refused, 6,
+        "the script sends six kinds of malformed update"
+    );
     wait_for(&heard, "the counts on the status topic", |h| {
         h.status.last().is_some_and(|s| {
             s["published"].as_u64() == Some(expected.len() as u64) && s["reconnects"] == 1
@@ -279,4 +290,79 @@ async fn a_fake_headset_streams_through_the_ingress_to_dds() {
     shutdown.send(true).unwrap();
     let counters = ingress.await.unwrap().unwrap();
     assert_eq!(counters.published as usize, expected.len());
+}
+
+/// The station's hand commands from a glove's frames, each frame's keypoints first passed
+/// through `through` (as the topics carry them: `f32`).
+fn station_commands(
+    frames: &[(Vec<Point3<f64>>, Isometry3<f64>)],
+    through: impl Fn(&[Point3<f64>], &Isometry3<f64>) -> (Vec<Point3<f64>>, Isometry3<f64>),
+) -> Vec<Vec<f64>> {
+    use station::{ControlInput, KeypointFrame, Station, StationInput};
+    let config = pomdar_tests::station_harness::timing_independent_config();
+    let mut station = Station::new(&config, retarget::HandModel::orca_v1_right(), None).unwrap();
+    let mut commands = Vec::new();
+    for (i, (points, wrist)) in frames.iter().enumerate() {
+        let now = 1_000_000_000 + i as i64 * 40_000_000; // 25 Hz
+        let (points, wrist) = through(points, wrist);
+        station.step(
+            StationInput::Wrist(station::convert::isometry_to_pose(&wrist)),
+            now,
+        );
+        let frame = KeypointFrame {
+            points,
+            source_ns: now,
+        };
+        let outputs = station.step(StationInput::Keypoints(frame), now);
+        commands.extend(outputs.hand.map(|h| h.joint_state.position));
+        station.step(StationInput::Control(ControlInput::Tick), now + 1_000_000);
+    }
+    commands
+}
+
+fn as_f32(points: &[Point3<f64>]) -> Vec<Point3<f64>> {
+    points
+        .iter()
+        .map(|p| p.map(|v| f64::from(v as f32)))
+        .collect()
+}
+
+#[test]
+fn avp_updates_drive_the_station_as_the_same_hand_on_the_lab_topics() {
+    use prost::Message as _;
+    use retarget::KeypointLayout;
+    use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
+    use teleop::ingress::avp_frame::convert_update;
+    use teleop::ingress::avp_proto::HandUpdate;
+    use teleop::ingress::avp_update_builder::hand_update;
+    use teleop::ingress::ingress_config::Hand;
+
+    // A hand with pinches and a moving, turning wrist (the simulated glove's task-like motion),
+    // placed in front of a headset wearer.
+    let shape = HumanHandShape::average().scaled(1.08);
+    let motion = Motion::new(MotionKind::TaskLike, 4.0, &shape).unwrap();
+    let glove = SimGlove::new(shape, motion, KeypointLayout::Lab22).unwrap();
+    let frames: Vec<_> = (0..150).map(|i| glove.frame(i as f64 * 0.04)).collect();
+
+    let lab_topics = station_commands(&frames, |points, wrist| (as_f32(points), *wrist));
+    let headset = station_commands(&frames, |points, wrist| {
+        let lab22: [Point3<f64>; 22] = points.try_into().unwrap();
+        // On the wire and back: protobuf bytes, decoded, converted as the ingress does.
+        let bytes = hand_update(&lab22, wrist, true, Hand::Right).encode_to_vec();
+        let update = HandUpdate::decode(&bytes[..]).unwrap();
+        let frame = convert_update(&update, Hand::Right, KeypointLayout::Lab22).unwrap();
+        (as_f32(&frame.keypoints), frame.wrist)
+    });
+    assert!(lab_topics.len() >= 50, "{} commands", lab_topics.len());
+    assert_eq!(headset.len(), lab_topics.len());
+    let worst = lab_topics
+        .iter()
+        .zip(&headset)
+        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+        .fold(0.0f64, f64::max);
+    eprintln!(
+        "{} commands, largest joint difference {worst:.2e} rad",
+        lab_topics.len()
+    );
+    assert!(worst < 1e-3, "largest joint difference {worst} rad");
 }

@@ -165,6 +165,12 @@ fn assert_v1_log(dir: &Path, file: &str, practice: &str, index: &str, want: &[&s
     assert_eq!(meta["operator"], "ci", "{file}");
     assert_eq!(meta["practice"], practice, "{file}");
     assert_eq!(meta["trial_index"], index, "{file}");
+    // Named by the simulated glove's status on /ingress/status, as an ingress names itself.
+    assert_eq!(meta["keypoint_source"], "simulated", "{file}");
+    assert!(
+        meta["keypoint_device"].contains("simulated glove"),
+        "{file}"
+    );
     assert_eq!(names(&events(&path)), want, "{file}");
     let reader = TrialReader::open(&path).unwrap();
     let targets: Vec<JointState> = reader.decode_topic("/pomdar/hand/joint_targets").unwrap();

@@ -69,6 +69,7 @@ fn assert_log_matches_run(log: &TrialReader, summary: &DemoSummary) {
     assert_eq!(statistics.message_count, log.message_count() as u64);
     let trial = log.metadata_named("pomdar_trial").expect("trial metadata");
     assert_eq!(trial["embodiment"], "orca_full");
+    assert_eq!(trial["keypoint_source"], "simulated");
     assert!(trial["config_digest"].starts_with("fnv1a64:"));
 }
 

@@ -233,6 +233,12 @@ fn demo_recording(
             ("source".to_string(), "pomdar demo".to_string()),
             ("task".to_string(), "demo".to_string()),
             ("user".to_string(), "simulated glove".to_string()),
+            // The log starts with the station, before the glove's first status names it.
+            ("keypoint_source".to_string(), "simulated".to_string()),
+            (
+                "keypoint_device".to_string(),
+                "pomdar demo's simulated glove".to_string(),
+            ),
             ("operator".to_string(), "pomdar demo".to_string()),
             ("calibration_profile".to_string(), "none".to_string()),
             ("trial_index".to_string(), "0".to_string()),

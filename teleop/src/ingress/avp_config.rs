@@ -102,8 +102,13 @@ impl AvpConfig {
         };
         let (host, port) = match given.rsplit_once(':') {
             Some((host, port)) if !host.contains(':') || host.ends_with(']') => {
-                let port = port.parse::<u16>().map_err(|_| bad("the port is not in 1..=65535"))?;
-                (host.trim_start_matches('[').trim_end_matches(']'), Some(port))
+                let port = port
+                    .parse::<u16>()
+                    .map_err(|_| bad("the port is not in 1..=65535"))?;
+                (
+                    host.trim_start_matches('[').trim_end_matches(']'),
+                    Some(port),
+                )
             }
             _ => (given, None),
         };
@@ -162,7 +167,11 @@ impl AvpConfig {
         for (key, value, range) in [
             ("connect_timeout_s", self.connect_timeout_s, (0.05, 60.0)),
             ("reconnect_min_s", self.reconnect_min_s, (0.01, 60.0)),
-            ("reconnect_max_s", self.reconnect_max_s, (self.reconnect_min_s, 600.0)),
+            (
+                "reconnect_max_s",
+                self.reconnect_max_s,
+                (self.reconnect_min_s, 600.0),
+            ),
         ] {
             if !(value.is_finite() && value >= range.0 && value <= range.1) {
                 return Err(IngressError::Seconds { key, value, range });
@@ -199,23 +208,38 @@ mod tests {
     #[test]
     fn the_shipped_file_is_the_defaults() {
         let text = include_str!("../../../launch_configs/ingress/avp.toml");
-        assert_eq!(AvpConfig::from_toml_str(text).unwrap(), AvpConfig::default());
+        assert_eq!(
+            AvpConfig::from_toml_str(text).unwrap(),
+            AvpConfig::default()
+        );
     }
 
     #[test]
     fn addresses_take_an_optional_port() {
         let mut c = AvpConfig::default();
         c.set_address("10.0.0.7").unwrap();
-        assert_eq!((c.address.as_str(), c.port, c.uri().as_str()), ("10.0.0.7", 12345, "http://10.0.0.7:12345"));
+        assert_eq!(
+            (c.address.as_str(), c.port, c.uri().as_str()),
+            ("10.0.0.7", 12345, "http://10.0.0.7:12345")
+        );
         c.set_address("vision.local:5000").unwrap();
         assert_eq!((c.address.as_str(), c.port), ("vision.local", 5000));
         c.set_address("[::1]:7000").unwrap();
-        assert_eq!((c.address.as_str(), c.port, c.uri().as_str()), ("::1", 7000, "http://[::1]:7000"));
+        assert_eq!(
+            (c.address.as_str(), c.port, c.uri().as_str()),
+            ("::1", 7000, "http://[::1]:7000")
+        );
         for bad in ["", "host:99999", "host:x", "a b"] {
             let e = c.set_address(bad).unwrap_err().to_string();
             assert!(e.contains(&format!("'{bad}'")), "{bad}: {e}");
         }
-        assert!(AvpConfig::default().validate().unwrap_err().to_string().contains("--address"));
+        assert!(
+            AvpConfig::default()
+                .validate()
+                .unwrap_err()
+                .to_string()
+                .contains("--address")
+        );
     }
 
     #[test]
@@ -227,7 +251,10 @@ mod tests {
             ("reconnect_max_s = 0.1", "reconnect_max_s"),
             ("max_message_bytes = 10", "max_message_bytes"),
             ("status_topic = \"status\"", "status_topic"),
-            ("qos = { reliability = \"reliable\", depth = 0 }", "qos.depth"),
+            (
+                "qos = { reliability = \"reliable\", depth = 0 }",
+                "qos.depth",
+            ),
             ("colour = 1", "colour"),
         ] {
             let e = AvpConfig::from_toml_str(text).unwrap_err().to_string();

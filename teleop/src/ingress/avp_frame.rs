@@ -164,9 +164,8 @@ pub fn convert_update(
     }
     let turned = Rotation3::from_matrix_unchecked(c * rotation * c.transpose());
     // Within the rigidity tolerance, not exactly orthonormal: normalise the quaternion.
-    let quaternion = UnitQuaternion::new_normalize(
-        *UnitQuaternion::from_rotation_matrix(&turned).quaternion(),
-    );
+    let quaternion =
+        UnitQuaternion::new_normalize(*UnitQuaternion::from_rotation_matrix(&turned).quaternion());
     let wrist = Isometry3::from_parts(Translation3::from(c * translation), quaternion);
     Ok(AvpFrame {
         keypoints,
@@ -176,10 +175,7 @@ pub fn convert_update(
 }
 
 /// The selected hand's wrist matrix and joints.
-fn select_hand(
-    update: &HandUpdate,
-    hand: Hand,
-) -> Result<(&Matrix4x4, &[Matrix4x4]), UpdateError> {
+fn select_hand(update: &HandUpdate, hand: Hand) -> Result<(&Matrix4x4, &[Matrix4x4]), UpdateError> {
     let chosen: Option<&AvpHand> = match hand {
         Hand::Right => update.right_hand.as_ref(),
         Hand::Left => update.left_hand.as_ref(),

@@ -58,8 +58,15 @@ fn a_translated_wrist_and_joint_worked_by_hand() {
     )
     .unwrap();
     assert_eq!(frame.keypoints.len(), 21);
-    assert!(close(&frame.keypoints[4], [0.4, -0.104, 1.2]), "{:?}", frame.keypoints[4]);
-    assert!(close(&frame.wrist.translation.vector.into(), [0.4, -0.1, 1.2]));
+    assert!(
+        close(&frame.keypoints[4], [0.4, -0.104, 1.2]),
+        "{:?}",
+        frame.keypoints[4]
+    );
+    assert!(close(
+        &frame.wrist.translation.vector.into(),
+        [0.4, -0.1, 1.2]
+    ));
     assert!(frame.wrist.rotation.angle() < EPS);
 }
 
@@ -79,11 +86,18 @@ fn a_wrist_turned_about_up_turns_about_ros_z() {
     )
     .unwrap();
     // Joint 9 (index tip) at (9 mm, 0, 0) local: world (0, 0, −0.009), forward: ROS (0.009, 0, 0).
-    assert!(close(&frame.keypoints[8], [0.009, 0.0, 0.0]), "{:?}", frame.keypoints[8]);
+    assert!(
+        close(&frame.keypoints[8], [0.009, 0.0, 0.0]),
+        "{:?}",
+        frame.keypoints[8]
+    );
     // In ROS the turn takes right (−y) to forward (+x): +90° about z.
     let q = frame.wrist.rotation;
     let half = std::f64::consts::FRAC_PI_4;
-    assert!((q.w - half.cos()).abs() < EPS && (q.k - half.sin()).abs() < EPS, "{q:?}");
+    assert!(
+        (q.w - half.cos()).abs() < EPS && (q.k - half.sin()).abs() < EPS,
+        "{q:?}"
+    );
     assert!(q.i.abs() < EPS && q.j.abs() < EPS);
 }
 
@@ -101,8 +115,21 @@ fn the_lab_layouts_take_the_documented_joints() {
         assert_eq!(frame.has_forearm, count == 27);
         assert!(close(&frame.keypoints[0], c(forearm)), "{count}: forearm");
         // Wrist, thumb knuckle..tip, then index knuckle (6, not the metacarpal 5) ... little tip.
-        for (point, joint) in [(1, 0), (2, 1), (5, 4), (6, 6), (9, 9), (10, 11), (14, 16), (18, 21), (21, 24)] {
-            assert!(close(&frame.keypoints[point], c(joint)), "{count}: point {point}");
+        for (point, joint) in [
+            (1, 0),
+            (2, 1),
+            (5, 4),
+            (6, 6),
+            (9, 9),
+            (10, 11),
+            (14, 16),
+            (18, 21),
+            (21, 24),
+        ] {
+            assert!(
+                close(&frame.keypoints[point], c(joint)),
+                "{count}: point {point}"
+            );
         }
     }
 }
@@ -112,7 +139,9 @@ fn the_left_hand_is_read_when_asked() {
     let mut u = update(translation(0.0, 0.0, 0.0), skeleton(25));
     u.left_hand = u.right_hand.take();
     assert_eq!(
-        convert_update(&u, Hand::Right, KeypointLayout::Lab21).unwrap_err().kind(),
+        convert_update(&u, Hand::Right, KeypointLayout::Lab21)
+            .unwrap_err()
+            .kind(),
         "no_hand"
     );
     assert!(convert_update(&u, Hand::Left, KeypointLayout::Lab21).is_ok());
@@ -124,17 +153,51 @@ fn broken_updates_are_refused_by_kind() {
     let mut zero = ok();
     zero.right_hand.as_mut().unwrap().wrist_matrix = Some(Matrix4x4::default());
     let mut mirrored = ok();
-    mirrored.right_hand.as_mut().unwrap().wrist_matrix.as_mut().unwrap().m00 = -1.0;
+    mirrored
+        .right_hand
+        .as_mut()
+        .unwrap()
+        .wrist_matrix
+        .as_mut()
+        .unwrap()
+        .m00 = -1.0;
     let mut nan = ok();
-    nan.right_hand.as_mut().unwrap().skeleton.as_mut().unwrap().joint_matrices[7].m13 = f32::NAN;
+    nan.right_hand
+        .as_mut()
+        .unwrap()
+        .skeleton
+        .as_mut()
+        .unwrap()
+        .joint_matrices[7]
+        .m13 = f32::NAN;
     let mut far = ok();
-    far.right_hand.as_mut().unwrap().wrist_matrix.as_mut().unwrap().m03 = 1e6;
+    far.right_hand
+        .as_mut()
+        .unwrap()
+        .wrist_matrix
+        .as_mut()
+        .unwrap()
+        .m03 = 1e6;
     let mut short = ok();
-    short.right_hand.as_mut().unwrap().skeleton.as_mut().unwrap().joint_matrices.truncate(24);
+    short
+        .right_hand
+        .as_mut()
+        .unwrap()
+        .skeleton
+        .as_mut()
+        .unwrap()
+        .joint_matrices
+        .truncate(24);
     let mut benchmark = ok();
-    benchmark.head = Some(Matrix4x4 { m00: 777.0, ..Matrix4x4::default() });
+    benchmark.head = Some(Matrix4x4 {
+        m00: 777.0,
+        ..Matrix4x4::default()
+    });
     let no_skeleton = HandUpdate {
-        right_hand: Some(AvpHand { wrist_matrix: Some(translation(0.0, 0.0, 0.0)), skeleton: None }),
+        right_hand: Some(AvpHand {
+            wrist_matrix: Some(translation(0.0, 0.0, 0.0)),
+            skeleton: None,
+        }),
         ..HandUpdate::default()
     };
     for (u, kind) in [

@@ -137,7 +137,10 @@ impl AvpIngress {
                 self.counters.reconnects = n.saturating_sub(1);
                 if print {
                     let again = if n > 1 { " again" } else { "" };
-                    eprintln!("note: avp ingress: streaming from {}{again}", self.source.device);
+                    eprintln!(
+                        "note: avp ingress: streaming from {}{again}",
+                        self.source.device
+                    );
                 }
             }
             LinkEvent::Lost {
@@ -150,7 +153,9 @@ impl AvpIngress {
                     eprintln!(
                         "warning: avp ingress: the stream from {} ended ({reason}); \
                          reconnecting every {:.2}–{:.1} s",
-                        self.source.device, retry_in.as_secs_f64(), self.config.reconnect_max_s
+                        self.source.device,
+                        retry_in.as_secs_f64(),
+                        self.config.reconnect_max_s
                     );
                 }
             }
@@ -243,7 +248,11 @@ async fn run_link(config: AvpConfig, clock: StationClock, events: mpsc::Sender<L
             Err(reason) => (reason, false),
             Ok(mut stream) => {
                 connections += 1;
-                if events.send(LinkEvent::Connected(connections)).await.is_err() {
+                if events
+                    .send(LinkEvent::Connected(connections))
+                    .await
+                    .is_err()
+                {
                     return;
                 }
                 wait = min;
@@ -285,8 +294,8 @@ async fn open_stream(config: &AvpConfig) -> Result<tonic::Streaming<Decoded>, St
         .await
         .map_err(|_| "no answer within the connect timeout".to_string())?
         .map_err(|e| format!("cannot connect: {}", error_chain(&e)))?;
-    let mut client = tonic::client::Grpc::new(channel)
-        .max_decoding_message_size(config.max_message_bytes);
+    let mut client =
+        tonic::client::Grpc::new(channel).max_decoding_message_size(config.max_message_bytes);
     client
         .ready()
         .await
@@ -303,7 +312,9 @@ async fn open_stream(config: &AvpConfig) -> Result<tonic::Streaming<Decoded>, St
 /// 0.0.0.0 when it cannot be told (an IPv6 headset, no route).
 async fn local_ipv4(config: &AvpConfig) -> Ipv4Addr {
     let probe = async {
-        let socket = tokio::net::UdpSocket::bind((Ipv4Addr::UNSPECIFIED, 0)).await.ok()?;
+        let socket = tokio::net::UdpSocket::bind((Ipv4Addr::UNSPECIFIED, 0))
+            .await
+            .ok()?;
         // A UDP connect sends nothing: it only picks the route and so the local address.
         socket
             .connect((config.address.as_str(), config.port))

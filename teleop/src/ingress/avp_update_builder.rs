@@ -8,7 +8,9 @@
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 
-use crate::ingress::avp_frame::{JOINTS_WITH_FOREARM, JOINTS_WITHOUT_FOREARM, LAB21_JOINTS, arkit_to_ros};
+use crate::ingress::avp_frame::{
+    JOINTS_WITH_FOREARM, JOINTS_WITHOUT_FOREARM, LAB21_JOINTS, arkit_to_ros,
+};
 use crate::ingress::avp_proto::{Hand as AvpHand, HandUpdate, Matrix4x4, Skeleton};
 use crate::ingress::ingress_config::Hand;
 
@@ -38,7 +40,11 @@ pub fn hand_update(
     let r = c.transpose() * wrist.rotation.to_rotation_matrix().matrix() * c;
     let t = c.transpose() * wrist.translation.vector;
     let local = |q: &Point3<f64>| r.transpose() * (c.transpose() * q.coords - t);
-    let count = if with_forearm { JOINTS_WITH_FOREARM } else { JOINTS_WITHOUT_FOREARM };
+    let count = if with_forearm {
+        JOINTS_WITH_FOREARM
+    } else {
+        JOINTS_WITHOUT_FOREARM
+    };
     let mut joints = vec![Vector3::zeros(); count];
     for (point, &joint) in LAB21_JOINTS.iter().enumerate() {
         joints[joint] = local(&lab22[point + 1]);
@@ -51,7 +57,10 @@ pub fn hand_update(
         joints[26] = local(&lab22[0]);
     }
     let skeleton = Skeleton {
-        joint_matrices: joints.iter().map(|p| matrix(&Matrix3::identity(), p)).collect(),
+        joint_matrices: joints
+            .iter()
+            .map(|p| matrix(&Matrix3::identity(), p))
+            .collect(),
     };
     let side = Some(AvpHand {
         wrist_matrix: Some(matrix(&r, &t)),
@@ -59,8 +68,16 @@ pub fn hand_update(
     });
     let head = Some(matrix(&Matrix3::identity(), &Vector3::new(0.0, 1.6, 0.0)));
     match hand {
-        Hand::Right => HandUpdate { right_hand: side, left_hand: None, head },
-        Hand::Left => HandUpdate { left_hand: side, right_hand: None, head },
+        Hand::Right => HandUpdate {
+            right_hand: side,
+            left_hand: None,
+            head,
+        },
+        Hand::Left => HandUpdate {
+            left_hand: side,
+            right_hand: None,
+            head,
+        },
     }
 }
 
@@ -76,7 +93,11 @@ mod tests {
     fn building_then_converting_gives_the_hand_back() {
         let lab22: [Point3<f64>; 22] = std::array::from_fn(|k| {
             let k = k as f64;
-            Point3::new(0.3 + 0.01 * k, -0.05 + 0.003 * k * k % 0.07, 1.1 - 0.004 * k)
+            Point3::new(
+                0.3 + 0.01 * k,
+                -0.05 + 0.003 * k * k % 0.07,
+                1.1 - 0.004 * k,
+            )
         });
         let wrist = Isometry3::from_parts(
             Translation3::new(0.31, -0.04, 1.09),
@@ -87,7 +108,10 @@ mod tests {
             let frame = convert_update(&update, Hand::Right, KeypointLayout::Lab22).unwrap();
             let skip = usize::from(!with_forearm);
             for (k, (got, want)) in frame.keypoints.iter().zip(&lab22).enumerate().skip(skip) {
-                assert!((got - want).norm() < 2e-6, "{with_forearm} point {k}: {got} vs {want}");
+                assert!(
+                    (got - want).norm() < 2e-6,
+                    "{with_forearm} point {k}: {got} vs {want}"
+                );
             }
             assert!(frame.wrist.rotation.angle_to(&wrist.rotation) < 1e-6);
             assert!((frame.wrist.translation.vector - wrist.translation.vector).norm() < 1e-6);

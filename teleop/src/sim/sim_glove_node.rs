@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 use std::time::Duration;
 
-use msgs::{Float32MultiArray, PoseStamped};
+use msgs::{Float32MultiArray, PoseStamped, StringMsg};
 use retarget::KeypointLayout;
 use retarget::human_hand::{GloveScript, HumanHandShape, Motion, MotionKind, SimGlove};
 use serde::{Deserialize, Serialize};
@@ -43,6 +43,9 @@ pub struct SimGloveConfig {
     pub keypoints_topic: String,
     /// Wrist pose topic.
     pub wrist_topic: String,
+    /// Status topic (`std_msgs/String`, JSON once a second naming the source as `simulated`,
+    /// as an ingress does; the station records it in each trial log).
+    pub status_topic: String,
     /// Seed of the noise.
     pub seed: u64,
     /// A task script to play instead of `motion` (its wrist path moves the published wrist
@@ -62,6 +65,7 @@ impl Default for SimGloveConfig {
             layout: KeypointLayout::Lab22,
             keypoints_topic: "/ingress/mano".into(),
             wrist_topic: "/ingress/wrist".into(),
+            status_topic: "/ingress/status".into(),
             seed: 1,
             script: None,
         }
@@ -121,9 +125,31 @@ impl SimGloveReport {
         }
     }
 
+    /// Count a message on `topic` that was not sent.
+    fn count_failure(&mut self, topic: &str) {
+        *self.publish_failed.entry(topic.to_string()).or_default() += 1;
+    }
+
     /// Messages not sent, every topic.
     pub fn not_published(&self) -> u64 {
         self.publish_failed.values().sum()
+    }
+}
+
+/// The glove's status: the source it is (`simulated`) and what it published.
+fn glove_status(config: &SimGloveConfig, report: &SimGloveReport) -> StringMsg {
+    let device = format!(
+        "pomdar simulated glove ({}, {} Hz)",
+        config.describe_performance(),
+        config.rate_hz
+    );
+    let status = serde_json::json!({
+        "node": "sim_glove",
+        "source": {"kind": "simulated", "device": device},
+        "published": report.frames,
+    });
+    StringMsg {
+        data: status.to_string(),
     }
 }
 
@@ -178,6 +204,8 @@ pub async fn publish_glove(
     let qos = QosConfig::best_effort(400);
     let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, qos)?;
     let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, qos)?;
+    let status_pub = node.publisher::<StringMsg>(&config.status_topic, QosConfig::reliable(10))?;
+    let mut status_tick = tokio::time::interval(Duration::from_secs(1));
     // Start once a station listens (bounded), so no frame is lost to discovery.
     let waiting_since = std::time::Instant::now();
     while keypoints_pub.get_subscription_count(node.node()) == 0
@@ -208,6 +236,11 @@ pub async fn publish_glove(
     loop {
         tokio::select! {
             _ = shutdown.changed() => if *shutdown.borrow() { break },
+            _ = status_tick.tick() => {
+                if status_pub.async_publish(glove_status(config, &report)).await.is_err() {
+                    report.count_failure(&config.status_topic);
+                }
+            }
             _ = interval.tick() => {
                 let now = clock.now_ns();
                 let (points, wrist) = match (start_ns(), &resting) {

@@ -113,7 +113,10 @@ pub async fn run_station_observed(
         hooks.send(StationEvent::Message(line));
     }
     let recorder = match &recording {
-        Some(options) => Some(StationRecorder::start(options, &config, clock.now_ns())?),
+        Some(options) => {
+            let options = with_source(options, None, &config);
+            Some(StationRecorder::start(&options, &config, clock.now_ns())?)
+        }
         None => None,
     };
     let endpoints = Endpoints::open(&config, hooks.robot_description.is_some())?;
@@ -132,6 +135,7 @@ pub async fn run_station_observed(
         step_time: Samples::default(),
         tip_error_mm: Samples::default(),
         recorded: Vec::new(),
+        keypoint_source: None,
     };
     node.send_latched(&endpoints).await;
     loop {
@@ -144,6 +148,7 @@ pub async fn run_station_observed(
             Some(item) = streams.wrist.next() => node.on_wrist(item),
             Some(item) = streams.feedback.next() => node.on_feedback(item),
             Some(item) = streams.hand_state.next() => node.on_hand_state(item),
+            Some(item) = streams.ingress_status.next() => node.on_ingress_status(item),
             Some(request) = streams.services.next() => node.on_service(request, &endpoints).await,
             _ = streams.tick.tick() => {
                 node.drive(StationInput::Control(ControlInput::Tick), &endpoints).await;
@@ -167,6 +172,8 @@ struct Endpoints {
     keypoints: KeypointSubscription,
     wrist: Subscription<PoseStamped>,
     feedback: Subscription<PoseStamped>,
+    /// The ingress's status (for the keypoint source), when configured.
+    ingress_status: Option<Subscription<StringMsg>>,
     /// `/tf`, markers, diagnostics, the hand's state, the services.
     tools: ToolEndpoints,
 }
@@ -185,6 +192,7 @@ struct Streams<'a> {
     wrist: BoxStream<'a, Received<PoseStamped>>,
     feedback: BoxStream<'a, Received<PoseStamped>>,
     hand_state: BoxStream<'a, Received<JointState>>,
+    ingress_status: BoxStream<'a, Received<StringMsg>>,
     services: BoxStream<'a, ServiceRequest>,
     tick: tokio::time::Interval,
     status_tick: tokio::time::Interval,
@@ -234,6 +242,10 @@ impl Endpoints {
             wrist: node.subscription(&config.input.wrist_topic, input_qos)?,
             feedback: node
                 .subscription(&config.input.arm_feedback_topic, QosConfig::best_effort(10))?,
+            ingress_status: match config.input.ingress_status_topic.as_str() {
+                "" => None,
+                topic => Some(node.subscription(topic, QosConfig::reliable(10))?),
+            },
             tools: ToolEndpoints::open(&mut node, config, has_description)?,
             node,
         })
@@ -257,6 +269,10 @@ impl Endpoints {
             wrist: self.wrist.async_stream().boxed(),
             feedback: self.feedback.async_stream().boxed(),
             hand_state: match &self.tools.hand_state {
+                Some(sub) => sub.async_stream().boxed(),
+                None => futures::stream::pending().boxed(),
+            },
+            ingress_status: match &self.ingress_status {
                 Some(sub) => sub.async_stream().boxed(),
                 None => futures::stream::pending().boxed(),
             },
@@ -285,6 +301,41 @@ impl Endpoints {
     }
 }
 
+/// `options` with the keypoint source in its metadata (`keypoint_source`, `keypoint_device`),
+/// unless the caller set them: `source`, or `unknown` before an ingress named one.
+fn with_source(
+    options: &RecordingOptions,
+    source: Option<&(String, String)>,
+    config: &StationConfig,
+) -> RecordingOptions {
+    let mut options = options.clone();
+    let (kind, device) = source.cloned().unwrap_or_else(|| {
+        let topic = &config.input.ingress_status_topic;
+        (
+            "unknown".into(),
+            format!("no source named on '{topic}' yet"),
+        )
+    });
+    options
+        .metadata
+        .entry("keypoint_source".into())
+        .or_insert(kind);
+    options
+        .metadata
+        .entry("keypoint_device".into())
+        .or_insert(device);
+    options
+}
+
+/// The `source` (kind, device) an ingress status document names, if it names one.
+fn keypoint_source(status: &str) -> Option<(String, String)> {
+    let status: serde_json::Value = serde_json::from_str(status).ok()?;
+    let source = status.get("source")?;
+    let kind = source.get("kind")?.as_str()?.trim();
+    let device = source.get("device").and_then(|d| d.as_str()).unwrap_or("");
+    (!kind.is_empty()).then(|| (kind.to_string(), device.to_string()))
+}
+
 /// The sender's stamp of a sample, else its receive time.
 fn source_or(info: &MessageInfo, received_ns: i64) -> i64 {
     info.source_timestamp()
@@ -309,6 +360,8 @@ struct StationNode {
     step_time: Samples,
     tip_error_mm: Samples,
     recorded: Vec<std::path::PathBuf>,
+    /// The keypoint source the ingress last named (kind, device).
+    keypoint_source: Option<(String, String)>,
 }
 
 impl StationNode {
@@ -505,8 +558,24 @@ impl StationNode {
         status
     }
 
+    /// Remember the source an ingress's status names.
+    fn on_ingress_status(&mut self, item: Received<StringMsg>) {
+        let Ok((message, _)) = item else {
+            let config = Arc::clone(&self.config);
+            NodeFaults::count(
+                &mut self.faults.input_errors,
+                &config.input.ingress_status_topic,
+            );
+            return;
+        };
+        if let Some(source) = keypoint_source(&message.data) {
+            self.keypoint_source = Some(source);
+        }
+    }
+
     fn start_trial(&mut self, options: &RecordingOptions, now: i64) {
         self.finish_trial(now);
+        let options = &with_source(options, self.keypoint_source.as_ref(), &self.config);
         match StationRecorder::start(options, &self.config, now) {
             Ok(r) => {
                 self.recorder = Some(r);
