@@ -41,6 +41,20 @@ pub struct CompareGroup {
     pub trials: usize,
 }
 
+impl CompareGroup {
+    /// `avp (12 trials, reference)`, `(missing) (1 trial)`: the group as legends and headings
+    /// name it.
+    pub fn describe(&self) -> String {
+        let trials = if self.trials == 1 {
+            "1 trial".to_string()
+        } else {
+            format!("{} trials", self.trials)
+        };
+        let role = if self.reference { ", reference" } else { "" };
+        format!("{} ({trials}{role})", self.name)
+    }
+}
+
 /// A group's differences from the reference group in one task × embodiment.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct VersusReference {

@@ -93,7 +93,7 @@ fn chart(
     let series = groups
         .iter()
         .map(|g| BarSeries {
-            label: legend_label(g),
+            label: g.describe(),
             values: (rows.iter())
                 .map(|r| {
                     let s = measure.stats(r.group(&g.name)?)?;
@@ -122,10 +122,4 @@ fn chart(
             .collect(),
         series,
     })
-}
-
-/// `rokoko (12 trials, reference)`.
-fn legend_label(g: &CompareGroup) -> String {
-    let role = if g.reference { ", reference" } else { "" };
-    format!("{} ({} trials{role})", g.name, g.trials)
 }

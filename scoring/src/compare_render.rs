@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use crate::compare::{CompareRow, Comparison, GroupResult};
+use crate::compare::{CompareGroup, CompareRow, Comparison, GroupResult};
 use crate::report_markdown::md;
 use crate::report_terminal::{TERMINAL_WIDTH, wrap};
 use crate::stats::MeanStd;
@@ -72,12 +72,7 @@ fn pad(text: &str, width: usize) -> String {
 /// The heading lines: field, groups, reference, method, warnings and notes.
 fn write_heading(out: &mut String, c: &Comparison, w: usize) {
     let _ = writeln!(out, "POMDAR comparison by metadata entry {:?}", c.field);
-    let groups: Vec<String> = (c.groups.iter())
-        .map(|g| {
-            let role = if g.reference { ", reference" } else { "" };
-            format!("{} ({} trials{role})", g.name, g.trials)
-        })
-        .collect();
+    let groups: Vec<String> = c.groups.iter().map(CompareGroup::describe).collect();
     let line = format!("  groups    {}", groups.join(", "));
     let _ = writeln!(out, "{}", wrap(&line, w, "            "));
     let _ = writeln!(
