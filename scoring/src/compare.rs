@@ -363,4 +363,4 @@ fn notes(
 
 #[cfg(test)]
 #[path = "compare_tests.rs"]
-mod tests;
+pub(crate) mod tests;

@@ -204,3 +204,61 @@ fn write_markdown_table(out: &mut String, c: &Comparison) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compare::compare_by;
+    use crate::compare::tests::{report, trials};
+    use crate::compare_csv::render_compare_csv;
+
+    fn comparison() -> Comparison {
+        compare_by(&report(trials()), "keypoint_source", Some("rokoko")).unwrap()
+    }
+
+    #[test]
+    fn the_terminal_table_fits_and_shows_groups_differences_and_missing_scores() {
+        let text = render_compare_terminal(&comparison());
+        for line in text.lines() {
+            assert!(line.chars().count() <= TERMINAL_WIDTH, "too wide: {line}");
+        }
+        assert!(
+            text.contains("avp (5 trials), rokoko (4 trials, reference), (missing) (2 trials)")
+        );
+        // V1 on orca_full: avp's time 15.0 ± 2.0 s, 3.0 s slower than rokoko's.
+        let avp = text
+            .lines()
+            .find(|l| l.starts_with("  avp ") && l.contains("15.0 ± 2.0"));
+        assert!(avp.is_some(), "{text}");
+        assert!(text.contains("  − rokoko"), "{text}");
+        assert!(text.contains("+3.0 ["), "{text}");
+        assert!(text.contains("no baseline"), "H2 has no score: {text}");
+        assert!(text.contains("no CI (n < 2)"), "{text}");
+    }
+
+    #[test]
+    fn markdown_and_csv_have_a_row_per_task_embodiment_and_group() {
+        let c = comparison();
+        let md = render_compare_markdown(&c);
+        let table_rows = md
+            .lines()
+            .filter(|l| l.starts_with("| H2 ") || l.starts_with("| V1 "));
+        assert_eq!(table_rows.count(), 2 * 3);
+        assert!(md.contains("| V1 | orca_full | rokoko (ref) | 3 |"), "{md}");
+        let csv = render_compare_csv(&c);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 1 + 2 * 3);
+        let columns = lines[0].split(',').count();
+        assert!(
+            lines.iter().all(|l| l.split(',').count() == columns),
+            "{csv}"
+        );
+        let avp = lines
+            .iter()
+            .find(|l| l.contains(",V1,") && l.contains(",avp,"))
+            .unwrap();
+        // avp − rokoko = 3 s, 3 ∓ t(0.975, 4) · √(8/3) = 3 ∓ 2.7764451 · 1.6329932, ν = 4.
+        assert!(avp.contains(",3,-1.5339158"), "{avp}");
+        assert!(avp.contains(",7.5339158"), "{avp}");
+    }
+}

@@ -46,7 +46,7 @@ fn trial(
     }
 }
 
-fn report(scores: Vec<TrialScore>) -> ScoreReport {
+pub(crate) fn report(scores: Vec<TrialScore>) -> ScoreReport {
     let catalog = TaskCatalog::builtin();
     ScoreReport::build(ReportInputs {
         catalog: &catalog,
@@ -63,7 +63,7 @@ fn report(scores: Vec<TrialScore>) -> ScoreReport {
 /// V1 on orca_full: rokoko in 10, 12, 14 s; avp in 13, 15, 17 s; one trial without the
 /// entry; a practice trial (left out) with a third value. H2 (scored without score) on
 /// orca_5: one rokoko, two avp.
-fn trials() -> Vec<TrialScore> {
+pub(crate) fn trials() -> Vec<TrialScore> {
     let mut practice = trial("V1", "orca_full", Some("simulated"), 5.0, 1.0, Some(1.0));
     practice.practice = true;
     practice.counted = false;
