@@ -533,6 +533,26 @@ mod tests {
     }
 
     #[test]
+    fn the_whole_command_line_is_consistent() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let cli = Cli::try_parse_from([
+            "pomdar",
+            "score",
+            "trials/",
+            "--compare",
+            "keypoint_source",
+            "--compare-reference",
+            "rokoko",
+        ])
+        .unwrap();
+        let Command::Score(args) = cli.command else {
+            panic!("not score");
+        };
+        assert_eq!(args.compare.as_deref(), Some("keypoint_source"));
+    }
+
+    #[test]
     fn a_cause_already_in_the_message_is_not_repeated_and_a_context_is_kept() {
         let io = std::io::Error::new(std::io::ErrorKind::NotFound, "no such file");
         let error = anyhow::Error::new(Outer { source: io }).context("pomdar resim");
