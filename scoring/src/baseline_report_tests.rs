@@ -22,6 +22,7 @@ fn human(
         user: user.map(Into::into),
         operator: None,
         trial_index: index.map(Into::into),
+        metadata: BTreeMap::new(),
         start_ns: T0_NS,
         end_ns: T0_NS + (time_s * 1e9).round() as i64,
         ending: Ending::Stopped,

@@ -35,6 +35,15 @@ pub enum ScoringError {
         /// What is wrong with it.
         reason: String,
     },
+    /// Trials cannot be compared by a metadata field (fewer than two groups, an unknown
+    /// reference group, no recorded trials).
+    #[error("comparison by {field:?}: {reason}")]
+    Comparison {
+        /// The metadata field the trials are grouped by.
+        field: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A figure could not be drawn.
     #[error("figure {figure}: {reason}")]
     Figure {

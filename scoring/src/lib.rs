@@ -35,6 +35,22 @@
 //! overall_e (all)  = Σ_{t ∈ A_e} s_{t,e} / 18           tasks not attempted count 0
 //! ```
 //!
+//! ## Comparing groups of trials (the source ablation)
+//!
+//! [`compare_by`] groups the counted trials by a metadata entry *f* (`keypoint_source`:
+//! Rokoko gloves against Apple Vision Pro, or `user`, `station_version`, …; trials without
+//! it form [`MISSING_GROUP`]) and puts the groups side by side per task × embodiment:
+//!
+//! ```text
+//! per t, e, group g:  n, correctness, time, score (with a baseline): mean ± sample std
+//! d_g  = mean_g − mean_r                                  r = the reference group
+//! SE²  = s_g²/n_g + s_r²/n_r,   ν = SE⁴ / Σ (s²/n)²/(n − 1)      (Welch–Satterthwaite)
+//! CI   = d_g ± t_ν(0.975) · SE                            none if n < 2 or SE = 0
+//! ```
+//!
+//! `t_ν` is the Student-t quantile for real ν, from the regularized incomplete beta function
+//! (`student_t.rs`).
+//!
 //! ## Files
 //!
 //! | file | what |
@@ -52,8 +68,11 @@
 //! | `report.rs` | [`ScoreReport`]: all of the above with its warnings |
 //! | `report_terminal.rs`, `report_markdown.rs`, `report_csv.rs` | the renderers (JSON is serde) |
 //! | `figures.rs` | [`render_figures`]: the report's radars and overall-vs-DoF charts |
+//! | `compare.rs` | [`compare_by`]: trials grouped by a metadata entry (`keypoint_source`, …), per task × embodiment, differences from a reference group |
+//! | `student_t.rs`, `welch.rs` | the t distribution (CDF, quantile via the incomplete beta) and Welch's interval for a difference of means |
+//! | `compare_render.rs`, `compare_csv.rs`, `compare_figures.rs` | the comparison as terminal text, Markdown, CSV and grouped-bar figures |
 //! | `tracking.rs` | [`tracking_report`]: commanded against measured joint angles of a trial (RMS, max, lag, share over a threshold) |
-//! | `plot/` | the figures' drawing (radar, overall vs DoF) as SVG and PNG |
+//! | `plot/` | the figures' drawing (radar, overall vs DoF, grouped bars) as SVG and PNG |
 
 pub mod plot;
 
@@ -61,6 +80,10 @@ mod aggregate;
 mod baseline;
 mod baseline_report;
 mod catalog;
+mod compare;
+mod compare_csv;
+mod compare_figures;
+mod compare_render;
 mod correctness;
 mod error;
 mod figures;
@@ -70,9 +93,11 @@ mod report_markdown;
 mod report_terminal;
 mod rules;
 mod stats;
+mod student_t;
 mod tracking;
 mod trial_log;
 mod trial_score;
+mod welch;
 
 pub use aggregate::{Aggregate, EmbodimentResult, TaskResult, aggregate, overall_means};
 pub use baseline::{
@@ -88,6 +113,13 @@ pub use catalog::{
     DEFAULT_LIFT_M, DEFAULT_MARK_BAND, DEFAULT_REST_SPEED_M_S, DEFAULT_REST_TIME_S, Direction,
     GraspMapping, InvalidMapping, POMDAR_TASKS_TOML, PhysicsMapping, TaskCatalog, TaskSpec,
 };
+pub use compare::{
+    CompareGroup, CompareRow, Comparison, GroupResult, MISSING_GROUP, VersusReference, compare_by,
+    group_of,
+};
+pub use compare_csv::render_compare_csv;
+pub use compare_figures::render_compare_figures;
+pub use compare_render::{render_compare_markdown, render_compare_terminal};
 pub use correctness::{Correctness, GRASP_LEVELS, correctness};
 pub use error::ScoringError;
 pub use figures::{NamedFigure, render_figures};
@@ -97,9 +129,11 @@ pub use report_markdown::render_markdown;
 pub use report_terminal::{TERMINAL_WIDTH, render_terminal};
 pub use rules::{DEFAULT_RULES_ORIGIN, ScoringRules, UnfinishedRule};
 pub use stats::MeanStd;
+pub use student_t::{ln_gamma, regularized_incomplete_beta, student_t_cdf, student_t_quantile};
 pub use tracking::{
     JointTrack, JointTracking, MIN_LAG_SAMPLES, TrackingReport, TrackingSettings, track_joint,
     tracking_chart, tracking_report,
 };
 pub use trial_log::{Ending, HUMAN_EMBODIMENT, Mark, TRIAL_METADATA_NAME, TrialLog, TrialRecord};
 pub use trial_score::{Outcome, TrialScore, score_record, score_trial};
+pub use welch::{CONFIDENCE_LEVEL, Difference, DifferenceInterval, welch_difference};

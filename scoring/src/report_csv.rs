@@ -18,7 +18,7 @@ fn field(text: &str) -> String {
     }
 }
 
-fn row(out: &mut String, fields: &[String]) {
+pub(crate) fn row(out: &mut String, fields: &[String]) {
     let line: Vec<String> = fields.iter().map(|f| field(f)).collect();
     let _ = writeln!(out, "{}", line.join(","));
 }

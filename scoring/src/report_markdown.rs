@@ -6,7 +6,7 @@ use crate::report::{ScoreReport, opt};
 use crate::report_terminal::cell;
 
 /// Escapes `|` so a value cannot break a table row.
-fn md(text: &str) -> String {
+pub(crate) fn md(text: &str) -> String {
     text.replace('|', "\\|").replace('\n', " ")
 }
 

@@ -9,6 +9,8 @@
 //!
 //! Required: `task` (an ID of the catalog), `embodiment` (`orca_full`, ..., `human`),
 //! `practice` (`"true"` or `"false"`). Kept when present: `user`, `operator`, `trial_index`.
+//! Every entry (these and any other, e.g. `keypoint_source`, `station_version`) is kept in
+//! [`TrialRecord::metadata`], so a report can group trials by any of them.
 //!
 //! ## Events
 //!
@@ -88,6 +90,8 @@ pub struct TrialRecord {
     pub operator: Option<String>,
     /// The trial's index in its series, if recorded.
     pub trial_index: Option<String>,
+    /// Every entry of the `pomdar_trial` metadata record, the ones above included.
+    pub metadata: BTreeMap<String, String>,
     /// Log time of `start`, ns.
     pub start_ns: i64,
     /// Log time of `stop` (or of `abort` for an aborted trial), ns.
@@ -127,6 +131,7 @@ impl TrialRecord {
             user: optional("user"),
             operator: optional("operator"),
             trial_index: optional("trial_index"),
+            metadata: log.metadata.clone(),
             start_ns,
             end_ns,
             ending,

@@ -12,6 +12,8 @@
 //!             = none (correctness only) when the task has no baseline
 //! ```
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::baseline::BaselineTable;
@@ -59,6 +61,10 @@ pub struct TrialScore {
     pub operator: Option<String>,
     /// Index in its series, if recorded.
     pub trial_index: Option<String>,
+    /// Every entry of the trial's `pomdar_trial` metadata record (for grouping trials by
+    /// any of them, e.g. `keypoint_source`).
+    #[serde(default)]
+    pub metadata: BTreeMap<String, String>,
     /// Practice trial: shown, never in a mean.
     pub practice: bool,
     /// How it ended.
@@ -152,6 +158,7 @@ pub fn score_record(
         user: record.user.clone(),
         operator: record.operator.clone(),
         trial_index: record.trial_index.clone(),
+        metadata: record.metadata.clone(),
         practice: record.practice,
         outcome,
         time_s,

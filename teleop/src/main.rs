@@ -387,10 +387,25 @@ enum Command {
     /// written); 1 the run failed (bad catalog, rules or baseline file, no trial files, a
     /// report or figure could not be written).
     ///
+    /// --compare FIELD puts groups of trials side by side instead (the source ablation: the
+    /// same station, controller and robot with keypoints from Rokoko gloves or from Apple
+    /// Vision Pro): the groups are the values of the trials' pomdar_trial metadata entry FIELD
+    /// (keypoint_source, user, station_version, ...; trials without it form "(missing)", and
+    /// the report says how many). Per task × embodiment × group: n and mean ± sample std of
+    /// correctness, time and score (score only with a baseline), over the same recorded
+    /// trials and scores as the report; per group the difference from the reference group
+    /// (the first value in sorted order, or --compare-reference VALUE) with Welch's 95 %
+    /// interval (none when a group has fewer than 2 trials there). With --out it writes
+    /// compare.md, compare.csv, compare.json and the grouped-bar figures compare_score and
+    /// compare_correctness (.svg, .png) instead of the report's files. Fewer than two groups,
+    /// or a reference that is not a group, stops the run (status 1).
+    ///
     /// Examples:
     ///   pomdar score trials/ --baseline baselines/eth_2026.toml
     ///   pomdar score trials/orca_full trials/orca_5 --baseline baselines/eth_2026.toml --out report/
     ///   pomdar score trials/ --rules launch_configs/scoring/default_rules.toml --json > scores.json
+    ///   pomdar score trials/ --baseline baselines/eth_2026.toml --compare keypoint_source --out reports/ablation/
+    ///   pomdar score trials/ --baseline baselines/eth_2026.toml --compare keypoint_source --compare-reference rokoko --json
     #[command(verbatim_doc_comment)]
     Score(command::score::ScoreArgs),
     /// Compute the human baseline table from recorded human trials (embodiment "human").
@@ -515,6 +530,26 @@ mod tests {
     struct Outer {
         #[source]
         source: std::io::Error,
+    }
+
+    #[test]
+    fn the_whole_command_line_is_consistent() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+        let cli = Cli::try_parse_from([
+            "pomdar",
+            "score",
+            "trials/",
+            "--compare",
+            "keypoint_source",
+            "--compare-reference",
+            "rokoko",
+        ])
+        .unwrap();
+        let Command::Score(args) = cli.command else {
+            panic!("not score");
+        };
+        assert_eq!(args.compare.as_deref(), Some("keypoint_source"));
     }
 
     #[test]

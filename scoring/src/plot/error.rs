@@ -149,6 +149,46 @@ pub enum PlotError {
         /// What is wrong with it.
         problem: ValueProblem,
     },
+    /// A bar chart without categories or series.
+    #[error("bar chart '{title}' has nothing to draw (no categories or no series)")]
+    NoBars {
+        /// The chart's title.
+        title: String,
+    },
+    /// More bar series than the palette has distinct colours.
+    #[error("bar chart '{title}' has {count} series; at most {max} can be told apart by colour")]
+    TooManyBarSeries {
+        /// The chart's title.
+        title: String,
+        /// How many series it has.
+        count: usize,
+        /// The palette's size.
+        max: usize,
+    },
+    /// A bar series with a different number of values than the chart has categories.
+    #[error("bar series '{series}' has {values} values but the chart has {categories} categories")]
+    BarCountMismatch {
+        /// The series' label.
+        series: String,
+        /// How many values it has.
+        values: usize,
+        /// How many categories the chart has.
+        categories: usize,
+    },
+    /// A bar's mean or standard deviation that cannot be drawn.
+    #[error("bar series '{series}', category '{category}', {field}: value {value} is {problem}")]
+    BadBarValue {
+        /// The series' label.
+        series: String,
+        /// The category's label and band.
+        category: String,
+        /// `mean` or `std`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        problem: ValueProblem,
+    },
     /// The rasteriser could not make the canvas or encode the PNG.
     #[error("could not rasterise the figure: {reason}")]
     Raster {

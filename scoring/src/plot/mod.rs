@@ -9,6 +9,9 @@
 //!   embodiment, ± one standard deviation as error bars when given.
 //! - [`pca_scatter`]: principal component scores (the human study's strategy analysis), one
 //!   colour per series, round ticks around the data, light zero lines, a legend.
+//! - [`grouped_bars`]: one group of bars per category (task × embodiment, the embodiments
+//!   named under their runs of tasks), one bar per series in its colour, ± one standard
+//!   deviation as error bars, a legend (the source comparison, `pomdar score --compare`).
 //! - [`tracking_grid`]: commanded and measured joint angle over time, one small panel per
 //!   joint in a grid (`pomdar tracking`).
 //!
@@ -19,6 +22,9 @@
 //! deterministic: the same chart gives the same bytes.
 
 mod chart_frame;
+mod compare_bars;
+mod compare_chart;
+mod compare_layout;
 mod dof_chart;
 mod error;
 mod glyphs;
@@ -36,6 +42,8 @@ mod stroke_font;
 mod svg_backend;
 mod tracking_chart;
 
+pub use compare_bars::grouped_bars;
+pub use compare_chart::{Bar, BarCategory, BarSeries, GroupedBarChart, MAX_BAR_SERIES};
 pub use dof_chart::{DofChart, DofPoint, dof_scatter};
 pub use error::{PlotError, ValueProblem};
 pub use palette::SERIES_COLORS;

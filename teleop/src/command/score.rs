@@ -1,12 +1,14 @@
-//! `pomdar score`: score trial logs, print the table, write the reports.
+//! `pomdar score`: score trial logs, print the table, write the reports; with `--compare
+//! FIELD` the trials' groups by a metadata entry side by side instead (the source ablation).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Args;
-use scoring::{FileProblem, TrialScore};
+use scoring::{FileProblem, ScoreReport, TrialScore, compare_by, render_compare_terminal};
 
+use crate::score::compare_files::write_compare_files;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::ScoringFileArgs;
@@ -26,12 +28,32 @@ pub struct ScoreArgs {
     pub files: ScoringFileArgs,
     /// Write report.md, scores.csv, overall.csv, trials.csv, scores.json and the figures
     /// (radar_manipulation, radar_grasp, overall_vs_dof, overall_vs_dof_all_tasks; .svg and
-    /// .png) into this directory.
+    /// .png) into this directory; with --compare instead compare.md, compare.csv,
+    /// compare.json and compare_score, compare_correctness (.svg and .png).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Print the report as JSON on stdout instead of the table.
+    /// Print the report (or the comparison) as JSON on stdout instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Compare groups of trials side by side per task and embodiment, the groups being the
+    /// values of this entry of the trials' pomdar_trial metadata (keypoint_source, user,
+    /// station_version, ...; trials without it form the group "(missing)"). Per group: n and
+    /// mean ± std of correctness, time and score; per group against the reference: the
+    /// difference with Welch's 95 % interval. Example: --compare keypoint_source
+    #[arg(long, value_name = "FIELD", value_parser = non_blank)]
+    pub compare: Option<String>,
+    /// The group the others are compared against (default: the first value in sorted order).
+    #[arg(long, value_name = "VALUE", requires = "compare")]
+    pub compare_reference: Option<String>,
+}
+
+/// A metadata entry name: not blank.
+fn non_blank(text: &str) -> Result<String, String> {
+    if text.trim().is_empty() {
+        Err("a metadata entry name, e.g. keypoint_source".to_string())
+    } else {
+        Ok(text.trim().to_string())
+    }
 }
 
 /// `pomdar score`.
@@ -71,24 +93,11 @@ pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
     }
     let scored = scores.len();
     let mut report = inputs.report(scores, rejected, found.skipped);
-
-    let mut figure_errors = Vec::new();
-    if let Some(dir) = &args.out {
-        let written = write_report_files(dir, &mut report)?;
-        figure_errors = written.figure_errors;
-        eprintln!("wrote {} files to {}", written.files.len(), dir.display());
-    }
-    if args.json {
-        println!("{}", report.to_json());
-    } else {
-        print!("{}", scoring::render_terminal(&report));
-    }
-    for s in &report.skipped {
-        eprintln!("note: skipped {}: {}", s.file, s.reason);
-    }
-    for r in &report.rejected {
-        eprintln!("error: {}: {}", r.file, r.reason);
-    }
+    print_file_problems(&report);
+    let figure_errors = match &args.compare {
+        Some(field) => output_comparison(&args, field, &report)?,
+        None => output_report(&args, &mut report)?,
+    };
     for e in &figure_errors {
         eprintln!("error: {e}");
     }
@@ -106,4 +115,86 @@ pub fn score(args: ScoreArgs) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The report's files (with --out) and the table or JSON; returns the figures not drawn.
+fn output_report(args: &ScoreArgs, report: &mut ScoreReport) -> anyhow::Result<Vec<String>> {
+    let mut figure_errors = Vec::new();
+    if let Some(dir) = &args.out {
+        let written = write_report_files(dir, report)?;
+        figure_errors = written.figure_errors;
+        eprintln!("wrote {} files to {}", written.files.len(), dir.display());
+    }
+    if args.json {
+        println!("{}", report.to_json());
+    } else {
+        print!("{}", scoring::render_terminal(report));
+    }
+    Ok(figure_errors)
+}
+
+/// `--compare FIELD`: the comparison's files (with --out) and its table or JSON; returns the
+/// figures not drawn.
+fn output_comparison(
+    args: &ScoreArgs,
+    field: &str,
+    report: &ScoreReport,
+) -> anyhow::Result<Vec<String>> {
+    let mut comparison = compare_by(report, field, args.compare_reference.as_deref())?;
+    let mut figure_errors = Vec::new();
+    if let Some(dir) = &args.out {
+        let written = write_compare_files(dir, &mut comparison)?;
+        figure_errors = written.figure_errors;
+        eprintln!("wrote {} files to {}", written.files.len(), dir.display());
+    }
+    if args.json {
+        println!("{}", comparison.to_json());
+    } else {
+        print!("{}", render_compare_terminal(&comparison));
+    }
+    Ok(figure_errors)
+}
+
+/// Skipped and rejected files, on stderr.
+fn print_file_problems(report: &ScoreReport) {
+    for s in &report.skipped {
+        eprintln!("note: skipped {}: {}", s.file, s.reason);
+    }
+    for r in &report.rejected {
+        eprintln!("error: {}: {}", r.file, r.reason);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::{CommandFactory as _, Parser};
+
+    use super::*;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: ScoreArgs,
+    }
+
+    fn parse(extra: &[&str]) -> Result<ScoreArgs, clap::Error> {
+        let argv = ["pomdar", "trials/"];
+        Cli::try_parse_from(argv.iter().chain(extra)).map(|c| c.args)
+    }
+
+    #[test]
+    fn compare_takes_a_field_and_an_optional_reference() {
+        Cli::command().debug_assert();
+        let args = parse(&[]).unwrap();
+        assert_eq!((args.compare, args.compare_reference), (None, None));
+        let args = parse(&["--compare", "keypoint_source", "--out", "cmp/"]).unwrap();
+        assert_eq!(args.compare.as_deref(), Some("keypoint_source"));
+        let args = parse(&["--compare", "user", "--compare-reference", "ann"]).unwrap();
+        assert_eq!(args.compare_reference.as_deref(), Some("ann"));
+        assert!(
+            parse(&["--compare-reference", "ann"]).is_err(),
+            "needs --compare"
+        );
+        assert!(parse(&["--compare", " "]).is_err(), "a blank field");
+    }
 }

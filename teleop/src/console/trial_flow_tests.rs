@@ -25,6 +25,7 @@ fn score(progress: f64, correctness: f64) -> TrialScore {
         user: None,
         operator: None,
         trial_index: None,
+        metadata: std::collections::BTreeMap::new(),
         practice: false,
         outcome: Outcome::Completed,
         time_s: 4.0,

@@ -11,9 +11,11 @@
 //! | `score_inputs.rs` | catalog, rules, baseline files and the embodiments' DoF |
 //! | `parallel_files.rs` | files on every core, in input order, with progress |
 //! | `report_files.rs` | `--out DIR`: reports and figures, atomic writes |
+//! | `compare_files.rs` | `--compare FIELD --out DIR`: the comparison's files and figures, atomic writes |
 //! | `synthetic_trial.rs` | trial logs written as the station writes them, for the benchmark and tests |
 //! | `error.rs` | `ScoreFileError` (the run's own files), `TrialFileError` (a trial not scored) |
 
+pub mod compare_files;
 mod error;
 pub mod load_trial;
 pub mod parallel_files;
