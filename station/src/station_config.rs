@@ -228,13 +228,14 @@ impl StationConfig {
                 &self.output.joint_targets_topic,
             ),
             ("output.status_topic", &self.output.status_topic),
+            // Optional: empty reads no ingress status.
             (
                 "input.ingress_status_topic",
                 &self.input.ingress_status_topic,
             ),
         ] {
-            if !topic.starts_with('/') && !(key == "input.ingress_status_topic" && topic.is_empty())
-            {
+            let optional_and_off = key == "input.ingress_status_topic" && topic.is_empty();
+            if !optional_and_off && !topic.starts_with('/') {
                 return Err(ConfigError::out_of_range(
                     key,
                     format!("'{topic}'"),
