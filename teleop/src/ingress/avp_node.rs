@@ -72,6 +72,8 @@ struct AvpIngress {
     publishers: Publishers,
     /// The last hand published, to tell a repeated update.
     last_hand: Option<AvpHand>,
+    /// Whether the operator was told the headset cannot be reached yet.
+    waiting_reported: bool,
 }
 
 /// The source as the status names it.
@@ -108,6 +110,7 @@ pub async fn run_avp_ingress(
         counters,
         publishers,
         last_hand: None,
+        waiting_reported: false,
     };
     ingress.counters.status(clock.now_ns(), &ingress.source);
     let mut ticks = 0u64;
@@ -149,6 +152,16 @@ impl AvpIngress {
                 was_connected,
             } => {
                 self.counters.connected = Some(false);
+                if print && !was_connected && !self.waiting_reported {
+                    self.waiting_reported = true;
+                    eprintln!(
+                        "note: avp ingress: waiting for the headset at {} ({reason}); \
+                         retrying every {:.2}–{:.1} s (is the app started, on this network?)",
+                        self.source.device,
+                        retry_in.as_secs_f64(),
+                        self.config.reconnect_max_s
+                    );
+                }
                 if print && was_connected {
                     eprintln!(
                         "warning: avp ingress: the stream from {} ended ({reason}); \
