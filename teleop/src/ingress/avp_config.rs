@@ -8,7 +8,7 @@ use retarget::KeypointLayout;
 use serde::{Deserialize, Serialize};
 
 use crate::ingress::error::IngressError;
-use crate::ingress::ingress_config::Hand;
+use crate::ingress::ingress_config::{Hand, check_topics, parse_settings, read_settings};
 use crate::ros::{NetworkConfig, QosConfig};
 
 /// The app's gRPC port.
@@ -73,25 +73,16 @@ impl Default for AvpConfig {
 }
 
 impl AvpConfig {
-    /// Parse and validate.
+    /// Parse and validate (the address may be left to the command line).
     pub fn from_toml_str(text: &str) -> Result<AvpConfig, IngressError> {
-        let config: AvpConfig = toml::from_str(text).map_err(|e| IngressError::Syntax {
-            reason: e.to_string().trim_end().to_string(),
-        })?;
+        let config: AvpConfig = parse_settings(text)?;
         config.validate_settings()?;
         Ok(config)
     }
 
     /// Read, parse and validate a file; errors name it.
     pub fn from_file(path: &Path) -> Result<AvpConfig, IngressError> {
-        let text = std::fs::read_to_string(path).map_err(|source| IngressError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        AvpConfig::from_toml_str(&text).map_err(|e| IngressError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(e),
-        })
+        read_settings(path, AvpConfig::from_toml_str)
     }
 
     /// Take `HOST` or `HOST:PORT` (an IPv6 address in brackets with a port: `[::1]:12345`).
@@ -182,18 +173,11 @@ impl AvpConfig {
                 bytes: self.max_message_bytes,
             });
         }
-        for (key, topic) in [
+        check_topics([
             ("keypoints_topic", &self.keypoints_topic),
             ("wrist_topic", &self.wrist_topic),
             ("status_topic", &self.status_topic),
-        ] {
-            if !topic.starts_with('/') {
-                return Err(IngressError::RelativeTopic {
-                    key,
-                    topic: topic.clone(),
-                });
-            }
-        }
+        ])?;
         self.qos.validate("qos")?;
         crate::ros::domain_id(self.network.domain_id)
             .map_err(|source| IngressError::DomainId { source })?;

@@ -91,23 +91,14 @@ impl Default for IngressConfig {
 impl IngressConfig {
     /// Parse and validate.
     pub fn from_toml_str(text: &str) -> Result<IngressConfig, IngressError> {
-        let config: IngressConfig = toml::from_str(text).map_err(|e| IngressError::Syntax {
-            reason: e.to_string().trim_end().to_string(),
-        })?;
+        let config: IngressConfig = parse_settings(text)?;
         config.validate()?;
         Ok(config)
     }
 
     /// Read, parse and validate a file; errors name it.
     pub fn from_file(path: &Path) -> Result<IngressConfig, IngressError> {
-        let text = std::fs::read_to_string(path).map_err(|source| IngressError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        IngressConfig::from_toml_str(&text).map_err(|e| IngressError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(e),
-        })
+        read_settings(path, IngressConfig::from_toml_str)
     }
 
     /// Check every value; errors name the key and the allowed range.
@@ -130,18 +121,11 @@ impl IngressConfig {
         if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
             return Err(IngressError::RestartAfterBackwards { seconds });
         }
-        for (key, topic) in [
+        check_topics([
             ("keypoints_topic", &self.keypoints_topic),
             ("wrist_topic", &self.wrist_topic),
             ("status_topic", &self.status_topic),
-        ] {
-            if !topic.starts_with('/') {
-                return Err(IngressError::RelativeTopic {
-                    key,
-                    topic: topic.clone(),
-                });
-            }
-        }
+        ])?;
         if let Some(actor) = &self.actor
             && actor.trim().is_empty()
         {
@@ -152,6 +136,45 @@ impl IngressConfig {
             .map_err(|source| IngressError::DomainId { source })?;
         Ok(())
     }
+}
+
+/// TOML text to settings of type `T` (unknown keys and wrong types named by the parser).
+pub(crate) fn parse_settings<T: serde::de::DeserializeOwned>(
+    text: &str,
+) -> Result<T, IngressError> {
+    toml::from_str(text).map_err(|e| IngressError::Syntax {
+        reason: e.to_string().trim_end().to_string(),
+    })
+}
+
+/// Read `path` and parse it with `parse`; errors name the file.
+pub(crate) fn read_settings<T>(
+    path: &Path,
+    parse: impl FnOnce(&str) -> Result<T, IngressError>,
+) -> Result<T, IngressError> {
+    let text = std::fs::read_to_string(path).map_err(|source| IngressError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(&text).map_err(|e| IngressError::InFile {
+        path: path.to_path_buf(),
+        source: Box::new(e),
+    })
+}
+
+/// Every topic named must be absolute.
+pub(crate) fn check_topics<'a>(
+    topics: impl IntoIterator<Item = (&'static str, &'a String)>,
+) -> Result<(), IngressError> {
+    for (key, topic) in topics {
+        if !topic.starts_with('/') {
+            return Err(IngressError::RelativeTopic {
+                key,
+                topic: topic.clone(),
+            });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -12,8 +12,8 @@
 use std::path::{Path, PathBuf};
 
 use scoring::{
-    ScoreReport, render_figures, render_markdown, render_overall_csv, render_scores_csv,
-    render_trials_csv,
+    NamedFigure, ScoreReport, ScoringError, render_figures, render_markdown, render_overall_csv,
+    render_scores_csv, render_trials_csv,
 };
 
 use super::ScoreFileError;
@@ -34,33 +34,54 @@ pub fn write_report_files(
     dir: &Path,
     report: &mut ScoreReport,
 ) -> Result<WrittenReport, ScoreFileError> {
-    let mut written = WrittenReport::default();
     let (figures, notes, errors) = render_figures(report);
     report.notes.extend(notes);
-    for e in &errors {
-        report
-            .warnings
-            .push(format!("a figure could not be drawn: {e}"));
-        written.figure_errors.push(e.to_string());
-    }
-    let mut write = |name: &str, bytes: &[u8]| -> Result<(), ScoreFileError> {
+    let mut written = write_figures(
+        dir,
+        &figures,
+        &errors,
+        &mut report.warnings,
+        &mut report.figures,
+    )?;
+    written.write(dir, "report.md", render_markdown(report).as_bytes())?;
+    written.write(dir, "scores.csv", render_scores_csv(report).as_bytes())?;
+    written.write(dir, "overall.csv", render_overall_csv(report).as_bytes())?;
+    written.write(dir, "trials.csv", render_trials_csv(report).as_bytes())?;
+    written.write(dir, "scores.json", report.to_json().as_bytes())?;
+    Ok(written)
+}
+
+impl WrittenReport {
+    /// Write `dir/name` atomically and list it.
+    pub fn write(&mut self, dir: &Path, name: &str, bytes: &[u8]) -> Result<(), ScoreFileError> {
         let path = dir.join(name);
         write_atomically(&path, bytes)?;
-        written.files.push(path);
+        self.files.push(path);
         Ok(())
-    };
-    for f in &figures {
+    }
+}
+
+/// Write each figure as `STEM.svg` and `STEM.png` into `dir` (the names pushed onto `names`);
+/// a figure that could not be drawn becomes a warning and a figure error.
+pub fn write_figures(
+    dir: &Path,
+    figures: &[NamedFigure],
+    errors: &[ScoringError],
+    warnings: &mut Vec<String>,
+    names: &mut Vec<String>,
+) -> Result<WrittenReport, ScoreFileError> {
+    let mut written = WrittenReport::default();
+    for e in errors {
+        warnings.push(format!("a figure could not be drawn: {e}"));
+        written.figure_errors.push(e.to_string());
+    }
+    for f in figures {
         let svg = format!("{}.svg", f.stem);
         let png = format!("{}.png", f.stem);
-        write(&svg, f.figure.svg.as_bytes())?;
-        write(&png, &f.figure.png)?;
-        report.figures.push(svg);
-        report.figures.push(png);
+        written.write(dir, &svg, f.figure.svg.as_bytes())?;
+        written.write(dir, &png, &f.figure.png)?;
+        names.push(svg);
+        names.push(png);
     }
-    write("report.md", render_markdown(report).as_bytes())?;
-    write("scores.csv", render_scores_csv(report).as_bytes())?;
-    write("overall.csv", render_overall_csv(report).as_bytes())?;
-    write("trials.csv", render_trials_csv(report).as_bytes())?;
-    write("scores.json", report.to_json().as_bytes())?;
     Ok(written)
 }
