@@ -42,7 +42,7 @@ pub struct EvalArgs {
     /// several: `{"recordings": [...], "summary": [...]}`).
     #[arg(long)]
     pub json: bool,
-    /// Also report, per digit, the own scale Σ robot·human / Σ |human|² (fingertip-to-palm-
+    /// Also report, per digit, the own scale Σ robot·human / Σ |human|² (fingertip to palm
     /// centre vectors in each hand's palm frame), the global s*, and the reachability bound:
     /// the mean over frames of the distance from the human tip target (scaled by s*) to the
     /// nearest fingertip the robot reaches on a grid over that digit's joints within the
