@@ -172,6 +172,49 @@ fn robot_keypoints_give_no_tip_error() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `--reach` and `--profile-scales` on the robot's own keypoints: every digit's own scale is
+/// 1 and every target reachable (up to the grid's spacing); a profile of scale 0.8 shrinks s*
+/// to about 0.8 and the identity keeps it at 1.
+#[test]
+fn reach_and_profile_scales_on_robot_keypoints() {
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("pomdar-eval-reach-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("robot_fk.mcap");
+    synthetic_recording(&path);
+    let input = path.to_str().unwrap();
+    let output = pomdar(&["eval", input, "--reach", "--json"]);
+    assert!(output.status.success(), "pomdar eval --reach failed");
+    let json: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let reach = &json["reach"];
+    assert!((number(reach, "tip_scale") - 1.0).abs() < 0.01, "{reach}");
+    let digits = reach["per_digit"].as_array().unwrap();
+    assert_eq!(digits.len(), 5, "{reach}");
+    for d in digits {
+        let own = number(d, "own_scale");
+        assert!((own - 1.0).abs() < 0.02, "{d}");
+        // Grid spacing: 21 steps per thumb joint, 58 per finger joint (a few mm at the tip).
+        let nearest = number(d, "nearest_reachable_mean_mm");
+        assert!(nearest < 6.0, "{d}");
+    }
+    let output = pomdar(&["eval", input, "--profile-scales", "1.0,0.8", "--json"]);
+    assert!(
+        output.status.success(),
+        "pomdar eval --profile-scales failed"
+    );
+    let json: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let rows = json["profile_scales"].as_array().unwrap();
+    assert_eq!(rows.len(), 2, "{json}");
+    assert!((number(&rows[0], "tip_scale") - 1.0).abs() < 0.01, "{json}");
+    assert!(number(&rows[0], "tip_error_mean_mm") < 0.5, "{json}");
+    let shrunk = number(&rows[1], "tip_scale");
+    assert!(
+        (0.7..0.9).contains(&shrunk),
+        "s* {shrunk} at profile scale 0.8: {json}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The evaluation set built from the reference recording (`pomdar eval-set`) and evaluated
 /// with it: every copy is written and scored, and the 21-point copy (the forearm dropped,
 /// which no metric or retargeting term uses) scores exactly as the original.

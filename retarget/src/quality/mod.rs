@@ -46,10 +46,14 @@
 //! caller reads files and measures time.
 
 mod flexion;
+mod reachability;
 mod report;
 mod scale_free;
 
 pub use flexion::{CORRELATION_MIN_FRAMES, FLEXION_MIN_STD_M, LAG_MAX_FRAMES};
+pub use reachability::{
+    DigitReach, REACH_GRID_MAX_CONFIGURATIONS, Reachability, grid, grid_steps, nearest_distance,
+};
 pub use report::{DigitQuality, QualityReport};
 
 use nalgebra::{Point3, Vector3};

@@ -147,7 +147,7 @@ fn max(values: &[f64]) -> Option<f64> {
 }
 
 /// The global scale `s*` and each digit's errors after it, millimetres.
-fn global_scale(samples: &[FrameSample]) -> (f64, [Vec<f64>; 5]) {
+pub(super) fn global_scale(samples: &[FrameSample]) -> (f64, [Vec<f64>; 5]) {
     // Least squares of r ≈ s·h over every frame with a finite command.
     let (mut rh, mut hh) = (0.0, 0.0);
     for s in samples {

@@ -6,11 +6,13 @@ use std::path::PathBuf;
 
 use clap::Args;
 use retarget::HandModel;
+use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
 use super::common::mcap_files_under;
 use crate::eval::external::{evaluate_commands, external_table};
+use crate::eval::profile_scales::{profile_scales, profile_scales_table};
 use crate::eval::summary::{SetOutput, summary_table};
-use crate::eval::{evaluate, table};
+use crate::eval::{EvalOptions, evaluate, table};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
 use crate::station_setup::load_station_config;
@@ -40,6 +42,22 @@ pub struct EvalArgs {
     /// several: `{"recordings": [...], "summary": [...]}`).
     #[arg(long)]
     pub json: bool,
+    /// Also report, per digit, the own scale Σ robot·human / Σ |human|² (fingertip to palm
+    /// centre vectors in each hand's palm frame), the global s*, and the reachability bound:
+    /// the mean over frames of the distance from the human tip target (scaled by s*) to the
+    /// nearest fingertip the robot reaches on a grid over that digit's joints within the
+    /// URDF limits (at most --reach-grid configurations per digit; a second or so).
+    #[arg(long)]
+    pub reach: bool,
+    /// Most grid configurations per digit for --reach: the default gives 58 steps per joint
+    /// for a three-joint finger and 21 for the four-joint thumb (ORCA v1).
+    #[arg(long, value_name = "N", default_value_t = REACH_GRID_MAX_CONFIGURATIONS, requires = "reach")]
+    pub reach_grid: usize,
+    /// Instead of the full report: the retargeter alone under a calibration profile of each
+    /// of these scales with no rotation (replacing any profile), tip error (after s* and after
+    /// each digit's own scale) and jerk per scale; e.g. 1.0,0.9,0.8. No live path.
+    #[arg(long, value_name = "SCALES", value_delimiter = ',', conflicts_with_all = ["commands", "reach"])]
+    pub profile_scales: Vec<f64>,
 }
 
 /// `pomdar eval`.
@@ -48,6 +66,12 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     if let Some(topic) = &args.commands {
         return eval_commands(&args, &config, topic);
     }
+    if !args.profile_scales.is_empty() {
+        return eval_profile_scales(&args, &config);
+    }
+    let options = EvalOptions {
+        reach_max_configurations: args.reach.then_some(args.reach_grid),
+    };
     let single = args.inputs.len() == 1 && args.inputs[0].is_file();
     let files = if single {
         args.inputs.clone()
@@ -63,7 +87,7 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     for (done, path) in files.iter().enumerate() {
         progress.update(done, files.len(), &path.display().to_string());
         let reader = TrialReader::open(path)?;
-        let output = evaluate(&reader, &config, HandModel::orca_v1_right())
+        let output = evaluate(&reader, &config, HandModel::orca_v1_right(), options)
             .map_err(|e| in_file(path, &e))?;
         if !args.json {
             println!("{}", table(&output));
@@ -101,6 +125,37 @@ fn eval_commands(
             println!("{}", external_table(&output));
         }
         outputs.push(output);
+    }
+    if args.json {
+        let json = match &outputs[..] {
+            [one] => serde_json::to_string_pretty(one)?,
+            all => serde_json::to_string_pretty(all)?,
+        };
+        println!("{json}");
+    }
+    Ok(())
+}
+
+/// `pomdar eval --profile-scales S,…`: the retargeter alone under each scale, per recording.
+fn eval_profile_scales(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
+    if let Some(bad) = args
+        .profile_scales
+        .iter()
+        .find(|s| !(s.is_finite() && **s > 0.0))
+    {
+        anyhow::bail!("--profile-scales: {bad} is not a positive scale");
+    }
+    let model = HandModel::orca_v1_right();
+    let mut outputs = Vec::new();
+    for path in &mcap_files_under(&args.inputs)?.files {
+        let reader = TrialReader::open(path)?;
+        let rows = profile_scales(&reader, config, &model, &args.profile_scales)
+            .map_err(|e| in_file(path, &e))?;
+        let input = path.display().to_string();
+        if !args.json {
+            println!("{}", profile_scales_table(&input, &rows));
+        }
+        outputs.push(serde_json::json!({ "input": input, "profile_scales": rows }));
     }
     if args.json {
         let json = match &outputs[..] {

@@ -43,6 +43,13 @@ pub enum EvalError {
         #[source]
         source: retarget::Error,
     },
+    /// The reachability grid cannot be evaluated (the model's forward kinematics fails).
+    #[error("reachability: {source}")]
+    Reachability {
+        /// The retargeter's error.
+        #[source]
+        source: retarget::Error,
+    },
     /// A recorded command names a joint the model lacks.
     #[error("command joint {name:?} is not a joint of the model ({known})")]
     UnknownJoint {

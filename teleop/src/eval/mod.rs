@@ -10,7 +10,10 @@
 
 use std::time::Instant;
 
-use retarget::{EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter};
+use retarget::quality::Reachability;
+use retarget::{
+    CalibrationTransform, EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter,
+};
 use serde::Serialize;
 
 use crate::station_setup::{describe, load_profile};
@@ -21,6 +24,8 @@ mod error;
 pub mod eval_set;
 pub mod external;
 pub mod live_path;
+pub mod profile_scales;
+pub mod reach;
 pub mod summary;
 pub mod synthetic_users;
 pub mod tracking;
@@ -57,6 +62,9 @@ pub struct EvalOutput {
     pub time_per_frame_us_p99: Option<f64>,
     /// The live path: the station's command in force at each distinct frame.
     pub live_path: LivePathReport,
+    /// With `--reach`: per digit, the own scale and the reachability bound.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reach: Option<Reachability>,
 }
 
 /// The distinct keypoint frames of `reader` on the configured keypoint topic, by log time
@@ -96,11 +104,20 @@ pub fn distinct_frames(
     Ok((frames, messages.len()))
 }
 
+/// How [`evaluate`] runs: what it adds to the report.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EvalOptions {
+    /// Also report the reachability bound, on grids of at most this many configurations per
+    /// digit ([`retarget::quality::Reachability`]).
+    pub reach_max_configurations: Option<usize>,
+}
+
 /// The quality of the station's retargeting configured by `config` on `reader`'s keypoints.
 pub fn evaluate(
     reader: &TrialReader,
     config: &StationConfig,
     model: HandModel,
+    options: EvalOptions,
 ) -> Result<EvalOutput, EvalError> {
     let (frames, message_count) = distinct_frames(reader, config)?;
     let mut retarget_config = config.retarget.clone();
@@ -110,53 +127,104 @@ pub fn evaluate(
         Some(path) => Some((path, load_profile(path, &model, layout)?)),
         None => None,
     };
-    let embodiment = retarget_config.embodiment.clone();
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        retarget_config,
-        &EmbodimentCatalog::builtin(),
-    )
-    .map_err(|source| EvalError::Retargeter { source })?;
     if let Some((_, profile)) = &profile {
-        retargeter
-            .set_calibration(profile.parameters)
-            .map_err(|source| EvalError::Calibration { source })?;
         eprintln!("{}", describe(profile));
     }
-    let first_dt_s = 1.0 / config.control.rate_hz;
-    let mut recorder = QualityRecorder::new(model, layout);
-    let mut time_us = Samples::default();
-    let mut rejected = 0;
-    let mut previous_ns = None;
-    let origin_ns = frames.first().map_or(0, |f| f.t_ns);
-    let t_s = |t_ns: i64| (t_ns - origin_ns) as f64 * 1e-9;
-    for TimedFrame { t_ns, points } in &frames {
-        let dt_s = previous_ns.map_or(first_dt_s, |p: i64| (t_ns - p) as f64 * 1e-9);
-        let started = Instant::now();
-        let solved = retargeter.retarget(points, dt_s);
-        let elapsed_us = started.elapsed().as_secs_f64() * 1e6;
-        match solved {
-            Ok(solution) if recorder.push_at(t_s(*t_ns), points, &solution.q).is_ok() => {
-                time_us.push(elapsed_us);
-                previous_ns = Some(*t_ns);
-            }
-            _ => rejected += 1,
-        }
-    }
+    let embodiment = retarget_config.embodiment.clone();
+    let transform = profile.as_ref().map(|(_, p)| p.parameters);
+    let mut retargeter = build_retargeter(&model, retarget_config, transform)?;
+    let run = retarget_frames(&frames, &mut retargeter, 1.0 / config.control.rate_hz);
+    let reach = match options.reach_max_configurations {
+        Some(max) => Some(
+            run.recorder
+                .reachability(max)
+                .map_err(|source| EvalError::Reachability { source })?,
+        ),
+        None => None,
+    };
     let live_path = live_path(reader, config, retargeter.model().clone())?;
     Ok(EvalOutput {
         live_path,
         input: reader.path().display().to_string(),
         messages: message_count,
         distinct_frames: frames.len(),
-        rejected_frames: rejected,
+        rejected_frames: run.rejected,
         layout: layout.name().to_string(),
         embodiment,
         profile: profile.map(|(path, _)| path.display().to_string()),
-        quality: recorder.report(),
-        time_per_frame_us_p50: time_us.percentile(0.5),
-        time_per_frame_us_p99: time_us.percentile(0.99),
+        quality: run.recorder.report(),
+        time_per_frame_us_p50: run.time_us.percentile(0.5),
+        time_per_frame_us_p99: run.time_us.percentile(0.99),
+        reach,
     })
+}
+
+/// The station's retargeter for `model` and `retarget_config`, with the calibration
+/// `transform` when given (else the identity).
+pub fn build_retargeter(
+    model: &HandModel,
+    retarget_config: retarget::RetargetConfig,
+    transform: Option<CalibrationTransform>,
+) -> Result<Retargeter, EvalError> {
+    let mut retargeter = Retargeter::new(
+        model.clone(),
+        retarget_config,
+        &EmbodimentCatalog::builtin(),
+    )
+    .map_err(|source| EvalError::Retargeter { source })?;
+    if let Some(transform) = transform {
+        retargeter
+            .set_calibration(transform)
+            .map_err(|source| EvalError::Calibration { source })?;
+    }
+    Ok(retargeter)
+}
+
+/// The frames retargeted one after the other and recorded for the metrics.
+pub struct RetargetedFrames {
+    /// Every accepted frame with its command.
+    pub recorder: QualityRecorder,
+    /// Wall time of each accepted frame's retargeting, microseconds.
+    pub time_us: Samples,
+    /// Frames the retargeter or the recorder refused as malformed.
+    pub rejected: usize,
+}
+
+/// Retarget `frames` in order with `retargeter`, the log's time between frames as the time
+/// step (`first_dt_s` for the first), and record them.
+pub fn retarget_frames(
+    frames: &[TimedFrame],
+    retargeter: &mut Retargeter,
+    first_dt_s: f64,
+) -> RetargetedFrames {
+    let layout = retargeter.config().layout;
+    let mut run = RetargetedFrames {
+        recorder: QualityRecorder::new(retargeter.model().clone(), layout),
+        time_us: Samples::default(),
+        rejected: 0,
+    };
+    let mut previous_ns = None;
+    let origin_ns = frames.first().map_or(0, |f| f.t_ns);
+    let t_s = |t_ns: i64| (t_ns - origin_ns) as f64 * 1e-9;
+    for TimedFrame { t_ns, points } in frames {
+        let dt_s = previous_ns.map_or(first_dt_s, |p: i64| (t_ns - p) as f64 * 1e-9);
+        let started = Instant::now();
+        let solved = retargeter.retarget(points, dt_s);
+        let elapsed_us = started.elapsed().as_secs_f64() * 1e6;
+        match solved {
+            Ok(solution)
+                if run
+                    .recorder
+                    .push_at(t_s(*t_ns), points, &solution.q)
+                    .is_ok() =>
+            {
+                run.time_us.push(elapsed_us);
+                previous_ns = Some(*t_ns);
+            }
+            _ => run.rejected += 1,
+        }
+    }
+    run
 }
 
 fn opt(value: Option<f64>, precision: usize) -> String {
@@ -185,7 +253,11 @@ pub fn table(o: &EvalOutput) -> String {
         opt(o.time_per_frame_us_p50, 1),
         opt(o.time_per_frame_us_p99, 1)
     );
-    out + &live_path_lines(o)
+    out += &live_path_lines(o);
+    match &o.reach {
+        Some(reach) => out + &reach::reach_lines(reach),
+        None => out,
+    }
 }
 
 /// The metrics as table lines: overall and per digit, the pinch gap and limit violations,
