@@ -16,6 +16,7 @@ pub mod hand_check;
 pub mod hand_source;
 pub mod ingress;
 pub mod launch_config;
+pub mod library_log;
 pub mod mcap_log;
 pub mod model_report;
 #[cfg(feature = "physics")]

@@ -450,6 +450,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    teleop::library_log::install();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Model(args) => command::model::model(args),

@@ -15,7 +15,6 @@ use serde::Serialize;
 use tokio::sync::watch;
 
 use crate::mcap_log::{LogError, LoggedMessage, TrialReader};
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
 
 /// A replay that cannot start, or a message that cannot be republished.
@@ -122,11 +121,11 @@ impl AnyPublisher {
 
     fn subscribers(&self, node: &RosNode) -> usize {
         match self {
-            AnyPublisher::Array(p) => p.get_subscription_count(node.node()),
-            AnyPublisher::Pose(p) => p.get_subscription_count(node.node()),
-            AnyPublisher::PoseArray(p) => p.get_subscription_count(node.node()),
-            AnyPublisher::Joints(p) => p.get_subscription_count(node.node()),
-            AnyPublisher::Text(p) => p.get_subscription_count(node.node()),
+            AnyPublisher::Array(p) => node.matched_subscriptions(p),
+            AnyPublisher::Pose(p) => node.matched_subscriptions(p),
+            AnyPublisher::PoseArray(p) => node.matched_subscriptions(p),
+            AnyPublisher::Joints(p) => node.matched_subscriptions(p),
+            AnyPublisher::Text(p) => node.matched_subscriptions(p),
         }
     }
 
@@ -170,8 +169,7 @@ pub async fn replay(
     if !(options.rate > 0.0 && options.rate.is_finite()) {
         return Err(ReplayError::Rate { rate: options.rate });
     }
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_replay")?;
+    let mut node = RosNode::join(network, "/", "pomdar_replay")?;
     let mut report = ReplayReport::default();
     let mut publishers: BTreeMap<String, AnyPublisher> = BTreeMap::new();
     for topic in reader.topics() {

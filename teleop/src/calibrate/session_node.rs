@@ -33,7 +33,6 @@ use crate::calibrate::pose_session::{
 use crate::calibrate::session_events::{POSE_NOT_SENT_EVENT, SESSION_METADATA};
 use crate::clock::StationClock;
 use crate::mcap_log::{FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions};
-use crate::ros::NetworkContext as _;
 use crate::ros::RosNode;
 use crate::tui::script::ScriptError;
 use crate::tui::terminal::Input;
@@ -127,8 +126,7 @@ pub async fn run_session(
     let names = station::ros_tools::published_joint_names(model, prefix);
 
     // The glove's keypoints in, the hand's pose out, on the station's topics.
-    let context = config.network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_calibration")?;
+    let mut node = RosNode::join(&config.network, "/", "pomdar_calibration")?;
     let topic = config.input.keypoints_topic.clone();
     let (array_sub, poses_sub) = match config.input.keypoints_format {
         KeypointFormat::Float32MultiArray => (

@@ -19,7 +19,6 @@ use tokio::sync::watch;
 use crate::calibrate::CalibrateError;
 use crate::calibrate::session_node::PoseCue;
 use crate::clock::StationClock;
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use station::convert::{header, isometry_to_pose};
 use station::{KeypointFormat, StationConfig};
@@ -148,8 +147,7 @@ pub async fn publish_simulated_user(
     }
     .glove(layout, &schedule, &copies)
     .map_err(|source| CalibrateError::SimulatedGlove { source })?;
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_simulated_user")?;
+    let mut node = RosNode::join(&network, "/", "pomdar_simulated_user")?;
     let qos = QosConfig::best_effort(400);
     let keypoints_pub = node.publisher::<Float32MultiArray>(&station.input.keypoints_topic, qos)?;
     let wrist_pub = node.publisher::<PoseStamped>(&station.input.wrist_topic, qos)?;

@@ -11,7 +11,6 @@ use tokio::sync::{mpsc, watch};
 use crate::hand_check::HandCheckError;
 use crate::hand_check::hand_check_script::{CheckScriptPlayer, parse_answer};
 use crate::hand_check::session::{Answer, HandCheck};
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::tui::terminal::Input;
 
@@ -45,8 +44,7 @@ pub async fn run_check(
     mut answers: Answers,
     mut shutdown: watch::Receiver<bool>,
 ) -> Result<(), HandCheckError> {
-    let context = output.network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_hand_check")?;
+    let mut node = RosNode::join(&output.network, "/", "pomdar_hand_check")?;
     let publisher = node.publisher::<Float32MultiArray>(&output.topic, output.qos)?;
     let start = Instant::now();
     let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / output.rate_hz));

@@ -29,7 +29,6 @@ use crate::ingress::error::IngressError;
 use crate::ingress::ingress_config::Hand;
 use crate::ingress::ingress_counters::{IngressCounters, SourceInfo};
 use crate::ingress::rokoko_node::status_line;
-use crate::ros::NetworkContext as _;
 use crate::ros::{QosConfig, RosNode};
 use station::convert::{header, isometry_to_pose};
 
@@ -93,8 +92,7 @@ pub async fn run_avp_ingress(
     print_status: bool,
 ) -> Result<IngressCounters, IngressError> {
     config.validate()?;
-    let context = config.network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_avp_ingress")?;
+    let mut node = RosNode::join(&config.network, "/", "pomdar_avp_ingress")?;
     let publishers = Publishers {
         keypoints: node.publisher(&config.keypoints_topic, config.qos)?,
         wrist: node.publisher(&config.wrist_topic, config.qos)?,

@@ -20,7 +20,6 @@ use crate::ingress::error::IngressError;
 use crate::ingress::ingress_config::IngressConfig;
 use crate::ingress::ingress_counters::{IngressCounters, Order, SourceInfo};
 use crate::ingress::rokoko_packet::{PacketError, Selection, parse_packet};
-use crate::ros::NetworkContext as _;
 use crate::ros::{QosConfig, RosNode};
 use station::convert::{header, isometry_to_pose};
 
@@ -88,8 +87,7 @@ pub async fn run_rokoko_ingress(
     let local = socket
         .local_addr()
         .map_err(|source| IngressError::LocalAddress { source })?;
-    let context = config.network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_rokoko_ingress")?;
+    let mut node = RosNode::join(&config.network, "/", "pomdar_rokoko_ingress")?;
     let publishers = Publishers {
         keypoints: node.publisher(&config.keypoints_topic, config.qos)?,
         wrist: node.publisher(&config.wrist_topic, config.qos)?,

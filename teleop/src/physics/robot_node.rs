@@ -25,7 +25,6 @@ pub use super::robot_config::PhysicsRobotConfig;
 use super::setup::SimulatedTask;
 use super::sim_state::SimState;
 use crate::clock::StationClock;
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::mock_hand::joint_state_target;
 pub use crate::sim::progress_message::ProgressMessage;
@@ -126,8 +125,7 @@ pub async fn run_physics_robot(
         mut shutdown,
         options,
     } = run;
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_sim_robot")?;
+    let mut node = RosNode::join(&network, "/", "pomdar_sim_robot")?;
     let hand_sub =
         node.subscription::<JointState>(&config.hand_targets_topic, QosConfig::reliable(50))?;
     let arm_sub =

@@ -19,7 +19,6 @@ use serde::Serialize;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
 
 /// What to probe.
@@ -183,8 +182,7 @@ pub async fn probe(
     shutdown: watch::Receiver<bool>,
 ) -> Result<ProbeReport, RosError> {
     let domain_id = crate::ros::domain_id(network.domain_id)?;
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_probe")?;
+    let mut node = RosNode::join(network, "/", "pomdar_probe")?;
     let start = Instant::now();
     let mut topics: Vec<TopicProbe> = options
         .topics

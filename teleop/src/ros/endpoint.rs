@@ -3,6 +3,7 @@
 //! Topic types come from [`msgs::RosMessage`] (ROS 2 naming on the wire: topic `rt/<name>`,
 //! type `pkg::msg::dds_::Type_`), so peers such as Cyclone DDS or rclpy match by type name.
 
+use futures::FutureExt as _;
 use msgs::RosMessage;
 use ros2_client::dds::rustdds::Topic;
 use ros2_client::qos::Durability;
@@ -12,7 +13,8 @@ use ros2_client::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::ros::{QosConfig, QosProfileOf as _, RosError};
+use crate::ros::teardown::{SpinnerTask, TeardownScope};
+use crate::ros::{NetworkConfig, NetworkContext as _, QosConfig, QosProfileOf as _, RosError};
 
 /// A `std_srvs/srv/Trigger` request as ros2-client carries it (its `Message` marker on the
 /// `msgs` type, which knows nothing of ros2-client).
@@ -41,9 +43,22 @@ pub struct Stamped<M> {
 }
 
 /// A ROS 2 node with typed endpoint helpers. The spinner runs on the tokio runtime.
+///
+/// Shutdown order (`ros::teardown`): drop the endpoints made from a node before the node; the
+/// node holds its context, and its spinner task holds a clone until the spinner's own
+/// endpoints are gone, so the DDS participant is always the last to go.
 pub struct RosNode {
     node: Node,
     context: Context,
+    /// Dropped last: spans the drops of the node and the context (possibly the participant's
+    /// last handle), entered by `Drop for RosNode`.
+    teardown: TeardownScope,
+}
+
+impl Drop for RosNode {
+    fn drop(&mut self) {
+        self.teardown.enter();
+    }
 }
 
 impl std::fmt::Debug for RosNode {
@@ -65,6 +80,13 @@ fn topic_name(name: &str) -> Result<Name, RosError> {
 }
 
 impl RosNode {
+    /// Join the DDS domain `network` describes with a participant of its own, and create node
+    /// `name` in `namespace` on it (see [`RosNode::new`]). The node owns the participant: it
+    /// goes when the node and its spinner are gone.
+    pub fn join(network: &NetworkConfig, namespace: &str, name: &str) -> Result<RosNode, RosError> {
+        RosNode::new(&network.context()?, namespace, name)
+    }
+
     /// Create node `name` in `namespace` and spawn its spinner on the current tokio runtime.
     pub fn new(context: &Context, namespace: &str, name: &str) -> Result<RosNode, RosError> {
         let node_name = NodeName::new(namespace, name).map_err(|source| RosError::NodeName {
@@ -78,10 +100,11 @@ impl RosNode {
         let spinner = node
             .spinner()
             .map_err(|source| RosError::Spinner { source })?;
-        tokio::spawn(spinner.spin());
+        tokio::spawn(SpinnerTask::new(spinner.spin(), context.clone()));
         Ok(RosNode {
             node,
             context: context.clone(),
+            teardown: TeardownScope::default(),
         })
     }
 
@@ -93,6 +116,27 @@ impl RosNode {
     /// The underlying ros2-client node (graph queries).
     pub fn node(&self) -> &Node {
         &self.node
+    }
+
+    /// How many subscriptions `publisher` (made by this node) is matched with.
+    ///
+    /// ros2-client's `Publisher::get_subscription_count` logs an ERROR for a publisher it has
+    /// no match record of, which is every publisher before its first match: asked first,
+    /// the match future says without logging whether there is one.
+    pub fn matched_subscriptions<M: Serialize>(&self, publisher: &Publisher<M>) -> usize {
+        match publisher.wait_for_subscription(&self.node).now_or_never() {
+            Some(()) => publisher.get_subscription_count(&self.node),
+            None => 0,
+        }
+    }
+
+    /// How many publishers `subscription` (made by this node) is matched with (as
+    /// [`RosNode::matched_subscriptions`], without ros2-client's ERROR before a first match).
+    pub fn matched_publishers<M: 'static>(&self, subscription: &Subscription<M>) -> usize {
+        match subscription.wait_for_publisher(&self.node).now_or_never() {
+            Some(()) => subscription.get_publisher_count(&self.node),
+            None => 0,
+        }
     }
 
     /// The DDS topic of `M` named `topic`, with its QoS profile.

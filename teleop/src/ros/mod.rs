@@ -6,6 +6,7 @@ mod endpoint;
 mod error;
 mod participant;
 mod qos;
+pub mod teardown;
 
 pub use endpoint::{RosNode, Stamped, TriggerRequest, TriggerResponse};
 pub use error::RosError;

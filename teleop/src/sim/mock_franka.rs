@@ -10,7 +10,6 @@ use nalgebra::Isometry3;
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::error::SimError;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
@@ -61,8 +60,7 @@ pub async fn run_mock_franka(
         max_rate_rad_s,
         rate_hz,
     } = config;
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_mock_franka")?;
+    let mut node = RosNode::join(&network, "/", "pomdar_mock_franka")?;
     let command_sub = node.subscription::<PoseStamped>(&command_topic, QosConfig::reliable(50))?;
     let pose_pub = node.publisher::<PoseStamped>(&pose_topic, QosConfig::best_effort(10))?;
     let mut commands = Box::pin(command_sub.async_stream());

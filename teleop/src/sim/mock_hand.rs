@@ -14,7 +14,6 @@ use retarget::HandModel;
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::error::SimError;
 use crate::sim::samples::Samples;
@@ -94,8 +93,7 @@ pub async fn run_mock_hand(
     report: Arc<Mutex<MockHandReport>>,
     mut shutdown: watch::Receiver<bool>,
 ) -> Result<(), SimError> {
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_mock_hand")?;
+    let mut node = RosNode::join(&network, "/", "pomdar_mock_hand")?;
     let targets_sub =
         node.subscription::<JointState>(&config.targets_topic, QosConfig::reliable(50))?;
     let state_pub =

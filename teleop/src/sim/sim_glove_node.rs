@@ -15,7 +15,6 @@ use serde::{Deserialize, Serialize};
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
-use crate::ros::NetworkContext as _;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
 use crate::sim::error::SimError;
 use station::convert::{header, isometry_to_pose};
@@ -199,8 +198,7 @@ pub async fn publish_glove(
     origin: GloveOrigin,
     mut shutdown: watch::Receiver<bool>,
 ) -> Result<SimGloveReport, SimError> {
-    let context = network.context()?;
-    let mut node = RosNode::new(&context, "/", "pomdar_sim_glove")?;
+    let mut node = RosNode::join(&network, "/", "pomdar_sim_glove")?;
     let qos = QosConfig::best_effort(400);
     let keypoints_pub = node.publisher::<Float32MultiArray>(&config.keypoints_topic, qos)?;
     let wrist_pub = node.publisher::<PoseStamped>(&config.wrist_topic, qos)?;
@@ -208,9 +206,7 @@ pub async fn publish_glove(
     let mut status_tick = tokio::time::interval(Duration::from_secs(1));
     // Start once a station listens (bounded), so no frame is lost to discovery.
     let waiting_since = std::time::Instant::now();
-    while keypoints_pub.get_subscription_count(node.node()) == 0
-        && waiting_since.elapsed() < MATCH_WAIT
-    {
+    while node.matched_subscriptions(&keypoints_pub) == 0 && waiting_since.elapsed() < MATCH_WAIT {
         tokio::select! {
             _ = shutdown.changed() => if *shutdown.borrow() { return Ok(SimGloveReport::default()) },
             _ = tokio::time::sleep(Duration::from_millis(10)) => {}

@@ -159,9 +159,9 @@ pub async fn run_station_observed(
     Ok(node.finish())
 }
 
-/// The node's publishers and subscriptions.
+/// The node's publishers and subscriptions, and the node last (fields drop in order: the
+/// endpoints before their node, `ros::teardown`).
 struct Endpoints {
-    node: RosNode,
     /// The hand command publisher; `None` in a human study (no robot, nothing commanded).
     joint: Option<Publisher<JointState>>,
     policy: Option<Publisher<Float32MultiArray>>,
@@ -176,6 +176,7 @@ struct Endpoints {
     ingress_status: Option<Subscription<StringMsg>>,
     /// `/tf`, markers, diagnostics, the hand's state, the services.
     tools: ToolEndpoints,
+    node: RosNode,
 }
 
 /// The keypoint subscription, in the configured format.
@@ -200,9 +201,7 @@ struct Streams<'a> {
 
 impl Endpoints {
     fn open(config: &StationConfig, has_description: bool) -> Result<Endpoints, NodeError> {
-        use crate::ros::NetworkContext as _;
-        let context = config.network.context()?;
-        let mut node = RosNode::new(&context, "/", "pomdar_station")?;
+        let mut node = RosNode::join(&config.network, "/", "pomdar_station")?;
         let (input_qos, output_qos) = (config.input.qos, config.output.qos);
         let topic = &config.input.keypoints_topic;
         let keypoints = match config.input.keypoints_format {
@@ -286,10 +285,10 @@ impl Endpoints {
 
     /// Matched readers of the commands (the station's own arm monitor is one of the arm's).
     fn listeners(&self) -> serde_json::Value {
-        let node = self.node.node();
+        let node = &self.node;
         json!({
-            "hand": self.joint.as_ref().map(|p| p.get_subscription_count(node)),
-            "arm": self.arm.as_ref().map(|p| p.get_subscription_count(node).saturating_sub(1)),
+            "hand": self.joint.as_ref().map(|p| node.matched_subscriptions(p)),
+            "arm": self.arm.as_ref().map(|p| node.matched_subscriptions(p).saturating_sub(1)),
         })
     }
 
@@ -297,7 +296,7 @@ impl Endpoints {
     fn arm_topic_contested(&self) -> bool {
         self.arm_monitor
             .as_ref()
-            .is_some_and(|m| m.get_publisher_count(self.node.node()) > 1)
+            .is_some_and(|m| self.node.matched_publishers(m) > 1)
     }
 }
 
