@@ -1,12 +1,15 @@
-//! Ctrl-C in the middle of `pomdar calibrate --from` (issue 26): the fit stops, no profile is
-//! written (an existing one is left as it was) and the exit status is 130, once in the
-//! Bayesian search and once in the Nelder–Mead polish. The session is a synthetic user's,
-//! written here without DDS; the fit is made long with a settings file, and the signal is
-//! sent (`kill -INT`) once the fit's progress lines on stderr show it is in the stage.
+//! Ctrl-C in the middle of a calibration fit (issue 26): the fit stops, no profile is written
+//! (an existing one is left as it was) and the exit status is 130. `pomdar calibrate --from`
+//! is interrupted once in the Bayesian search and once in the Nelder–Mead polish, the line
+//! console (`--simulate --plain`, loopback DDS) once in the fit after its session. The
+//! `--from` session is a synthetic user's, written here without DDS; each fit is made long
+//! with a settings file, and the signal is sent (`kill -INT`) once the fit's progress lines
+//! on stderr show it is in the stage.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
 use std::collections::BTreeMap;
+use std::ffi::OsStr;
 use std::io::{BufRead as _, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -16,7 +19,9 @@ use std::time::Duration;
 
 use calibration::{CAPTURE_RATE_HZ, CaptureSchedule, POSE_NAMES, PoseSet, SyntheticUser};
 use msgs::Float32MultiArray;
+use pomdar_tests::path_arg;
 use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::station_harness::test_domain;
 use retarget::HandModel;
 use station::StationConfig;
 use teleop::calibrate::session_events::{SESSION_METADATA, capture_event};
@@ -89,22 +94,24 @@ fn settings(name: &str, evaluations: usize, initial: usize, polish: usize) -> Pa
     path
 }
 
-/// `pomdar calibrate --from` running, its stderr read line by line on a thread.
+/// `pomdar calibrate` running, its stderr read line by line on a thread.
 struct Fit {
     child: Child,
     lines: mpsc::Receiver<String>,
     stderr: Arc<Mutex<String>>,
+    /// The thread reading stderr: joined after the exit, so that nothing printed is missed.
+    reader: Option<std::thread::JoinHandle<()>>,
 }
 
 impl Fit {
-    fn start(out: &Path, settings: &Path) -> Fit {
+    /// `pomdar calibrate --user cut --out OUT --settings SETTINGS` and `more`.
+    fn start(out: &Path, settings: &Path, more: &[&OsStr]) -> Fit {
         let mut child = Command::new(pomdar_binary().unwrap())
-            .args(["calibrate", "--user", "cut", "--from"])
-            .arg(session())
-            .arg("--out")
+            .args(["calibrate", "--user", "cut", "--out"])
             .arg(out)
             .arg("--settings")
             .arg(settings)
+            .args(more)
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
@@ -114,7 +121,7 @@ impl Fit {
         let stderr = Arc::new(Mutex::new(String::new()));
         let text = Arc::clone(&stderr);
         let pipe = child.stderr.take().unwrap();
-        std::thread::spawn(move || {
+        let reader = std::thread::spawn(move || {
             for line in BufReader::new(pipe).lines().map_while(Result::ok) {
                 let mut all = text.lock().unwrap();
                 all.push_str(&line);
@@ -126,6 +133,7 @@ impl Fit {
             child,
             lines,
             stderr,
+            reader: Some(reader),
         }
     }
 
@@ -152,7 +160,11 @@ impl Fit {
             .status()
             .unwrap();
         assert!(status.success(), "kill -INT failed");
-        self.child.wait().unwrap().code()
+        let code = self.child.wait().unwrap().code();
+        if let Some(reader) = self.reader.take() {
+            reader.join().unwrap();
+        }
+        code
     }
 
     fn printed(&self) -> String {
@@ -160,33 +172,33 @@ impl Fit {
     }
 }
 
-/// The evaluations done in a progress line, `… 52/100 best 0.213 rad`.
+/// The evaluations done in a fit's progress line, `[#####.....] 52/100 best 0.213 rad`.
 fn evaluations_done(line: &str) -> Option<usize> {
-    let fraction = line.split_whitespace().find(|w| w.contains('/'))?;
-    let (done, _) = fraction.rsplit_once('/')?;
-    done.trim_start_matches(|c: char| !c.is_ascii_digit())
-        .parse()
-        .ok()
+    let (bar, rest) = line.strip_prefix('[')?.split_once("] ")?;
+    if !bar.chars().all(|c| c == '#' || c == '.') {
+        return None;
+    }
+    let (fraction, _) = rest.split_once(" best ")?;
+    fraction.split_once('/')?.0.parse().ok()
 }
 
-/// Interrupts a fit once it has made `done` evaluations and checks it ended with status 130,
-/// saying so, with nothing written to `out`.
-fn interrupt_after(out: &Path, settings: &Path, done: usize) -> String {
-    let mut fit = Fit::start(out, settings);
+/// Interrupts `fit` once it has made `done` evaluations and checks it ended with status 130,
+/// saying `said`, with nothing written to `out`.
+fn interrupt_after(mut fit: Fit, out: &Path, done: usize, said: &str) -> String {
     let seen = fit.wait_for_evaluations(done);
     let code = fit.interrupt();
     let printed = fit.printed();
     assert_eq!(code, Some(130), "interrupted after {seen}:\n{printed}");
-    assert!(
-        printed.contains("calibration interrupted (Ctrl-C): no profile written"),
-        "{printed}"
-    );
+    assert!(printed.contains(said), "{printed}");
     assert!(
         !PathBuf::from(format!("{}.part", out.display())).exists(),
         ".part left behind"
     );
     printed
 }
+
+/// What `--from` says when interrupted.
+const FROM_INTERRUPTED: &str = "calibration interrupted (Ctrl-C): no profile written";
 
 #[test]
 fn ctrl_c_in_the_bayesian_search_writes_no_profile_and_exits_130() {
@@ -195,7 +207,12 @@ fn ctrl_c_in_the_bayesian_search_writes_no_profile_and_exits_130() {
     let out = scratch().join("profiles").join("bayesian.toml");
     std::fs::remove_file(&out).ok();
     // Past the initial design: in egobox's iterations.
-    interrupt_after(&out, &settings, 30);
+    let fit = Fit::start(
+        &out,
+        &settings,
+        &[OsStr::new("--from"), session().as_os_str()],
+    );
+    interrupt_after(fit, &out, 30, FROM_INTERRUPTED);
     assert!(!out.exists(), "a profile was written after Ctrl-C");
 }
 
@@ -208,12 +225,45 @@ fn ctrl_c_in_the_polish_leaves_an_existing_profile_untouched_and_exits_130() {
     let existing = "# an earlier profile, to be left as it is\n";
     std::fs::write(&out, existing).unwrap();
     // Past the Bayesian search: in the first polish.
-    interrupt_after(&out, &settings, 40);
+    let fit = Fit::start(
+        &out,
+        &settings,
+        &[OsStr::new("--from"), session().as_os_str()],
+    );
+    interrupt_after(fit, &out, 40, FROM_INTERRUPTED);
     assert_eq!(
         std::fs::read_to_string(&out).unwrap(),
         existing,
         "the existing profile was replaced after Ctrl-C"
     );
+}
+
+#[test]
+fn ctrl_c_during_the_console_fit_writes_no_profile_keeps_the_session_and_exits_130() {
+    let settings = settings("console.toml", 300, 20, 1000);
+    let out = scratch().join("profiles").join("console.toml");
+    let session = scratch().join("console-session.mcap");
+    std::fs::remove_file(&out).ok();
+    let domain = test_domain(3).to_string();
+    let more = [
+        "--simulate",
+        "--plain",
+        "--session-out",
+        path_arg(&session),
+        "--domain-id",
+        &domain,
+    ]
+    .map(OsStr::new);
+    let fit = Fit::start(&out, &settings, &more);
+    let printed = interrupt_after(
+        fit,
+        &out,
+        30,
+        "calibration interrupted (Ctrl-C) during the fit: no profile written",
+    );
+    assert!(printed.contains("FITTING"), "{printed}");
+    assert!(!out.exists(), "a profile was written after Ctrl-C");
+    assert!(session.exists(), "the session log is kept");
 }
 
 #[test]
@@ -223,4 +273,7 @@ fn the_progress_line_parser_reads_the_count() {
         Some(52)
     );
     assert_eq!(evaluations_done("calibration interrupted"), None);
+    let capture = "[####......] GOOD · jitter 7.3 mm at little_tip (limit 12.0) · 100/101 frames";
+    assert_eq!(evaluations_done(capture), None);
+    assert_eq!(evaluations_done("[    2.7 s] [2/7] pinch_middle: …"), None);
 }

@@ -557,7 +557,8 @@ impl SessionRun<'_> {
     /// session ends with an error; during the fit, the fit is cancelled and the session waits
     /// for it to stop (at its next evaluation, writing no profile), then ends with an error
     /// naming the log (kept). After a fit that wrote its profile the session ends complete;
-    /// after one that failed, with the failure. `None`: not interrupted, the turn goes on.
+    /// after one that failed by itself, with the failure. `None`: not interrupted, the turn
+    /// goes on.
     fn stop_if_interrupted(&mut self, now: i64) -> Result<Option<Next>, CalibrateError> {
         if !self.end.interrupted {
             return Ok(None);
@@ -579,7 +580,10 @@ impl SessionRun<'_> {
             return Ok(Some(Next::Quit));
         }
         let log = self.log.path.clone().unwrap_or_default();
-        if let Phase::Failed(reason) = self.session.phase() {
+        if let (false, Phase::Failed(reason)) = (
+            self.fit.cancel.load(Ordering::Relaxed),
+            self.session.phase(),
+        ) {
             return Err(CalibrateError::Failed {
                 reason: reason.clone(),
                 log,
