@@ -130,12 +130,13 @@ pub fn bayesian_optimise(
 /// What the objective tells egobox when it fails (the error itself is kept aside).
 const OBJECTIVE_FAILED: &str = "the objective failed";
 
-/// The Bayesian search's result from how it ended: the objective's own error first, then
-/// egobox's interrupt, its error or its panic; otherwise the trace.
+/// The Bayesian search's result from how it ended (`run`: egobox's result, or its panic as
+/// `catch_unwind` returns it): the objective's own error first, then egobox's interrupt, its
+/// error or its panic; otherwise the trace.
 fn search_outcome(
     trace: Trace,
     failure: Option<Error>,
-    run: std::thread::Result<Result<TerminationStatus, EgoError>>,
+    run: Result<Result<TerminationStatus, EgoError>, Box<dyn std::any::Any + Send>>,
 ) -> Result<Trace, Error> {
     match (failure, run) {
         (Some(e), _) => Err(e),
