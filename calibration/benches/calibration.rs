@@ -39,7 +39,7 @@ fn main() {
         let user = SyntheticUser::random(seed);
         let captures = study.captures(&user).unwrap();
         let start = Instant::now();
-        std::hint::black_box(calibrate(inputs, &captures, &mut |_| {}).unwrap());
+        std::hint::black_box(calibrate(inputs, &captures, &mut |_| {}, &|| false).unwrap());
         times.push(start.elapsed().as_secs_f64());
         let outcome = study.run_user(&user).unwrap();
         if outcome.scale_error.abs() <= 0.03 && outcome.rotation_error_deg <= 3.0 {

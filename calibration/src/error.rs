@@ -43,4 +43,15 @@ pub enum Error {
     /// The optimiser failed.
     #[error("Bayesian optimisation failed: {0}")]
     Optimiser(String),
+    /// The fit was cancelled before it finished (its caller's cancel check said so, or the
+    /// Bayesian optimiser reported an interrupt): there is no result, not even a partial one.
+    #[error("the fit was interrupted before it finished")]
+    Interrupted,
+}
+
+impl Error {
+    /// Whether this is [`Error::Interrupted`]: the fit was cancelled, nothing failed.
+    pub fn is_interrupted(&self) -> bool {
+        matches!(self, Error::Interrupted)
+    }
 }

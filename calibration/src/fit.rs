@@ -93,12 +93,25 @@ impl BuiltinInputs {
 /// polishes of its best point and of the best point of another basin (at least 0.15 away in
 /// the unit cube; this second polish recovered 3 of the 9 synthetic users whose rotation
 /// the first alone missed by more than 3°), calling `progress` after every evaluation.
+///
+/// `cancelled` is asked before every evaluation and once more before returning: when it says
+/// true the fit stops there with [`Error::Interrupted`] and returns nothing of what it found
+/// (the caller decides what cancels, e.g. Ctrl-C; pass `&|| false` for a fit that cannot be
+/// cancelled).
 pub fn calibrate(
     inputs: FitInputs<'_>,
     captures: &[CapturedPose],
     progress: &mut dyn FnMut(FitProgress),
+    cancelled: &dyn Fn() -> bool,
 ) -> Result<Calibration, Error> {
     inputs.settings.validate()?;
+    let not_cancelled = || {
+        if cancelled() {
+            Err(Error::Interrupted)
+        } else {
+            Ok(())
+        }
+    };
     let mut objective = Objective::new(
         inputs.model,
         inputs.config,
@@ -107,12 +120,14 @@ pub fn calibrate(
         captures,
         inputs.settings.pinch_weight_rad_per_m,
     )?;
+    not_cancelled()?;
     let before = objective.evaluate(&CalibrationTransform::IDENTITY)?;
     let optimiser = &inputs.settings.optimiser;
     let budget = optimiser.evaluations + 2 * optimiser.polish_evaluations;
     let mut done = 0;
     let mut best = f64::INFINITY;
     let mut f = |x: &Parameters| -> Result<f64, Error> {
+        not_cancelled()?;
         let value = objective.evaluate(&transform(x))?.value;
         done += 1;
         best = best.min(value);
@@ -120,25 +135,42 @@ pub fn calibrate(
         Ok(value)
     };
     let bounds = &inputs.settings.bounds;
-    let mut trace = bayesian_optimise(&mut f, bounds, optimiser)?;
-    let no_evaluation = || Error::Optimiser("no evaluation was made".into());
-    let (x, _) = trace.best().ok_or_else(no_evaluation)?;
-    let polished = polish(&mut f, bounds, x, optimiser.polish_evaluations)?;
-    let second = second_basin(&trace, bounds, &x);
-    trace.evaluations.extend(polished.evaluations);
-    if let Some(start) = second {
-        let polished = polish(&mut f, bounds, start, optimiser.polish_evaluations)?;
-        trace.evaluations.extend(polished.evaluations);
-    }
+    let trace = bayesian_optimise(&mut f, bounds, optimiser)?;
+    let trace = polish_twice(&mut f, bounds, trace, optimiser.polish_evaluations)?;
+    not_cancelled()?;
     let (x, _) = trace.best().ok_or_else(no_evaluation)?;
     let fitted = transform(&x);
     let after = objective.evaluate(&fitted)?;
+    not_cancelled()?;
     Ok(Calibration {
         transform: fitted,
         before,
         after,
         trace,
     })
+}
+
+fn no_evaluation() -> Error {
+    Error::Optimiser("no evaluation was made".into())
+}
+
+/// The Bayesian `trace` extended by the polish of its best point and, when there is one, of
+/// the best point of a second basin ([`second_basin`]).
+fn polish_twice(
+    f: &mut crate::optimiser::ObjectiveFn<'_>,
+    bounds: &crate::settings::ParameterBounds,
+    mut trace: Trace,
+    evaluations: usize,
+) -> Result<Trace, Error> {
+    let (x, _) = trace.best().ok_or_else(no_evaluation)?;
+    let polished = polish(f, bounds, x, evaluations)?;
+    let second = second_basin(&trace, bounds, &x);
+    trace.evaluations.extend(polished.evaluations);
+    if let Some(start) = second {
+        let polished = polish(f, bounds, start, evaluations)?;
+        trace.evaluations.extend(polished.evaluations);
+    }
+    Ok(trace)
 }
 
 /// The best evaluated point at least 0.15 (unit-cube distance) from `best`.
@@ -163,4 +195,97 @@ fn second_basin(
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|e| e.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::cell::Cell;
+
+    use super::*;
+    use crate::schedule::CaptureSchedule;
+    use crate::synthetic_study::CAPTURE_RATE_HZ;
+    use crate::synthetic_user::SyntheticUser;
+    use crate::{POSE_NAMES, capture_pose, human_copies};
+
+    /// A small budget: 12 Bayesian evaluations, 2 × 10 polish.
+    fn small() -> BuiltinInputs {
+        let mut builtin = BuiltinInputs::orca_v1();
+        builtin.settings.optimiser.evaluations = 12;
+        builtin.settings.optimiser.initial_design = 6;
+        builtin.settings.optimiser.polish_evaluations = 10;
+        builtin
+    }
+
+    /// A synthetic user's seven captures.
+    fn captures(inputs: FitInputs<'_>) -> Vec<CapturedPose> {
+        let copies = human_copies(inputs.model, inputs.poses).unwrap();
+        let user = SyntheticUser::random(4);
+        let layout = inputs.config.layout;
+        let schedule = CaptureSchedule::default();
+        POSE_NAMES
+            .iter()
+            .enumerate()
+            .map(|(k, name)| {
+                let frames = user
+                    .capture_frames(layout, &schedule, &copies, k, CAPTURE_RATE_HZ)
+                    .unwrap();
+                let frames = frames.iter().map(Vec::as_slice);
+                capture_pose(name, layout, frames, &inputs.settings.capture).unwrap()
+            })
+            .collect()
+    }
+
+    /// Fits with a cancel that turns true once `after` evaluations are done; returns the
+    /// result and the evaluations made.
+    fn fit_cancelled_after(after: usize) -> (Result<Calibration, Error>, usize) {
+        let builtin = small();
+        let inputs = builtin.inputs();
+        let captures = captures(inputs);
+        let done = Cell::new(0);
+        let fit = calibrate(inputs, &captures, &mut |p| done.set(p.done), &|| {
+            done.get() >= after
+        });
+        (fit, done.get())
+    }
+
+    #[test]
+    fn a_fit_left_alone_spends_its_budget() {
+        let (fit, done) = fit_cancelled_after(usize::MAX);
+        let fit = fit.unwrap();
+        assert_eq!(done, fit.trace.evaluations.len());
+        assert!(done > 12, "the polish ran too: {done}");
+    }
+
+    #[test]
+    fn a_fit_cancelled_before_it_starts_evaluates_nothing() {
+        let (fit, done) = fit_cancelled_after(0);
+        assert_eq!(fit.unwrap_err(), Error::Interrupted);
+        assert_eq!(done, 0);
+    }
+
+    #[test]
+    fn a_fit_cancelled_in_the_bayesian_search_stops_there_with_no_result() {
+        for after in [3, 9] {
+            let (fit, done) = fit_cancelled_after(after);
+            assert_eq!(
+                fit.unwrap_err(),
+                Error::Interrupted,
+                "cancelled after {after}"
+            );
+            assert_eq!(done, after, "no evaluation after the cancel");
+        }
+    }
+
+    #[test]
+    fn a_fit_cancelled_in_the_polish_stops_there_with_no_result() {
+        for after in [14, 25] {
+            let (fit, done) = fit_cancelled_after(after);
+            assert_eq!(
+                fit.unwrap_err(),
+                Error::Interrupted,
+                "cancelled after {after}"
+            );
+            assert_eq!(done, after, "no evaluation after the cancel");
+        }
+    }
 }

@@ -6,7 +6,10 @@
 
 use std::cell::RefCell;
 
-use egobox_ego::{CorrelationSpec, EgorBuilder, InfillStrategy, RegressionSpec};
+use egobox_ego::{
+    CorrelationSpec, EgoError, EgorBuilder, InfillStrategy, RegressionSpec, TerminationReason,
+    TerminationStatus,
+};
 use ndarray::{Array2, ArrayView2};
 
 use crate::error::Error;
@@ -47,6 +50,11 @@ impl Trace {
 pub type ObjectiveFn<'a> = dyn FnMut(&Parameters) -> Result<f64, Error> + 'a;
 
 /// Bayesian optimisation of `f` within `bounds`, `settings.evaluations` evaluations in all.
+///
+/// An error from `f` ([`Error::Interrupted`] included) stops the search at that evaluation
+/// and is returned as it is; an interrupt egobox reports itself (its own Ctrl-C handler, when
+/// no other was installed first) is [`Error::Interrupted`]. Either way no trace is returned:
+/// a cut search is never passed off as a finished one.
 pub fn bayesian_optimise(
     f: &mut ObjectiveFn<'_>,
     bounds: &ParameterBounds,
@@ -63,41 +71,39 @@ pub fn bayesian_optimise(
     );
     let state = RefCell::new((Trace::default(), None::<Error>, f));
     let budget = settings.evaluations;
-    let objective = |x: &ArrayView2<f64>| -> Array2<f64> {
+    let objective = |x: &ArrayView2<f64>| -> Result<Array2<f64>, &'static str> {
         let mut guard = state.borrow_mut();
         let (trace, failure, f) = &mut *guard;
         let mut y = Array2::zeros((x.nrows(), 1));
         for (row, out) in x.rows().into_iter().zip(y.iter_mut()) {
             let point: Parameters = std::array::from_fn(|i| row[i]);
-            let value = if failure.is_some() || trace.evaluations.len() >= budget {
-                // Stop spending effort once something failed or the budget is spent; the
-                // optimiser finishes its iteration on a flat value.
-                f64::MAX.sqrt()
-            } else {
-                match f(&point) {
-                    Ok(v) if v.is_finite() => {
-                        trace.evaluations.push((point, v));
-                        v
-                    }
-                    Ok(v) => {
-                        *failure = Some(Error::Optimiser(format!(
-                            "the objective is {v} at {point:?}"
-                        )));
-                        f64::MAX.sqrt()
-                    }
-                    Err(e) => {
-                        *failure = Some(e);
-                        f64::MAX.sqrt()
-                    }
+            if trace.evaluations.len() >= budget {
+                // The budget is spent: the optimiser finishes its iteration on a flat value.
+                *out = f64::MAX.sqrt();
+                continue;
+            }
+            match f(&point) {
+                Ok(v) if v.is_finite() => {
+                    trace.evaluations.push((point, v));
+                    *out = v;
                 }
-            };
-            *out = value;
+                Ok(v) => {
+                    *failure = Some(Error::Optimiser(format!(
+                        "the objective is {v} at {point:?}"
+                    )));
+                    return Err(OBJECTIVE_FAILED);
+                }
+                Err(e) => {
+                    *failure = Some(e);
+                    return Err(OBJECTIVE_FAILED);
+                }
+            }
         }
-        y
+        Ok(y)
     };
     let iterations = settings.evaluations.saturating_sub(design.len());
-    // egobox panics when its Gaussian process cannot be trained (e.g. on flat values after
-    // an objective failure): contain it and report it as an error.
+    // egobox panics when its Gaussian process cannot be trained: contain it and report it as
+    // an error.
     let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         EgorBuilder::optimize(objective)
             .configure(|config| {
@@ -105,6 +111,8 @@ pub fn bayesian_optimise(
                     .doe(&doe)
                     .max_iters(iterations)
                     .infill_strategy(InfillStrategy::EI)
+                    // An objective error ends the search at once (no further iteration).
+                    .stop_on_error(true)
                     .seed(settings.seed)
                     .configure_gp(|gp| {
                         gp.regression_spec(RegressionSpec::CONSTANT)
@@ -113,14 +121,30 @@ pub fn bayesian_optimise(
             })
             .min_within(&xlimits)
             .and_then(|egor| egor.run())
-            .map(|_| ())
-            .map_err(|e| Error::Optimiser(e.to_string()))
+            .map(|result| result.state.termination_status)
     }));
     let (trace, failure, _) = state.into_inner();
+    search_outcome(trace, failure, run)
+}
+
+/// What the objective tells egobox when it fails (the error itself is kept aside).
+const OBJECTIVE_FAILED: &str = "the objective failed";
+
+/// The Bayesian search's result from how it ended (`run`: egobox's result, or its panic as
+/// `catch_unwind` returns it): the objective's own error first, then egobox's interrupt, its
+/// error or its panic; otherwise the trace.
+fn search_outcome(
+    trace: Trace,
+    failure: Option<Error>,
+    run: Result<Result<TerminationStatus, EgoError>, Box<dyn std::any::Any + Send>>,
+) -> Result<Trace, Error> {
     match (failure, run) {
         (Some(e), _) => Err(e),
-        (None, Ok(Ok(()))) => Ok(trace),
-        (None, Ok(Err(e))) => Err(e),
+        (None, Ok(Ok(TerminationStatus::Terminated(TerminationReason::Interrupt)))) => {
+            Err(Error::Interrupted)
+        }
+        (None, Ok(Ok(_))) => Ok(trace),
+        (None, Ok(Err(e))) => Err(Error::Optimiser(e.to_string())),
         (None, Err(_)) => Err(Error::Optimiser(
             "the Gaussian process could not be trained on the evaluations".into(),
         )),
@@ -286,6 +310,65 @@ mod tests {
             bayesian_optimise(&mut failing, &ParameterBounds::default(), &settings).unwrap_err();
         assert!(e.to_string().contains("broken"), "{e}");
         assert_eq!(calls, 4, "no evaluation after the failure");
+    }
+
+    #[test]
+    fn an_interrupt_after_the_initial_design_stops_the_search_at_once_with_no_trace() {
+        let mut calls = 0;
+        let mut cut = |x: &Parameters| -> Result<f64, Error> {
+            calls += 1;
+            if calls > 12 {
+                Err(Error::Interrupted)
+            } else {
+                bowl(x)
+            }
+        };
+        let settings = OptimiserSettings {
+            evaluations: 40,
+            polish_evaluations: 0,
+            initial_design: 8,
+            seed: 1,
+        };
+        let e = bayesian_optimise(&mut cut, &ParameterBounds::default(), &settings).unwrap_err();
+        assert_eq!(e, Error::Interrupted);
+        assert_eq!(calls, 13, "no evaluation after the interrupt");
+    }
+
+    #[test]
+    fn egobox_reporting_its_own_interrupt_is_an_interrupt_not_a_result() {
+        let trace = Trace {
+            evaluations: vec![([1.0, 0.0, 0.0, 0.0], 0.5)],
+        };
+        let status = |reason| Ok(Ok(TerminationStatus::Terminated(reason)));
+        assert_eq!(
+            search_outcome(trace.clone(), None, status(TerminationReason::Interrupt)),
+            Err(Error::Interrupted)
+        );
+        assert_eq!(
+            search_outcome(
+                trace.clone(),
+                None,
+                status(TerminationReason::MaxItersReached)
+            ),
+            Ok(trace)
+        );
+    }
+
+    #[test]
+    fn an_interrupt_in_the_polish_stops_it_with_no_trace() {
+        let mut calls = 0;
+        let mut cut = |x: &Parameters| -> Result<f64, Error> {
+            calls += 1;
+            if calls > 7 {
+                Err(Error::Interrupted)
+            } else {
+                bowl(x)
+            }
+        };
+        let bounds = ParameterBounds::default();
+        let e = polish(&mut cut, &bounds, [1.05, 0.0, -0.1, 0.1], 80).unwrap_err();
+        assert_eq!(e, Error::Interrupted);
+        assert_eq!(calls, 8);
     }
 
     #[test]

@@ -94,6 +94,7 @@ impl<'a> Study<'a> {
             },
             &captures,
             &mut |_| {},
+            &|| false,
         )?;
         study.reference = reference_fit.transform;
         let model = inputs.model;
@@ -154,7 +155,7 @@ impl<'a> Study<'a> {
     /// Calibrate `user` and measure the outcome.
     pub fn run_user(&self, user: &SyntheticUser) -> Result<UserOutcome, Error> {
         let captures = self.captures(user)?;
-        let calibration = calibrate(self.inputs, &captures, &mut |_| {})?;
+        let calibration = calibrate(self.inputs, &captures, &mut |_| {}, &|| false)?;
         let truth = user.true_transform(&self.reference);
         let fitted = calibration.transform;
         let held_out_before_rad = self.held_out_error(user, &CalibrationTransform::IDENTITY)?;

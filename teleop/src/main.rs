@@ -468,7 +468,7 @@ fn main() -> ExitCode {
             return exit_code(command::study_report::study_report(args));
         }
         Command::Demo(args) => command::common::run_async(command::demo::demo(args)),
-        Command::Calibrate(args) => command::calibrate::calibrate(args),
+        Command::Calibrate(args) => return exit_code(command::calibrate::calibrate(args)),
         Command::Resim(args) => command::resim::resim(args),
         Command::Eval(args) => command::eval::eval(args),
         Command::Tracking(args) => command::tracking::tracking(args),

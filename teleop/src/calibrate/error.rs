@@ -175,13 +175,25 @@ pub enum CalibrateError {
         /// The partial log (finished, with an abort event).
         log: PathBuf,
     },
-    /// Ctrl-C or the shutdown during the fit.
+    /// Ctrl-C or the shutdown during the fit of a session just recorded: no profile written.
     #[error(
-        "calibration interrupted during the fit; the session is kept in {log}: fit it again with --from"
+        "calibration interrupted (Ctrl-C) during the fit: no profile written; the session is kept in {log}: fit it again with --from"
     )]
     InterruptedFit {
         /// The session log.
         log: PathBuf,
+    },
+    /// Ctrl-C during the fit of a recorded session (`--from`): no profile written.
+    #[error("calibration interrupted (Ctrl-C): no profile written; fit {file} again with --from")]
+    FitInterrupted {
+        /// The session log being fitted.
+        file: PathBuf,
+    },
+    /// The Ctrl-C handler cannot be installed.
+    #[error("cannot install the Ctrl-C handler: {reason}")]
+    CtrlC {
+        /// The handler crate's error.
+        reason: String,
     },
     /// A script's wait timed out.
     #[error("{source}; the session log is kept in {log}")]
@@ -264,4 +276,17 @@ pub enum CalibrateError {
         #[source]
         source: msgs::Error,
     },
+}
+
+impl CalibrateError {
+    /// Whether the session or its fit was interrupted (Ctrl-C or the shutdown), rather than
+    /// failing: the command's exit status is then 130.
+    pub fn is_interrupted(&self) -> bool {
+        matches!(
+            self,
+            CalibrateError::Interrupted { .. }
+                | CalibrateError::InterruptedFit { .. }
+                | CalibrateError::FitInterrupted { .. }
+        )
+    }
 }

@@ -2,13 +2,13 @@
 //! are checked and averaged ([`calibration::capture_pose`]; a refused capture stops here with
 //! its message, which says what to do), the transform is fitted with a progress bar, a table
 //! of the per-pose errors before and after is printed, and the profile is written atomically.
-//! Nothing is written on any failure.
+//! Nothing is written on any failure, nor after the caller's cancel (Ctrl-C) during the fit.
 
 use std::path::{Path, PathBuf};
 
 use calibration::{
-    CalibrationProfile, CalibrationSettings, FitInputs, FitProgress, PoseSet, ProfileHeader,
-    calibrate, capture_pose,
+    CalibrationProfile, CalibrationSettings, CapturedPose, FitInputs, FitProgress, PoseSet,
+    ProfileHeader, calibrate, capture_pose,
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
@@ -51,14 +51,22 @@ pub struct FitOutcome {
 }
 
 /// Read the session, fit, report, write the profile; returns the profile written. With
-/// `verbose`, a progress bar on stderr and the table on stdout.
-pub fn fit_session(options: &FitOptions) -> Result<CalibrationProfile, CalibrateError> {
+/// `verbose`, a progress bar on stderr and the table on stdout. `cancelled` is asked before
+/// every evaluation of the fit and before the profile is written (see [`fit_session_with`]).
+pub fn fit_session(
+    options: &FitOptions,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<CalibrationProfile, CalibrateError> {
     let mut bar = options.verbose.then(ProgressBar::new);
-    let outcome = fit_session_with(options, &mut |p| {
-        if let Some(bar) = bar.as_mut() {
-            bar.update(p);
-        }
-    });
+    let outcome = fit_session_with(
+        options,
+        &mut |p| {
+            if let Some(bar) = bar.as_mut() {
+                bar.update(p);
+            }
+        },
+        cancelled,
+    );
     if let Some(bar) = bar.as_mut() {
         bar.finish();
     }
@@ -73,11 +81,70 @@ pub fn fit_session(options: &FitOptions) -> Result<CalibrationProfile, Calibrate
 
 /// Read the session, fit with `progress` after each evaluation, write the profile (nothing
 /// is printed).
+///
+/// `cancelled` is asked before every evaluation and once more just before the profile is
+/// written: once it says true the fit ends with [`CalibrateError::FitInterrupted`] and no
+/// profile is written (an existing one is left as it is). The atomic write after that last
+/// check is the fit's end: a cancel arriving during it finds the profile complete.
 pub fn fit_session_with(
     options: &FitOptions,
     progress: &mut dyn FnMut(FitProgress),
+    cancelled: &dyn Fn() -> bool,
 ) -> Result<FitOutcome, CalibrateError> {
     let model = HandModel::orca_v1_right();
+    let layout = options.station.retarget.layout;
+    let captures = session_captures(options, &model)?;
+    let pose_set = PoseSet::orca_v1();
+    let catalog = EmbodimentCatalog::builtin();
+    let inputs = FitInputs {
+        model: &model,
+        config: &options.station.retarget,
+        catalog: &catalog,
+        poses: &pose_set,
+        settings: &options.settings,
+    };
+    let file = || options.session.clone();
+    let fitted =
+        calibrate(inputs, &captures, &mut |p| progress(p), cancelled).map_err(|source| {
+            if source.is_interrupted() {
+                CalibrateError::FitInterrupted { file: file() }
+            } else {
+                CalibrateError::Fit {
+                    file: file(),
+                    source,
+                }
+            }
+        })?;
+    let header = ProfileHeader {
+        user: options.user.clone(),
+        date: iso8601_utc(now_unix_s()),
+        glove: options.glove.clone(),
+        source: options
+            .source
+            .clone()
+            .unwrap_or_else(|| options.session.display().to_string()),
+    };
+    let profile = CalibrationProfile::new(header, &model, layout, &fitted);
+    profile
+        .validate()
+        .map_err(|source| CalibrateError::InvalidProfile { source })?;
+    let text = profile
+        .to_toml_string()
+        .map_err(|source| CalibrateError::ProfileToml { source })?;
+    if cancelled() {
+        return Err(CalibrateError::FitInterrupted { file: file() });
+    }
+    write_atomically(&options.out, &text)?;
+    let table = table_lines(&profile, &captures);
+    Ok(FitOutcome { profile, table })
+}
+
+/// The session's seven captures: its layout and model checked against the station's, each
+/// pose's frames checked and averaged.
+fn session_captures(
+    options: &FitOptions,
+    model: &HandModel,
+) -> Result<Vec<CapturedPose>, CalibrateError> {
     let layout = options.station.retarget.layout;
     let reader = TrialReader::open(&options.session)?;
     let file = || options.session.clone();
@@ -96,60 +163,25 @@ pub fn fit_session_with(
             station: model.name().to_string(),
         });
     }
-    let mut captures = Vec::with_capacity(poses.len());
-    for pose in &poses {
-        let capture = capture_pose(
-            &pose.pose,
-            layout,
-            pose.frames.iter().map(Vec::as_slice),
-            &options.settings.capture,
-        )
-        .map_err(|source| CalibrateError::CaptureRefused {
-            file: file(),
-            source,
-        })?;
-        captures.push(capture);
-    }
-    let pose_set = PoseSet::orca_v1();
-    let catalog = EmbodimentCatalog::builtin();
-    let inputs = FitInputs {
-        model: &model,
-        config: &options.station.retarget,
-        catalog: &catalog,
-        poses: &pose_set,
-        settings: &options.settings,
-    };
-    let fitted = calibrate(inputs, &captures, &mut |p| progress(p));
-    let fitted = fitted.map_err(|source| CalibrateError::Fit {
-        file: file(),
-        source,
-    })?;
-    let header = ProfileHeader {
-        user: options.user.clone(),
-        date: iso8601_utc(now_unix_s()),
-        glove: options.glove.clone(),
-        source: options
-            .source
-            .clone()
-            .unwrap_or_else(|| options.session.display().to_string()),
-    };
-    let profile = CalibrationProfile::new(header, &model, layout, &fitted);
-    profile
-        .validate()
-        .map_err(|source| CalibrateError::InvalidProfile { source })?;
-    let text = profile
-        .to_toml_string()
-        .map_err(|source| CalibrateError::ProfileToml { source })?;
-    write_atomically(&options.out, &text)?;
-    let table = table_lines(&profile, &captures);
-    Ok(FitOutcome { profile, table })
+    poses
+        .iter()
+        .map(|pose| {
+            capture_pose(
+                &pose.pose,
+                layout,
+                pose.frames.iter().map(Vec::as_slice),
+                &options.settings.capture,
+            )
+            .map_err(|source| CalibrateError::CaptureRefused {
+                file: file(),
+                source,
+            })
+        })
+        .collect()
 }
 
 /// The per-pose errors before and after the fit, and the objective.
-fn table_lines(
-    profile: &CalibrationProfile,
-    captures: &[calibration::CapturedPose],
-) -> Vec<String> {
+fn table_lines(profile: &CalibrationProfile, captures: &[CapturedPose]) -> Vec<String> {
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
     let mut lines = vec![
         format!(

@@ -16,6 +16,7 @@
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
 //! | `progress_bar.rs` | the fit's progress on stderr |
+//! | `ctrl_c.rs` | the process's one Ctrl-C handler (installed before egobox's), as a watch channel |
 //! | `error.rs` | the one error type, [`CalibrateError`] |
 
 pub mod calibration_console;
@@ -23,6 +24,7 @@ pub mod calibration_screen;
 pub mod calibration_script;
 pub mod calibration_view;
 pub mod capture_quality;
+pub mod ctrl_c;
 pub mod error;
 pub mod fit_session;
 pub mod pose_session;

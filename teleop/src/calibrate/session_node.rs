@@ -13,6 +13,8 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use calibration::{CaptureSchedule, CaptureThresholds, FitProgress, PoseSet};
@@ -180,7 +182,7 @@ pub async fn run_session(
     loop {
         let mut turn = Turn::default();
         tokio::select! {
-            changed = shutdown.changed() => {
+            changed = shutdown.changed(), if !run.end.interrupted => {
                 if changed.is_err() || *shutdown.borrow() {
                     run.end.interrupted = true;
                 }
@@ -328,6 +330,9 @@ struct FitRun {
     progress_rx: mpsc::UnboundedReceiver<FitProgress>,
     /// The running fit.
     task: Option<tokio::task::JoinHandle<Result<FitOutcome, CalibrateError>>>,
+    /// Set on Ctrl-C or the shutdown: the running fit stops at its next evaluation and writes
+    /// no profile.
+    cancel: Arc<AtomicBool>,
     /// Its result.
     outcome: Option<FitOutcome>,
 }
@@ -410,6 +415,7 @@ impl FitRun {
             progress_tx,
             progress_rx,
             task: None,
+            cancel: Arc::new(AtomicBool::new(false)),
             outcome: None,
         }
     }
@@ -526,7 +532,10 @@ impl SessionRun<'_> {
     /// its effects are carried out, the simulated user cued, the console shown.
     fn finish_turn(&mut self, mut turn: Turn) -> Result<Next, CalibrateError> {
         let now = self.clock.now_ns();
-        self.stop_if_interrupted(now)?;
+        if let Some(next) = self.stop_if_interrupted(now)? {
+            self.front.show(&self.session, now)?;
+            return Ok(next);
+        }
         self.stop_if_no_glove()?;
         self.play_script(&mut turn.actions);
         for action in turn.actions {
@@ -542,20 +551,43 @@ impl SessionRun<'_> {
         Ok(next)
     }
 
-    /// Ctrl-C or the shutdown: the log is finished as aborted (or, during the fit, kept) and
-    /// the session ends with an error.
-    fn stop_if_interrupted(&mut self, now: i64) -> Result<(), CalibrateError> {
+    /// Ctrl-C or the shutdown: while recording, the log is finished as aborted and the
+    /// session ends with an error; during the fit, the fit is cancelled and the session waits
+    /// for it to stop (at its next evaluation, writing no profile), then ends with an error
+    /// naming the log (kept). After a fit that wrote its profile the session ends complete;
+    /// after one that failed by itself, with the failure. `None`: not interrupted, the turn
+    /// goes on.
+    fn stop_if_interrupted(&mut self, now: i64) -> Result<Option<Next>, CalibrateError> {
         if !self.end.interrupted {
-            return Ok(());
+            return Ok(None);
         }
         if let Some(mut w) = self.log.writer.take() {
             w.write_event(now, &json!({"event": "abort", "reason": "interrupted"}))?;
             let finished = self.finish_log(w, now)?;
             return Err(CalibrateError::Interrupted { log: finished.path });
         }
-        Err(CalibrateError::InterruptedFit {
-            log: self.log.path.clone().unwrap_or_default(),
-        })
+        if self.fit.task.is_some() {
+            if !self.fit.cancel.swap(true, Ordering::Relaxed) {
+                self.session
+                    .say("interrupted: stopping the fit; no profile will be written");
+            }
+            return Ok(Some(Next::Continue));
+        }
+        if self.fit.outcome.is_some() {
+            self.end.completed = true;
+            return Ok(Some(Next::Quit));
+        }
+        let log = self.log.path.clone().unwrap_or_default();
+        if let (false, Phase::Failed(reason)) = (
+            self.fit.cancel.load(Ordering::Relaxed),
+            self.session.phase(),
+        ) {
+            return Err(CalibrateError::Failed {
+                reason: reason.clone(),
+                log,
+            });
+        }
+        Err(CalibrateError::InterruptedFit { log })
     }
 
     /// No glove keypoints within the wait: the empty log is removed and the session ends
@@ -635,10 +667,15 @@ impl SessionRun<'_> {
         self.log.path = Some(finished.path);
         let options = self.fit.options.clone();
         let tx = self.fit.progress_tx.clone();
+        let cancel = Arc::clone(&self.fit.cancel);
         self.fit.task = Some(tokio::task::spawn_blocking(move || {
-            fit_session_with(&options, &mut |p| {
-                tx.send(p).ok();
-            })
+            fit_session_with(
+                &options,
+                &mut |p| {
+                    tx.send(p).ok();
+                },
+                &|| cancel.load(Ordering::Relaxed),
+            )
         }));
         Ok(())
     }

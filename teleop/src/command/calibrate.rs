@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
@@ -13,8 +14,11 @@ use clap::Args;
 use retarget::HandModel;
 use tokio::sync::watch;
 
+use super::trial::EXIT_INTERRUPTED;
+use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_console::ConsoleFront;
 use crate::calibrate::calibration_script::load_calibration_script;
+use crate::calibrate::ctrl_c::watch_ctrl_c;
 use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
 use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
 use crate::calibrate::simulated_user::{
@@ -121,25 +125,39 @@ fn session_path(out: &Path) -> PathBuf {
     out.with_file_name(format!("{stem}-session-{}.mcap", compact_utc(now_unix_s())))
 }
 
-/// A shutdown signal that turns true on Ctrl-C.
-fn ctrl_c_shutdown() -> watch::Receiver<bool> {
-    let (tx, rx) = watch::channel(false);
-    tokio::spawn(async move {
-        if tokio::signal::ctrl_c().await.is_ok() {
-            tx.send(true).ok();
+/// `pomdar calibrate`. Exit status 0 when the profile is written, 130 after Ctrl-C (or the
+/// shutdown) stopped the session or its fit, saying so on stderr (no profile is written then),
+/// 1 on an error.
+pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<ExitCode> {
+    match calibrate_until_interrupted(args) {
+        Err(e) if is_interrupted(&e) => {
+            eprintln!("{e}");
+            Ok(ExitCode::from(EXIT_INTERRUPTED))
         }
-    });
-    rx
+        result => result.map(|()| ExitCode::SUCCESS),
+    }
 }
 
-/// `pomdar calibrate`.
-pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
+/// Whether `e` is (or is caused by) an interrupted session or fit.
+fn is_interrupted(e: &anyhow::Error) -> bool {
+    e.chain().any(|cause| {
+        cause
+            .downcast_ref::<CalibrateError>()
+            .is_some_and(CalibrateError::is_interrupted)
+    })
+}
+
+/// The session or the fit, to its end or its error. The process's Ctrl-C handler is
+/// installed first (before egobox can install its own): from then on Ctrl-C is seen through
+/// `ctrl_c` only.
+fn calibrate_until_interrupted(args: CalibrateArgs) -> anyhow::Result<()> {
     if args.user.trim().is_empty() {
         bail!("--user must name the user");
     }
+    let ctrl_c = watch_ctrl_c()?;
     let mut fit = fit_options(&args)?;
     if let Some(session) = &args.from {
-        return fit_recorded(fit, session);
+        return fit_recorded(fit, session, &ctrl_c);
     }
     let session_out = session_log_path(&args, &fit.out)?;
     check_glove_wait(args.glove_wait_s)?;
@@ -170,6 +188,7 @@ pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<()> {
         bad_pose,
         domain,
         fit_in_console,
+        ctrl_c,
     };
     let report = run_in_console(&args, run, &mut front);
     // Leave the full screen before printing.
@@ -214,10 +233,15 @@ fn fit_options(args: &CalibrateArgs) -> anyhow::Result<FitOptions> {
     })
 }
 
-/// `--from`: fits a recorded session.
-fn fit_recorded(mut fit: FitOptions, session: &Path) -> anyhow::Result<()> {
+/// `--from`: fits a recorded session; a Ctrl-C (`ctrl_c` turning true) stops the fit and
+/// leaves the profile unwritten.
+fn fit_recorded(
+    mut fit: FitOptions,
+    session: &Path,
+    ctrl_c: &watch::Receiver<bool>,
+) -> anyhow::Result<()> {
     fit.session = session.to_path_buf();
-    let profile = fit_session(&fit)?;
+    let profile = fit_session(&fit, &|| *ctrl_c.borrow())?;
     println!("wrote {} (user {})", fit.out.display(), profile.user);
     Ok(())
 }
@@ -335,6 +359,8 @@ struct ConsoleSession {
     domain: u16,
     /// The fit, quiet (its progress shows in the console).
     fit_in_console: FitOptions,
+    /// Turns true on Ctrl-C.
+    ctrl_c: watch::Receiver<bool>,
 }
 
 /// Runs the session (and the simulated user's glove) until the profile is written or the
@@ -350,9 +376,9 @@ fn run_in_console(
         bad_pose,
         domain,
         fit_in_console,
+        ctrl_c: shutdown,
     } = run;
     crate::command::common::run_async(async {
-        let shutdown = ctrl_c_shutdown();
         let clock = StationClock::new();
         let model = HandModel::orca_v1_right();
         match user {
