@@ -220,6 +220,10 @@ enum Command {
     /// Load the profile with `pomdar station --profile FILE` or `calibration_profile =
     /// "FILE"` in the station configuration.
     ///
+    /// Exit status: 0 when the profile is written, 130 after Ctrl-C (the session or the fit
+    /// stopped: no profile is written, an existing one is left as it was, the session log is
+    /// kept), 1 on an error.
+    ///
     /// Examples:
     ///   pomdar calibrate --user alice --glove "rokoko #12" --config launch_configs/station/eth_lab.toml
     ///   pomdar calibrate --from profiles/alice-session-20261121T103205Z.mcap --user alice
