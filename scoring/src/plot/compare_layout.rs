@@ -4,6 +4,7 @@
 
 use super::chart_frame::{
     AXIS_TITLE_PX, HEIGHT_PX, MARGIN_PX, NOTE_PX, TICK_LEN_PX, TICK_PX, TITLE_PX, WIDTH_PX,
+    draw_score_ticks,
 };
 use super::compare_chart::{Bar, GroupedBarChart};
 use super::label_placement::Rect;
@@ -160,23 +161,7 @@ fn draw_title(d: &mut Drawing, chart: &GroupedBarChart, notes: &[String], width:
 /// Grid lines, ticks, tick labels and the title of the y axis.
 fn draw_y_axis(d: &mut Drawing, g: &BarGeometry, y_label: &str) {
     let area = g.area;
-    for tick in std::iter::once(0.0).chain(g.scale.ticks()) {
-        let y = g.y(tick);
-        d.line(
-            Point::new(area.left, y),
-            Point::new(area.right, y),
-            Rgba::GRID,
-            1.0,
-        );
-        d.line(
-            Point::new(area.left - TICK_LEN_PX, y),
-            Point::new(area.left, y),
-            Rgba::INK,
-            1.0,
-        );
-        let at = Point::new(area.left - TICK_LEN_PX - 4.0, y + cap_height(TICK_PX) / 2.0);
-        d.text(Text::new(g.scale.label(tick), at, Anchor::End, TICK_PX));
-    }
+    draw_score_ticks(d, area, &g.scale);
     let mut title = Text::new(
         y_label,
         Point::new(

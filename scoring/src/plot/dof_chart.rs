@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use super::chart_frame::{
     AXIS_TITLE_PX, HEIGHT_PX, MARGIN_PX, NOTE_PX, TICK_LEN_PX, TICK_PX, TITLE_PX, WIDTH_PX,
+    draw_score_ticks,
 };
 use super::label_placement::{Rect, place_label};
 use super::palette::series_color;
@@ -163,23 +164,7 @@ fn draw_grid_and_axes(d: &mut Drawing, geometry: &DofGeometry) {
         ));
     }
     let scale = geometry.scale;
-    for tick in std::iter::once(0.0).chain(scale.ticks()) {
-        let y = geometry.y(tick);
-        d.line(
-            Point::new(area.left, y),
-            Point::new(area.right, y),
-            Rgba::GRID,
-            1.0,
-        );
-        d.line(
-            Point::new(area.left - TICK_LEN_PX, y),
-            Point::new(area.left, y),
-            Rgba::INK,
-            1.0,
-        );
-        let at = Point::new(area.left - TICK_LEN_PX - 4.0, y + cap_height(TICK_PX) / 2.0);
-        d.text(Text::new(scale.label(tick), at, Anchor::End, TICK_PX));
-    }
+    draw_score_ticks(d, area, &scale);
     let axes = vec![
         Point::new(area.left, area.top),
         Point::new(area.left, area.bottom),
