@@ -437,7 +437,7 @@ enum Command {
     ///   pomdar baseline trials/human/ --out baselines/pilot.toml --min-trials 6 --report baselines/pilot_study.md
     #[command(verbatim_doc_comment)]
     Baseline(command::baseline::BaselineArgs),
-    /// Glove ingress: a motion-capture stream in, the lab's ROS 2 keypoint topics out.
+    /// Hand-tracking ingress: a glove (Rokoko) or headset (Apple Vision Pro) stream in, the lab's ROS 2 keypoint topics out.
     #[command(subcommand)]
     Ingress(command::ingress::IngressCommand),
     /// Load a hand model, validate it and print its joints, limits, frames and embodiments.
