@@ -40,6 +40,7 @@ pub mod network_config;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
+pub mod robot_link;
 pub mod ros_tools;
 pub mod ros_tools_config;
 pub mod source_order;

@@ -12,6 +12,7 @@ use crate::config_error::ConfigError;
 use crate::frame_gate::GateConfig;
 use crate::network_config::{NetworkConfig, QosConfig};
 use crate::policy_output::PolicyOutputConfig;
+use crate::robot_link::RobotLinkConfig;
 use crate::ros_tools_config::RosToolsConfig;
 use crate::watchdog::WatchdogConfig;
 
@@ -31,6 +32,8 @@ pub struct StationConfig {
     pub gate: GateConfig,
     /// Stale-input timeouts.
     pub watchdog: WatchdogConfig,
+    /// How commands reach the robot's computer (straight, or through `pomdar relay`).
+    pub robot_link: RobotLinkConfig,
     /// The lab's `/hand/policy_output` (orca_core convention).
     pub policy_output: PolicyOutputConfig,
     /// Retargeting (layout, embodiment, weights, solver).
@@ -141,6 +144,7 @@ impl Default for StationConfig {
             control: ControlConfig::default(),
             gate: GateConfig::default(),
             watchdog: WatchdogConfig::default(),
+            robot_link: RobotLinkConfig::default(),
             policy_output: PolicyOutputConfig {
                 topic: "/hand/policy_output".into(),
                 ..PolicyOutputConfig::default()
@@ -247,6 +251,7 @@ impl StationConfig {
         self.output.qos.validate("output.qos")?;
         self.gate.validate()?;
         self.watchdog.validate()?;
+        self.robot_link.validate()?;
         if self.gate.reorder_window_ms >= self.watchdog.disengage_timeout_ms {
             return Err(ConfigError::out_of_range(
                 "gate.reorder_window_ms",

@@ -31,7 +31,7 @@ impl Default for WatchdogConfig {
     fn default() -> Self {
         WatchdogConfig {
             hold_timeout_ms: 150,
-            disengage_timeout_ms: 1000,
+            disengage_timeout_ms: 500,
         }
     }
 }

@@ -22,6 +22,7 @@ pub mod model_report;
 #[cfg(feature = "physics")]
 pub mod physics;
 pub mod progress_bar;
+pub mod relay_node;
 pub mod replay;
 pub mod resim;
 pub mod ros;

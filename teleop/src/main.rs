@@ -175,6 +175,21 @@ enum Command {
     ///   pomdar probe --topics /pomdar/hand/joint_targets,/franka/end_effector_pose_cmd --interface 10.251.0.3
     #[command(verbatim_doc_comment)]
     Probe(command::probe::ProbeArgs),
+    /// On the robot's computer: the station's commands onto the robot's own topics.
+    ///
+    /// With `[robot_link] relay_prefix` set, the station sends its robot commands best effort
+    /// on relay topics (the prefix + the robot's topic): a cut cable loses what was sent into
+    /// it and nothing old is resent when it returns. The relay republishes each command on the
+    /// robot's topic with the configuration's output.qos (reliable for the lab's drivers), on
+    /// this computer, and drops any command older than `[robot_link] max_age_ms` (100 ms) on
+    /// arrival: the station's and this computer's clocks must be kept in step (chrony). Drops
+    /// are reported every 5 s at most; a summary on Ctrl-C. docs/DEPLOYMENT.md, "When a link
+    /// fails".
+    ///
+    /// Example:
+    ///   pomdar relay --config launch_configs/station/deploy_station.toml --interface 10.251.0.3
+    #[command(verbatim_doc_comment)]
+    Relay(command::relay::RelayArgs),
     /// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
     ///
     /// Three ways to run it:
@@ -482,6 +497,7 @@ fn main() -> ExitCode {
         Command::Probe(args) => {
             return exit_code(command::common::run_async(command::probe::run(args)));
         }
+        Command::Relay(args) => command::common::run_async(command::relay::relay(args)),
         Command::Ingress(command) => command::common::run_async(command::ingress::run(command)),
         Command::Station(args) => command::common::run_async(command::station::station(args)),
         Command::SimGlove(args) => command::common::run_async(command::sim_glove::sim_glove(args)),

@@ -16,6 +16,7 @@ pub mod mock_hand;
 pub mod model;
 pub mod probe;
 pub mod recover;
+pub mod relay;
 pub mod replay;
 pub mod resim;
 pub mod score;

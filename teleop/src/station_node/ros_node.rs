@@ -213,22 +213,33 @@ impl Endpoints {
             }
         };
         let robot = config.drives_robot();
+        // Relayed (`[robot_link]`): best effort on the relay topics, `pomdar relay` on the
+        // robot's computer republishes; nothing old is kept or resent after a cut.
+        let link = &config.robot_link;
+        let command_qos = match link.relayed() {
+            true => QosConfig::best_effort(output_qos.depth),
+            false => output_qos,
+        };
         let arm_topic = &config.output.arm_target_topic;
         let (arm, arm_monitor) = if arm_topic.is_empty() || !robot {
             (None, None)
         } else {
+            let wire = link.wire_topic(arm_topic);
             (
-                Some(node.publisher(arm_topic, output_qos)?),
-                Some(node.subscription(arm_topic, output_qos)?),
+                Some(node.publisher(&wire, command_qos)?),
+                Some(node.subscription(&wire, command_qos)?),
             )
         };
         let policy = match config.policy_output.topic.as_str() {
             "" => None,
             _ if !robot => None,
-            topic => Some(node.publisher(topic, output_qos)?),
+            topic => Some(node.publisher(&link.wire_topic(topic), command_qos)?),
         };
         let joint = match robot {
-            true => Some(node.publisher(&config.output.joint_targets_topic, output_qos)?),
+            true => Some(node.publisher(
+                &link.wire_topic(&config.output.joint_targets_topic),
+                command_qos,
+            )?),
             false => None,
         };
         Ok(Endpoints {

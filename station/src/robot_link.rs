@@ -1,0 +1,252 @@
+//! The link from the station to the robot's computer, and the age check at its far end.
+//!
+//! A reliable DDS writer (RustDDS 0.15) keeps every sample a matched reader has not
+//! acknowledged, whatever its history depth, and resends all of them when a cut link returns:
+//! seconds-old commands, at once, ahead of the current ones. With a relay, the station sends
+//! its robot commands best effort (nothing is kept or resent) on relay topics
+//! (`relay_prefix` + the robot's topic), and `pomdar relay` on the robot's computer republishes
+//! them on the robot's own topics with the reliability the robot's drivers ask for (on that
+//! computer's loopback, which no cable cut interrupts), dropping any command older than
+//! `max_age_ms` on arrival ([`CommandAgeGate`]).
+
+use serde::{Deserialize, Serialize};
+
+use crate::config_error::ConfigError;
+
+/// `[robot_link]`: how commands reach the robot's computer.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RobotLinkConfig {
+    /// Prefix of the relay topics the station publishes its robot commands on (best effort),
+    /// e.g. `/pomdar/link`: the joint targets then go out on
+    /// `/pomdar/link/pomdar/hand/joint_targets`. Empty: publish straight to the robot's topics
+    /// with `output.qos` (one computer, or a link that is never cut).
+    pub relay_prefix: String,
+    /// `pomdar relay` drops a command whose age on arrival (its receive time minus the time the
+    /// station sent it, on clocks the lab keeps in step) exceeds this, milliseconds.
+    pub max_age_ms: u64,
+}
+
+impl Default for RobotLinkConfig {
+    fn default() -> Self {
+        RobotLinkConfig {
+            relay_prefix: String::new(),
+            max_age_ms: 100,
+        }
+    }
+}
+
+impl RobotLinkConfig {
+    /// Check the ranges; errors name the key.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let prefix = &self.relay_prefix;
+        let valid_prefix = prefix.is_empty()
+            || (prefix.starts_with('/')
+                && !prefix.ends_with('/')
+                && !prefix.contains("//")
+                && prefix
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '/'));
+        if !valid_prefix {
+            return Err(ConfigError::out_of_range(
+                "robot_link.relay_prefix",
+                format!("'{prefix}'"),
+                "empty, or a topic prefix such as /pomdar/link (letters, digits, _ and /, no trailing /)",
+            ));
+        }
+        if !(1..=10_000).contains(&self.max_age_ms) {
+            return Err(ConfigError::out_of_range(
+                "robot_link.max_age_ms",
+                self.max_age_ms,
+                "in [1, 10000]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Whether commands go through `pomdar relay`.
+    pub fn relayed(&self) -> bool {
+        !self.relay_prefix.is_empty()
+    }
+
+    /// The topic the station publishes `robot_topic` on: the relay topic when relayed.
+    pub fn wire_topic(&self, robot_topic: &str) -> String {
+        match self.relayed() {
+            true => format!("{}{}", self.relay_prefix, robot_topic),
+            false => robot_topic.to_string(),
+        }
+    }
+}
+
+/// What the relay does with one command.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AgeVerdict {
+    /// Fresh enough: republish it.
+    Forward,
+    /// Older than the limit on arrival: drop it.
+    TooOld {
+        /// Its age, nanoseconds.
+        age_ns: i64,
+    },
+    /// Sent later than it was received by more than the limit: the two computers' clocks
+    /// disagree (or the sender's is wrong); dropped, since its age cannot be known.
+    FromTheFuture {
+        /// How far ahead, nanoseconds.
+        ahead_ns: i64,
+    },
+    /// The sender set no send time: its age cannot be known; dropped.
+    Unstamped,
+}
+
+impl AgeVerdict {
+    /// Whether the command is republished.
+    pub fn forwards(&self) -> bool {
+        matches!(self, AgeVerdict::Forward)
+    }
+}
+
+/// Counts of what the gate decided.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+pub struct AgeCounts {
+    /// Commands republished.
+    pub forwarded: u64,
+    /// Commands dropped as older than the limit.
+    pub too_old: u64,
+    /// Commands dropped as sent in the future (clocks out of step).
+    pub from_the_future: u64,
+    /// Commands dropped without a send time.
+    pub unstamped: u64,
+    /// The oldest command dropped, nanoseconds.
+    pub oldest_dropped_ns: i64,
+}
+
+impl AgeCounts {
+    /// Commands dropped, for any reason.
+    pub fn dropped(&self) -> u64 {
+        self.too_old + self.from_the_future + self.unstamped
+    }
+}
+
+/// The relay's check of each command's age: receive time minus send time, both wall clocks.
+#[derive(Debug, Clone)]
+pub struct CommandAgeGate {
+    max_age_ns: i64,
+    counts: AgeCounts,
+}
+
+impl CommandAgeGate {
+    /// A gate dropping commands older than `max_age_ms`.
+    pub fn new(max_age_ms: u64) -> CommandAgeGate {
+        CommandAgeGate {
+            max_age_ns: i64::try_from(max_age_ms)
+                .unwrap_or(i64::MAX / 1_000_000)
+                .saturating_mul(1_000_000),
+            counts: AgeCounts::default(),
+        }
+    }
+
+    /// Judge a command sent at `sent_ns` (None: no send time) and received at `received_ns`.
+    pub fn judge(&mut self, sent_ns: Option<i64>, received_ns: i64) -> AgeVerdict {
+        let verdict = match sent_ns {
+            None => AgeVerdict::Unstamped,
+            Some(sent) => {
+                let age_ns = received_ns.saturating_sub(sent);
+                if age_ns > self.max_age_ns {
+                    AgeVerdict::TooOld { age_ns }
+                } else if age_ns < -self.max_age_ns {
+                    AgeVerdict::FromTheFuture { ahead_ns: -age_ns }
+                } else {
+                    AgeVerdict::Forward
+                }
+            }
+        };
+        let counts = &mut self.counts;
+        match verdict {
+            AgeVerdict::Forward => counts.forwarded += 1,
+            AgeVerdict::TooOld { age_ns } => {
+                counts.too_old += 1;
+                counts.oldest_dropped_ns = counts.oldest_dropped_ns.max(age_ns);
+            }
+            AgeVerdict::FromTheFuture { .. } => counts.from_the_future += 1,
+            AgeVerdict::Unstamped => counts.unstamped += 1,
+        }
+        verdict
+    }
+
+    /// What the gate decided so far.
+    pub fn counts(&self) -> &AgeCounts {
+        &self.counts
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MS: i64 = 1_000_000;
+
+    #[test]
+    fn commands_within_the_age_limit_pass_older_ones_and_unknown_ages_do_not() {
+        let mut gate = CommandAgeGate::new(100);
+        let t = 1_700_000_000_000 * MS;
+        assert_eq!(gate.judge(Some(t - 2 * MS), t), AgeVerdict::Forward);
+        assert_eq!(gate.judge(Some(t - 100 * MS), t), AgeVerdict::Forward);
+        assert_eq!(
+            gate.judge(Some(t - 101 * MS), t),
+            AgeVerdict::TooOld { age_ns: 101 * MS }
+        );
+        assert_eq!(
+            gate.judge(Some(t - 8_000 * MS), t),
+            AgeVerdict::TooOld { age_ns: 8_000 * MS }
+        );
+        // A little ahead (clocks a few ms apart) passes; far ahead cannot be judged.
+        assert_eq!(gate.judge(Some(t + 5 * MS), t), AgeVerdict::Forward);
+        assert_eq!(
+            gate.judge(Some(t + 500 * MS), t),
+            AgeVerdict::FromTheFuture { ahead_ns: 500 * MS }
+        );
+        assert_eq!(gate.judge(None, t), AgeVerdict::Unstamped);
+        let counts = gate.counts();
+        assert_eq!(
+            (counts.forwarded, counts.too_old, counts.from_the_future),
+            (3, 2, 1)
+        );
+        assert_eq!((counts.unstamped, counts.dropped()), (1, 4));
+        assert_eq!(counts.oldest_dropped_ns, 8_000 * MS);
+        assert!(!AgeVerdict::Unstamped.forwards());
+    }
+
+    #[test]
+    fn relay_topics_are_the_prefix_and_the_robot_topic() {
+        let mut link = RobotLinkConfig::default();
+        assert!(!link.relayed());
+        assert_eq!(link.wire_topic("/franka/cmd"), "/franka/cmd");
+        link.relay_prefix = "/pomdar/link".into();
+        assert!(link.relayed());
+        assert_eq!(link.wire_topic("/franka/cmd"), "/pomdar/link/franka/cmd");
+        link.validate().unwrap();
+    }
+
+    #[test]
+    fn a_bad_prefix_or_age_names_its_key() {
+        for prefix in ["pomdar", "/pomdar/", "/a//b", "/a b", "/ä"] {
+            let link = RobotLinkConfig {
+                relay_prefix: prefix.into(),
+                ..RobotLinkConfig::default()
+            };
+            let error = link.validate().unwrap_err().to_string();
+            assert!(
+                error.contains("robot_link.relay_prefix"),
+                "{prefix}: {error}"
+            );
+        }
+        for age in [0, 10_001] {
+            let link = RobotLinkConfig {
+                max_age_ms: age,
+                ..RobotLinkConfig::default()
+            };
+            let error = link.validate().unwrap_err().to_string();
+            assert!(error.contains("robot_link.max_age_ms"), "{age}: {error}");
+        }
+    }
+}

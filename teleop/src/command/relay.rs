@@ -1,0 +1,73 @@
+//! `pomdar relay`: the station's commands onto the robot's topics, on the robot's computer.
+
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+use anyhow::Context as _;
+use clap::Args;
+
+use super::common::{NodeArgs, ctrl_c_shutdown};
+use crate::clock::StationClock;
+use crate::relay_node::{RelayReport, RelaySettings, run_relay};
+use crate::station_setup::read_station_config;
+
+/// `pomdar relay` options.
+#[derive(Debug, Args)]
+pub struct RelayArgs {
+    /// The station's configuration (the same file the station runs with): its
+    /// [robot_link] relay_prefix and max_age_ms, the robot's topics and output.qos.
+    #[arg(long, value_name = "FILE")]
+    pub config: PathBuf,
+    /// DDS settings (default: the configuration's [network]).
+    #[command(flatten)]
+    pub node: NodeArgs,
+}
+
+/// `pomdar relay`.
+pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
+    let path = args.config.display().to_string();
+    let config = read_station_config(&args.config)?;
+    let settings = RelaySettings::of(&config).with_context(|| {
+        format!(
+            "{path}: robot_link.relay_prefix is empty (the station publishes straight to the robot's topics): nothing to relay"
+        )
+    })?;
+    for route in settings.routes.all() {
+        eprintln!(
+            "relay: {} → {} ({:?} in, {:?} out, depth {}), dropping commands older than {} ms",
+            route.from,
+            route.to,
+            settings.link_qos.reliability,
+            settings.robot_qos.reliability,
+            settings.robot_qos.depth,
+            settings.max_age_ms
+        );
+    }
+    let report = Mutex::new(RelayReport::default());
+    let network = args.node.network(&config.network);
+    run_relay(
+        &settings,
+        &network,
+        StationClock::new(),
+        &report,
+        ctrl_c_shutdown(),
+    )
+    .await?;
+    if let Ok(report) = report.lock() {
+        for (topic, counts) in &report.topics {
+            let ages = &counts.ages;
+            eprintln!(
+                "relay: {topic}: forwarded {}, dropped {} ({} older than {} ms, {} ahead of this clock, {} without a send time), {} lost in DDS, {} not published",
+                ages.forwarded,
+                ages.dropped(),
+                ages.too_old,
+                settings.max_age_ms,
+                ages.from_the_future,
+                ages.unstamped,
+                counts.input_errors,
+                counts.publish_failed
+            );
+        }
+    }
+    Ok(())
+}
