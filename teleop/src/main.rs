@@ -167,9 +167,12 @@ enum Command {
     ///
     /// Joins the domain on the given interfaces, waits for a publisher of each topic, counts
     /// its samples for --duration seconds and prints every discovered publisher with the
-    /// addresses it announced (its host) and each topic's rate. Exit status 0 when every
-    /// topic was heard, 2 when one was not discovered or not heard (docs/DEPLOYMENT.md says
-    /// what to check).
+    /// addresses it announced (its host) and each topic's rate; for stamped messages also
+    /// how old they were on arrival (receive time − header stamp) and how many were older
+    /// than --age-limit-ms, and the topic's silences (pauses of 250 ms or more). With
+    /// --reliable it subscribes as a robot driver does. Exit status 0 when every topic was
+    /// heard, 2 when one was not discovered or not heard (docs/DEPLOYMENT.md says what to
+    /// check).
     ///
     /// Example:
     ///   pomdar probe --topics /pomdar/hand/joint_targets,/franka/end_effector_pose_cmd --interface 10.251.0.3

@@ -3,6 +3,7 @@
 pub mod cyclone_peer;
 pub mod dependency_rule;
 pub mod deployment_guide;
+pub mod guide_session;
 pub mod interop;
 pub mod line_console;
 pub mod module_graph;

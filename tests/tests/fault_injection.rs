@@ -143,6 +143,32 @@ fn states_between(heard: &Heard, from: i64, to: i64) -> Vec<String> {
         .collect()
 }
 
+/// The first held command (the first stamped later than the last frame) comes within one
+/// control tick after the hold timeout, on the last frame's clock: the station got that frame
+/// at most a loopback delivery after its stamp.
+fn check_first_held_within_a_tick(in_gap: &[&JointState], last_fresh: &JointState) {
+    let config = config(ControlMode::Rate);
+    let last_stamp = stamp_ns(last_fresh);
+    let first_held = in_gap
+        .iter()
+        .map(|m| stamp_ns(m))
+        .find(|s| *s > last_stamp)
+        .expect("no held command in the gap");
+    let hold = config.watchdog.hold_timeout_ms as i64 * MS;
+    let tick = (1e9 / config.control.rate_hz) as i64;
+    let after = first_held - last_stamp;
+    println!(
+        "first held command {:.1} ms after the last frame (hold {} ms, tick {} ms)",
+        after as f64 / 1e6,
+        hold / MS,
+        tick / MS
+    );
+    assert!(
+        after > hold && after <= hold + tick + DELIVERY_SLACK_NS,
+        "first held command {after} ns after the last frame: not within one tick after the hold timeout"
+    );
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn dropouts_shorter_than_the_hold_timeout_change_nothing_longer_ones_hold_then_follow_again()
 {
@@ -219,27 +245,7 @@ async fn dropouts_shorter_than_the_hold_timeout_change_nothing_longer_ones_hold_
             "{} held targets, {held_ticks} ticks",
             held.len()
         );
-        // The first held command (the first stamped later than the last frame) comes within
-        // one control tick after the hold timeout, on the last frame's clock: the station got
-        // that frame at most a loopback delivery after its stamp.
-        let last_stamp = stamp_ns(&last_fresh);
-        let first_held = in_gap
-            .iter()
-            .map(|m| stamp_ns(m))
-            .find(|s| *s > last_stamp)
-            .expect("no held command in the gap");
-        let hold = watchdog.hold_timeout_ms as i64 * MS;
-        let after = first_held - last_stamp;
-        println!(
-            "first held command {:.1} ms after the last frame (hold {} ms, tick {} ms)",
-            after as f64 / 1e6,
-            hold / MS,
-            tick / MS
-        );
-        assert!(
-            after > hold && after <= hold + tick + DELIVERY_SLACK_NS,
-            "first held command {after} ns after the last frame: not within one tick after the hold timeout"
-        );
+        check_first_held_within_a_tick(&in_gap, &last_fresh);
         let arm_in_gap: Vec<_> = heard
             .arm
             .iter()

@@ -1,6 +1,6 @@
 //! Three hosts over DDS, as docs/DEPLOYMENT.md deploys them: the glove PC (A) replays the
 //! reference recording, the station PC (B) runs `pomdar station --record`, the robot PC (C)
-//! runs the mock hand and mock Franka; each host a network namespace cabled to a switch (a
+//! runs the mock hand and mock Franka, and `pomdar relay` for the station's commands; each host a network namespace cabled to a switch (a
 //! bridge), addresses 10.251.0.1–3/24 inside the namespaces only. The commands are the guide's
 //! `# on host` blocks, read from the guide and run as written.
 //!
@@ -15,15 +15,15 @@
 
 use std::collections::BTreeMap;
 use std::net::Ipv4Addr;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+use std::path::Path;
+use std::time::Duration;
 
 use msgs::{JointState, StringMsg};
-use pomdar_tests::deployment_guide::{GuideStep, HostBlock, read_host_blocks};
+use pomdar_tests::guide_session::{
+    Session, guide_blocks_and_station_config, lab_tag_or_skip, session_dir, wall_ns,
+};
 use pomdar_tests::interop::reference_file;
-use pomdar_tests::netns_lab::{NetnsLab, namespaces_available};
-use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::netns_lab::NetnsLab;
 use pomdar_tests::workspace_root;
 use serde_json::Value;
 use station::StationConfig;
@@ -43,168 +43,6 @@ const JOINT_TARGETS: &str = "/pomdar/hand/joint_targets";
 const ARM_TARGETS: &str = "/franka/end_effector_pose_cmd";
 const KEYPOINTS: &str = "/ingress/mano";
 const STATUS: &str = "/pomdar/status";
-
-fn wall_ns() -> i64 {
-    SystemTime::now()
-        .duration_since(UNIX_EPOCH)
-        .unwrap()
-        .as_nanos() as i64
-}
-
-/// A node started from a guide line; SIGKILLed if still running when dropped (the lab's drop
-/// also kills whatever runs in its namespaces).
-struct Node {
-    host: String,
-    line: String,
-    child: Child,
-    log: PathBuf,
-}
-
-impl Node {
-    /// Ctrl-C, as the guide stops nodes; wait for the node to finish.
-    fn interrupt(&mut self) -> std::process::ExitStatus {
-        // The shell's builtin `kill`: no procps needed.
-        Command::new("sh")
-            .args(["-c", &format!("kill -INT {}", self.child.id())])
-            .status()
-            .unwrap();
-        let started = Instant::now();
-        loop {
-            if let Some(status) = self.child.try_wait().unwrap() {
-                return status;
-            }
-            assert!(
-                started.elapsed() < Duration::from_secs(30),
-                "host {}: `{}` did not stop on SIGINT within 30 s; its output: {}",
-                self.host,
-                self.line,
-                self.log.display()
-            );
-            std::thread::sleep(Duration::from_millis(50));
-        }
-    }
-
-    fn output(&self) -> String {
-        std::fs::read_to_string(&self.log).unwrap_or_default()
-    }
-}
-
-impl Drop for Node {
-    fn drop(&mut self) {
-        if self.child.try_wait().ok().flatten().is_none() {
-            self.child.kill().ok();
-            self.child.wait().ok();
-        }
-    }
-}
-
-/// Runs the guide's blocks on the lab's hosts.
-struct Session<'a> {
-    lab: &'a NetnsLab,
-    dir: PathBuf,
-    bin: PathBuf,
-    env: BTreeMap<String, BTreeMap<String, String>>,
-    nodes: Vec<Node>,
-}
-
-impl Session<'_> {
-    fn home(&self, host: &str) -> PathBuf {
-        self.dir.join(format!("home-{}", host.to_lowercase()))
-    }
-
-    /// `line` through `sh` in `host`'s namespace, from the checkout's top directory, with the
-    /// host's home, its exported variables and `pomdar` on the PATH.
-    fn shell(&self, host: &str, line: &str) -> Command {
-        let mut command = self.lab.command(host, "sh").unwrap();
-        command
-            .arg("-c")
-            .arg(format!("exec {line}"))
-            .current_dir(workspace_root())
-            .env_remove("ROS_DOMAIN_ID")
-            .env("HOME", self.home(host))
-            .env(
-                "PATH",
-                format!(
-                    "{}:{}",
-                    self.bin.display(),
-                    std::env::var("PATH").unwrap_or_default()
-                ),
-            )
-            .envs(self.env.get(host).into_iter().flatten())
-            .stdin(Stdio::null());
-        command
-    }
-
-    /// Run one block; returns the output of the commands that ran to completion.
-    fn run(&mut self, block: &HostBlock) -> Vec<String> {
-        std::fs::create_dir_all(self.home(&block.host)).unwrap();
-        let mut outputs = Vec::new();
-        for step in &block.steps {
-            match step {
-                GuideStep::Export { name, value } => {
-                    self.env
-                        .entry(block.host.clone())
-                        .or_default()
-                        .insert(name.clone(), value.clone());
-                }
-                GuideStep::Background(line) => {
-                    let log =
-                        self.dir
-                            .join(format!("host-{}-{}.log", block.host, self.nodes.len()));
-                    let file = std::fs::File::create(&log).unwrap();
-                    let child = self
-                        .shell(&block.host, line)
-                        .stdout(file.try_clone().unwrap())
-                        .stderr(file)
-                        .spawn()
-                        .unwrap();
-                    println!("host {}: started `{line}`", block.host);
-                    self.nodes.push(Node {
-                        host: block.host.clone(),
-                        line: line.clone(),
-                        child,
-                        log,
-                    });
-                }
-                GuideStep::Run(line) => {
-                    let output = self.shell(&block.host, line).output().unwrap();
-                    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-                    println!(
-                        "host {}: `{line}` → {}\n{stdout}{}",
-                        block.host,
-                        output.status,
-                        String::from_utf8_lossy(&output.stderr)
-                    );
-                    assert!(
-                        output.status.success(),
-                        "host {}: `{line}` failed ({}); nodes' output in {}",
-                        block.host,
-                        output.status,
-                        self.dir.display()
-                    );
-                    outputs.push(stdout);
-                }
-            }
-        }
-        outputs
-    }
-
-    /// What the node started as `program` on `host` printed.
-    fn output_of(&self, host: &str, program: &str) -> String {
-        self.nodes
-            .iter()
-            .find(|n| n.host == host && n.line.starts_with(program))
-            .map(Node::output)
-            .unwrap_or_default()
-    }
-
-    fn node(&mut self, host: &str, program: &str) -> &mut Node {
-        self.nodes
-            .iter_mut()
-            .find(|n| n.host == host && n.line.starts_with(program))
-            .unwrap_or_else(|| panic!("the guide starts no `{program}` on host {host}"))
-    }
-}
 
 /// The rate `pomdar probe` printed for `topic` (`  /topic  25.0 Hz (...)`).
 fn probe_rate(report: &str, topic: &str) -> f64 {
@@ -487,33 +325,6 @@ fn check_trial_log(path: &Path, config: &StationConfig, cut_ns: i64, restored_ns
     check_nothing_missing(&log, &gap.frames, hand.all.len(), arm.all.len());
 }
 
-/// The guide's host blocks, checked to be robot, station, glove, then the check; and the
-/// station configuration its station command names.
-fn guide_blocks_and_station_config(root: &Path) -> (Vec<HostBlock>, StationConfig) {
-    let blocks = read_host_blocks(&root.join("docs/DEPLOYMENT.md")).unwrap();
-    let station_line = blocks
-        .iter()
-        .flat_map(|b| &b.steps)
-        .find_map(|s| match s {
-            GuideStep::Background(line) if line.starts_with("pomdar station") => Some(line),
-            _ => None,
-        })
-        .expect("the guide starts no station");
-    let config_path = station_line
-        .split_whitespace()
-        .skip_while(|w| *w != "--config")
-        .nth(1)
-        .expect("the guide's station command has no --config");
-    let config = teleop::station_setup::read_station_config(&root.join(config_path)).unwrap();
-    let hosts: Vec<&str> = blocks.iter().map(|b| b.host.as_str()).collect();
-    assert_eq!(
-        hosts,
-        ["C", "B", "A", "C"],
-        "the guide's host blocks: robot, station, glove, then the check"
-    );
-    (blocks, config)
-}
-
 /// The check on C (the last block's output): commands at the station's rate (±20 %).
 fn check_probe_rates(report: &str, config: &StationConfig) {
     let joint_hz = probe_rate(report, JOINT_TARGETS);
@@ -587,23 +398,11 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
     let Some(_reference) = reference_file("rokoko_orca_2024-11-20.mcap") else {
         return;
     };
-    let tag = format!("{}", std::process::id() % 100_000);
-    if let Err(why) = namespaces_available(&tag) {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must be able to create network namespaces (root and iproute2; .ci/run installs iproute2): {why}"
-        );
-        eprintln!("SKIPPED: cannot create network namespaces here ({why})");
+    let Some(tag) = lab_tag_or_skip() else {
         return;
-    }
+    };
     let (blocks, config) = guide_blocks_and_station_config(&workspace_root());
-
-    let binary = pomdar_binary().unwrap();
-    let dir = std::env::temp_dir().join(format!("pomdar-multi-host-{tag}"));
-    std::fs::remove_dir_all(&dir).ok();
-    let bin = dir.join("bin");
-    std::fs::create_dir_all(&bin).unwrap();
-    std::os::unix::fs::symlink(&binary, bin.join("pomdar")).unwrap();
+    let (dir, bin) = session_dir("multi-host", &tag);
 
     let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
     let mut session = Session {

@@ -21,6 +21,14 @@ pub struct ProbeArgs {
     /// Seconds to wait for a publisher of each topic.
     #[arg(long, default_value_t = 15.0)]
     pub discovery_timeout: f64,
+    /// Subscribe reliably, as a robot driver does (a reliable publisher then resends what it
+    /// lost, e.g. after a cut link); default best effort, which hears any publisher.
+    #[arg(long)]
+    pub reliable: bool,
+    /// Count stamped samples older than this on arrival (receive time − header stamp; the
+    /// hosts' clocks must be in step), milliseconds.
+    #[arg(long, default_value_t = 100, value_name = "MS")]
+    pub age_limit_ms: u64,
     /// Print the report as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -42,6 +50,8 @@ pub async fn run(args: ProbeArgs) -> anyhow::Result<ExitCode> {
         topics: args.topics,
         duration: seconds("--duration", args.duration)?,
         discovery_timeout: seconds("--discovery-timeout", args.discovery_timeout)?,
+        reliable: args.reliable,
+        age_limit_ms: args.age_limit_ms,
     };
     let network = args.node.network(&NetworkConfig::default());
     let report = probe(&network, &options, ctrl_c_shutdown()).await?;

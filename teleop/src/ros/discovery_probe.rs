@@ -6,7 +6,8 @@
 //! requested topic is discovered (SPDP then SEDP), subscribes to it with the type the
 //! publisher announced, and counts samples for the given time. It reports every publisher it
 //! discovered with the unicast addresses it announced (which host it runs on), and per topic
-//! the time to discovery, the samples received and their rate over the receive window.
+//! the time to discovery, the samples received and their rate over the receive window, how old
+//! the stamped samples were on arrival and when the topic went silent (`ros::probe_timing`).
 
 use std::collections::BTreeSet;
 use std::net::SocketAddr;
@@ -19,6 +20,8 @@ use serde::Serialize;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
+use crate::clock::StationClock;
+use crate::ros::probe_timing::{Arrival, HeaderStamp, TopicTiming};
 use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
 
 /// What to probe.
@@ -30,6 +33,11 @@ pub struct ProbeOptions {
     pub duration: Duration,
     /// How long to wait for a publisher of each topic.
     pub discovery_timeout: Duration,
+    /// Subscribe reliably, as a robot driver does (a reliable publisher then resends what was
+    /// lost); otherwise best effort, which matches any publisher.
+    pub reliable: bool,
+    /// Stamped samples older than this on arrival are counted, milliseconds.
+    pub age_limit_ms: u64,
 }
 
 /// A publisher the probe discovered.
@@ -58,6 +66,8 @@ pub struct TopicProbe {
     pub window_s: f64,
     /// Samples per second over the window (`samples − 1` intervals); `None` below 2 samples.
     pub rate_hz: Option<f64>,
+    /// Ages on arrival and silences; None without samples.
+    pub timing: Option<TopicTiming>,
     /// Why the topic could not be counted (no publisher, a type the probe cannot decode).
     pub problem: Option<String>,
 }
@@ -120,15 +130,25 @@ fn discovered_publishers(node: &RosNode) -> Vec<DiscoveredPublisher> {
     out.into_iter().collect()
 }
 
-/// Count samples of `M` on `topic` for `duration`; returns the receive times.
-fn spawn_counter<M: RosMessage + Send + Sync + 'static>(
+/// How a counter subscribes and times.
+#[derive(Debug, Clone, Copy)]
+struct CounterSettings {
+    duration: Duration,
+    qos: QosConfig,
+    clock: StationClock,
+}
+
+/// Count samples of `M` on `topic` for the settings' duration; returns their arrivals.
+fn spawn_counter<M: RosMessage + HeaderStamp + Send + Sync + 'static>(
     node: &mut RosNode,
     topic: &str,
-    duration: Duration,
+    settings: CounterSettings,
     mut shutdown: watch::Receiver<bool>,
-) -> Result<JoinHandle<Vec<Instant>>, RosError> {
-    // Best effort matches reliable and best-effort publishers alike.
-    let subscription = node.subscription::<M>(topic, QosConfig::best_effort(1000))?;
+) -> Result<JoinHandle<Vec<Arrival>>, RosError> {
+    let subscription = node.subscription::<M>(topic, settings.qos)?;
+    let CounterSettings {
+        duration, clock, ..
+    } = settings;
     Ok(tokio::spawn(async move {
         let mut stream = Box::pin(subscription.async_stream());
         let deadline = tokio::time::sleep(duration);
@@ -139,7 +159,10 @@ fn spawn_counter<M: RosMessage + Send + Sync + 'static>(
                 _ = &mut deadline => break,
                 _ = shutdown.changed() => if *shutdown.borrow() { break },
                 item = stream.next() => match item {
-                    Some(Ok(_)) => times.push(Instant::now()),
+                    Some(Ok((message, _))) => times.push(Arrival {
+                        received_ns: clock.now_ns(),
+                        stamp_ns: message.header_stamp_ns(),
+                    }),
                     Some(Err(_)) => {}
                     None => break,
                 },
@@ -154,20 +177,20 @@ fn counter_for(
     node: &mut RosNode,
     topic: &str,
     type_name: &str,
-    duration: Duration,
+    settings: CounterSettings,
     shutdown: &watch::Receiver<bool>,
-) -> Result<Option<JoinHandle<Vec<Instant>>>, RosError> {
+) -> Result<Option<JoinHandle<Vec<Arrival>>>, RosError> {
     let shutdown = shutdown.clone();
     let handle = if type_name == dds_type::<JointState>() {
-        spawn_counter::<JointState>(node, topic, duration, shutdown)?
+        spawn_counter::<JointState>(node, topic, settings, shutdown)?
     } else if type_name == dds_type::<PoseStamped>() {
-        spawn_counter::<PoseStamped>(node, topic, duration, shutdown)?
+        spawn_counter::<PoseStamped>(node, topic, settings, shutdown)?
     } else if type_name == dds_type::<Float32MultiArray>() {
-        spawn_counter::<Float32MultiArray>(node, topic, duration, shutdown)?
+        spawn_counter::<Float32MultiArray>(node, topic, settings, shutdown)?
     } else if type_name == dds_type::<PoseArray>() {
-        spawn_counter::<PoseArray>(node, topic, duration, shutdown)?
+        spawn_counter::<PoseArray>(node, topic, settings, shutdown)?
     } else if type_name == dds_type::<StringMsg>() {
-        spawn_counter::<StringMsg>(node, topic, duration, shutdown)?
+        spawn_counter::<StringMsg>(node, topic, settings, shutdown)?
     } else {
         return Ok(None);
     };
@@ -183,6 +206,15 @@ pub async fn probe(
 ) -> Result<ProbeReport, RosError> {
     let domain_id = crate::ros::domain_id(network.domain_id)?;
     let mut node = RosNode::join(network, "/", "pomdar_probe")?;
+    let settings = CounterSettings {
+        duration: options.duration,
+        // Best effort matches reliable and best-effort publishers alike.
+        qos: match options.reliable {
+            true => QosConfig::reliable(1000),
+            false => QosConfig::best_effort(1000),
+        },
+        clock: StationClock::new(),
+    };
     let start = Instant::now();
     let mut topics: Vec<TopicProbe> = options
         .topics
@@ -194,10 +226,11 @@ pub async fn probe(
             samples: 0,
             window_s: 0.0,
             rate_hz: None,
+            timing: None,
             problem: None,
         })
         .collect();
-    let mut counters: Vec<Option<JoinHandle<Vec<Instant>>>> = topics.iter().map(|_| None).collect();
+    let mut counters: Vec<Option<JoinHandle<Vec<Arrival>>>> = topics.iter().map(|_| None).collect();
     loop {
         let publishers = discovered_publishers(&node);
         for (probe, counter) in topics.iter_mut().zip(counters.iter_mut()) {
@@ -213,7 +246,7 @@ pub async fn probe(
                 &mut node,
                 &probe.topic,
                 &publisher.type_name,
-                options.duration,
+                settings,
                 &shutdown,
             )?;
             if counter.is_none() {
@@ -240,7 +273,8 @@ pub async fn probe(
         let times = counter.await?;
         probe.samples = times.len() as u64;
         if let (Some(first), Some(last)) = (times.first(), times.last()) {
-            probe.window_s = last.duration_since(*first).as_secs_f64();
+            probe.window_s = (last.received_ns - first.received_ns) as f64 * 1e-9;
+            probe.timing = Some(TopicTiming::of(&times, options.age_limit_ms));
             if times.len() >= 2 && probe.window_s > 0.0 {
                 probe.rate_hz = Some((times.len() - 1) as f64 / probe.window_s);
             }
@@ -287,8 +321,33 @@ impl std::fmt::Display for ProbeReport {
                 )?,
                 (None, None) => writeln!(f, "  {:<36} {} samples", t.topic, t.samples)?,
             }
+            if let Some(timing) = &t.timing {
+                write_timing(f, timing)?;
+            }
         }
         Ok(())
+    }
+}
+
+/// A topic's ages and longest silence, under its rate line.
+fn write_timing(f: &mut std::fmt::Formatter<'_>, timing: &TopicTiming) -> std::fmt::Result {
+    let mut parts = Vec::new();
+    if let (Some(p50), Some(max)) = (timing.age_p50_ms, timing.age_max_ms) {
+        parts.push(format!(
+            "age on arrival p50 {p50:.1} ms, max {max:.1} ms, {} older than {} ms",
+            timing.older_than_limit, timing.age_limit_ms
+        ));
+    }
+    if let Some(silence) = timing.longest_silence() {
+        parts.push(format!(
+            "longest silence {:.2} s ({} silences)",
+            silence.seconds,
+            timing.silences.len()
+        ));
+    }
+    match parts.is_empty() {
+        true => Ok(()),
+        false => writeln!(f, "  {:<36} {}", "", parts.join("; ")),
     }
 }
 

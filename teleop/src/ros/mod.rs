@@ -5,6 +5,7 @@ pub mod discovery_probe;
 mod endpoint;
 mod error;
 mod participant;
+pub mod probe_timing;
 mod qos;
 pub mod teardown;
 
