@@ -541,9 +541,13 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
 /// A frame of `glove` at `t` stamped `stamp` (`None`: no `scene.timestamp` at all).
 fn glove_packet(glove: &SimGlove, t: f64, stamp: Option<f64>) -> Vec<u8> {
     let (points, wrist) = glove.frame(t);
-    let mut value: Value =
-        serde_json::from_slice(&right_hand_packet(t, KeypointLayout::Lab22, &points, &wrist))
-            .unwrap();
+    let mut value: Value = serde_json::from_slice(&right_hand_packet(
+        t,
+        KeypointLayout::Lab22,
+        &points,
+        &wrist,
+    ))
+    .unwrap();
     match stamp {
         Some(s) => value["scene"]["timestamp"] = json!(s),
         None => {
@@ -565,12 +569,7 @@ fn non_loopback_address() -> Option<std::net::IpAddr> {
 /// Sends the door's test packets: from a stranger, without a timestamp, one spoofed old one,
 /// one slightly late one, a new one (published), then a real restart (5 in a row, the last
 /// published). Returns how many datagrams went to the ingress's address.
-async fn send_door_packets(
-    allowed: &UdpSocket,
-    addr: SocketAddr,
-    glove: &SimGlove,
-    t: f64,
-) -> u64 {
+async fn send_door_packets(allowed: &UdpSocket, addr: SocketAddr, glove: &SimGlove, t: f64) -> u64 {
     let stranger = UdpSocket::bind("127.0.0.1:0").unwrap();
     let sends: Vec<(&UdpSocket, Option<f64>)> = vec![
         // A good frame far ahead from a sender not allowed: would be new, is refused.
@@ -587,7 +586,9 @@ async fn send_door_packets(
     ];
     let mut sent = 0;
     for (socket, stamp) in sends {
-        socket.send_to(&glove_packet(glove, 1.0, stamp), addr).unwrap();
+        socket
+            .send_to(&glove_packet(glove, 1.0, stamp), addr)
+            .unwrap();
         sent += 1;
         tokio::time::sleep(Duration::from_millis(5)).await;
     }
@@ -665,7 +666,10 @@ async fn strangers_unstamped_and_spoofed_packets_do_not_get_through() {
     assert_eq!(s["refused"]["sender"], 1, "{s}");
     assert_eq!(s["refused"]["no_timestamp"], 1, "{s}");
     assert_eq!(s["out_of_order"], 1, "{s}");
-    assert_eq!(s["restart_unconfirmed"], 5, "1 spoofed + 4 before the restart: {s}");
+    assert_eq!(
+        s["restart_unconfirmed"], 5,
+        "1 spoofed + 4 before the restart: {s}"
+    );
     assert_eq!(s["restarts"], 1, "{s}");
     assert_eq!(s["duplicates"], 0, "{s}");
     // The datagram sent to the other address never arrived.
