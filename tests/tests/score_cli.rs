@@ -602,7 +602,7 @@ fn assert_aggregates(json: &Value) {
         (v1_score + 0.7) / 18.0,
         "overall all 18",
     );
-    assert_eq!(json["rejected"].as_array().unwrap().len(), 5);
+    assert_eq!(json["rejected"].as_array().unwrap().len(), 6);
 }
 
 /// Every report file, with the warning where a reader will see it.
@@ -673,7 +673,7 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
     // The table on stdout.
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("WARNING: NO BASELINE for H2"), "{stdout}");
-    assert!(stdout.contains("Rejected files (5)"));
+    assert!(stdout.contains("Rejected files (6)"), "{stdout}");
 
     // The values, from scores.json.
     let json: Value =
