@@ -28,7 +28,7 @@ pub enum IngressCommand {
     /// scene.timestamp: one without is refused (no_timestamp); duplicated and out-of-order
     /// packets are dropped; a jump back is taken for a Studio restart only after 5 packets
     /// in a row confirm it (restart_confirm_packets), so one stray old packet never resets
-    /// the order. Malformed, truncated, oversized and refused packets are dropped and
+    /// the order. Malformed, truncated, oversized and bone-missing packets are dropped and
     /// counted by kind (each kind logged at most once per 10 s, with the count held back);
     /// the counts and the rate go out as JSON on /ingress/status every second and as a
     /// line on stderr every 5 s. In Studio: Livestream → Custom → JSON v3, the address
@@ -36,7 +36,7 @@ pub enum IngressCommand {
     ///
     /// Examples:
     ///   pomdar ingress rokoko
-    ///   pomdar ingress rokoko --bind 10.251.0.2 --allow-sender 10.251.0.1 --actor Actor1 --hand right
+    ///   pomdar ingress rokoko --bind 10.251.0.1 --allow-sender 10.251.0.9 --actor Actor1 --hand right
     ///   pomdar ingress rokoko --config launch_configs/ingress/rokoko.toml --domain-id 7
     #[command(verbatim_doc_comment)]
     Rokoko(RokokoArgs),
