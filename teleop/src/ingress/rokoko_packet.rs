@@ -63,7 +63,7 @@ pub enum PacketError {
     },
     /// No finite `scene.timestamp`: the packet cannot be ordered, so it is refused rather
     /// than let past the duplicate, out-of-order and restart checks.
-    #[error("no finite scene.timestamp (every packet is ordered by it; Studio always sends one)")]
+    #[error("no finite scene.timestamp (every packet is ordered by it, so one without is refused)")]
     NoTimestamp,
     /// No actor (or none with the configured name).
     #[error("no actor {wanted} in the packet (actors: {present})")]
