@@ -383,6 +383,26 @@ fn a_record_in_a_chunk_claiming_petabytes_is_damage_not_an_abort() {
     );
 }
 
+/// A decompression bomb: a 60-byte chunk declaring 1 GiB uncompressed (issue 25). The
+/// declared size is what decompressing would allocate; the budget refuses it first, naming
+/// the limit, and recovery keeps nothing of the chunk.
+#[test]
+fn a_chunk_declaring_a_gibibyte_is_over_budget_not_an_allocation() {
+    let inner = vec![0u8; 16];
+    let mut frame = vec![0x28, 0xB5, 0x2F, 0xFD, 0x20, inner.len() as u8];
+    let block_header = 1 | ((inner.len() as u32) << 3);
+    frame.extend_from_slice(&block_header.to_le_bytes()[..3]);
+    frame.extend_from_slice(&inner);
+    let file = file_with_chunk("zstd", 1 << 30, &frame, 0);
+    let error = TrialReader::from_bytes(&file, Path::new("bomb.mcap")).unwrap_err();
+    assert!(
+        matches!(error, teleop::mcap_log::LogError::OverBudget { .. }),
+        "{error:?}"
+    );
+    assert!(error.to_string().contains("64 MiB"), "{error}");
+    assert_damaged_chunk(&file, "bomb.mcap");
+}
+
 /// An uncompressed chunk whose record claims more bytes than the chunk's records hold, with
 /// padding after them in the chunk record and an uncompressed size that allows the claim. Found by the fuzzing above (of the first version
 /// of the fix for the case before): the reader took the padding as the rest of the record and

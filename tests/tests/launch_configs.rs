@@ -125,3 +125,28 @@ fn every_station_presets_policy_output_resolves_and_no_shipped_table_claims_a_ch
     tables.sort();
     assert_eq!(tables, ["eth_hand_control", "orca_core"]);
 }
+
+/// DDS stays on the lab network by default where a preset is for the multi-host lab and names
+/// its address (docs/SECURITY.md, "Interfaces"): `deploy_station.toml` keeps DDS on the
+/// station PC's 10.251.0.2, as docs/DEPLOYMENT.md deploys it. Every other station preset is
+/// for any machine (the single-host demos and tests use them) and names no interface, so it
+/// never fails on a machine without the lab's address.
+#[test]
+fn only_the_multi_host_station_preset_restricts_dds_to_its_lab_address() {
+    let dir = workspace_root().join("launch_configs/station");
+    for path in files_with_extension(&dir, "toml").unwrap() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let config = station::StationConfig::from_toml_str(&text).unwrap();
+        let interfaces = &config.network.interfaces;
+        if path.ends_with("deploy_station.toml") {
+            assert_eq!(
+                interfaces,
+                &[std::net::IpAddr::from([10, 251, 0, 2])],
+                "{}",
+                path.display()
+            );
+        } else {
+            assert!(interfaces.is_empty(), "{}", path.display());
+        }
+    }
+}

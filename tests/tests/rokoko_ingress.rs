@@ -7,6 +7,13 @@
 //!   are worked out by hand;
 //! - malformed, truncated, oversized, duplicated, out-of-order and bone-missing packets are
 //!   not published and are counted by kind on the status topic; the stream goes on;
+//! - the door: by default the socket is bound to 127.0.0.1 only (a datagram sent to this
+//!   host's non-loopback address is never received, when the host has one); a datagram from a
+//!   sender not in `allowed_senders` is refused, counted (`refused.sender`) and not published;
+//!   a packet without `scene.timestamp` is refused (`no_timestamp`), never published
+//!   unordered; a single spoofed old-stamped packet does not reset the order (the next
+//!   slightly late packet is still dropped as out of order), while a real restart (5 packets
+//!   in a row) is accepted;
 //! - end to end: packets → ingress → station → joint targets, each exactly the retargeter's
 //!   answer for one of the frames (in order, the last frame's last), solved from the target
 //!   before it.
@@ -61,6 +68,10 @@ async fn start_ingress(domain: u16, max_packet_bytes: usize) -> Ingress {
         network: loopback(domain),
         ..IngressConfig::default()
     };
+    start_ingress_with(config).await
+}
+
+async fn start_ingress_with(config: IngressConfig) -> Ingress {
     let clock = StationClock::new();
     let (shutdown, shutdown_rx) = watch::channel(false);
     let (bound_tx, bound_rx) = oneshot::channel();
@@ -525,4 +536,146 @@ async fn packets_drive_the_station_to_the_retargeters_joint_targets() {
     );
     assert_eq!(summary.counters.frames_new as usize, frames.len());
     assert_each_target_answers_a_frame(&live, &frames, &config);
+}
+
+/// A frame of `glove` at `t` stamped `stamp` (`None`: no `scene.timestamp` at all).
+fn glove_packet(glove: &SimGlove, t: f64, stamp: Option<f64>) -> Vec<u8> {
+    let (points, wrist) = glove.frame(t);
+    let mut value: Value = serde_json::from_slice(&right_hand_packet(
+        t,
+        KeypointLayout::Lab22,
+        &points,
+        &wrist,
+    ))
+    .unwrap();
+    match stamp {
+        Some(s) => value["scene"]["timestamp"] = json!(s),
+        None => {
+            value["scene"].as_object_mut().unwrap().remove("timestamp");
+        }
+    }
+    value.to_string().into_bytes()
+}
+
+/// This host's non-loopback IPv4 address, if it has a route off the host (a UDP "connect"
+/// sends nothing; it only picks the source address).
+fn non_loopback_address() -> Option<std::net::IpAddr> {
+    let probe = UdpSocket::bind("0.0.0.0:0").ok()?;
+    probe.connect("192.0.2.1:9").ok()?;
+    let ip = probe.local_addr().ok()?.ip();
+    (!ip.is_loopback() && !ip.is_unspecified()).then_some(ip)
+}
+
+/// Sends the door's test packets: from a stranger, without a timestamp, one spoofed old one,
+/// one slightly late one, a new one (published), then a real restart (5 in a row, the last
+/// published). Returns how many datagrams went to the ingress's address.
+async fn send_door_packets(allowed: &UdpSocket, addr: SocketAddr, glove: &SimGlove, t: f64) -> u64 {
+    let stranger = UdpSocket::bind("127.0.0.1:0").unwrap();
+    let sends: Vec<(&UdpSocket, Option<f64>)> = vec![
+        // A good frame far ahead from a sender not allowed: would be new, is refused.
+        (&stranger, Some(t + 100.0)),
+        // No timestamp: cannot be ordered, refused.
+        (allowed, None),
+        // One spoofed packet stamped far back: not a restart on its own.
+        (allowed, Some(t - 100.0)),
+        // Slightly late: still ordered against t (had the spoofed one reset the order, this
+        // would be published).
+        (allowed, Some(t - 0.005)),
+        // New: published.
+        (allowed, Some(t + 0.01)),
+    ];
+    let mut sent = 0;
+    for (socket, stamp) in sends {
+        socket
+            .send_to(&glove_packet(glove, 1.0, stamp), addr)
+            .unwrap();
+        sent += 1;
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    // Studio restarted: 5 packets in a row stamped 10 s back, rising; only the fifth is
+    // published.
+    for k in 0..5 {
+        let stamp = t - 10.0 + 0.01 * k as f64;
+        allowed
+            .send_to(&glove_packet(glove, 1.5, Some(stamp)), addr)
+            .unwrap();
+        sent += 1;
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    sent
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn strangers_unstamped_and_spoofed_packets_do_not_get_through() {
+    let domain = test_domain(2);
+    let (_node, heard, listeners) = listen(domain);
+    let allowed = UdpSocket::bind("127.0.0.1:0").unwrap();
+    // The default bind address; only `allowed`'s address and port may send.
+    let config = IngressConfig {
+        port: 0,
+        allowed_senders: vec![allowed.local_addr().unwrap().to_string()],
+        network: loopback(domain),
+        ..IngressConfig::default()
+    };
+    let ingress = start_ingress_with(config).await;
+    assert_eq!(
+        ingress.addr.ip(),
+        std::net::IpAddr::from([127, 0, 0, 1]),
+        "bound to this host only by default"
+    );
+    let glove = glove();
+    let (warm, t) = warm_up(&heard, &allowed, ingress.addr, &glove).await;
+    let mut sent_to_ingress = (t / 0.01).round() as u64;
+    // The same port on this host's other address: nothing listens there.
+    match non_loopback_address() {
+        Some(ip) => {
+            let outside = UdpSocket::bind((ip, 0)).unwrap();
+            outside
+                .send_to(
+                    &glove_packet(&glove, 1.0, Some(t + 50.0)),
+                    (ip, ingress.addr.port()),
+                )
+                .ok();
+        }
+        None => println!("no non-loopback address on this host: that part is skipped"),
+    }
+    sent_to_ingress += send_door_packets(&allowed, ingress.addr, &glove, t).await;
+    wait_for(&heard, "the new frame and the restarted stream's", |h| {
+        h.keypoints.len() >= warm + 2
+    })
+    .await;
+    wait_for(&heard, "the status to count every datagram", |h| {
+        h.status
+            .last()
+            .is_some_and(|s| s["received"] == sent_to_ingress)
+    })
+    .await;
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    ingress.shutdown.send(true).unwrap();
+    let counters = ingress.task.await.unwrap().unwrap();
+    let h = heard.lock().unwrap();
+    assert_eq!(h.keypoints.len(), warm + 2, "only the two new frames");
+    let s = h.status.last().unwrap();
+    assert!(
+        s["source"]["device"]
+            .as_str()
+            .unwrap()
+            .starts_with("Rokoko Studio Live on UDP 127.0.0.1:"),
+        "{s}"
+    );
+    assert_eq!(s["refused"]["sender"], 1, "{s}");
+    assert_eq!(s["refused"]["no_timestamp"], 1, "{s}");
+    assert_eq!(s["out_of_order"], 1, "{s}");
+    assert_eq!(
+        s["restart_unconfirmed"], 5,
+        "1 spoofed + 4 before the restart: {s}"
+    );
+    assert_eq!(s["restarts"], 1, "{s}");
+    assert_eq!(s["duplicates"], 0, "{s}");
+    // The datagram sent to the other address never arrived.
+    assert_eq!(counters.received, sent_to_ingress);
+    assert_eq!(counters.published + counters.dropped(), counters.received);
+    for l in listeners {
+        l.abort();
+    }
 }

@@ -245,6 +245,14 @@ fn write_bad_robot_trials(t: &Path) {
     );
     let bytes = std::fs::read(&whole).unwrap();
     std::fs::write(bad.join("truncated.mcap"), &bytes[..bytes.len() * 3 / 5]).unwrap();
+    // A decompression bomb: every chunk declares 1 GiB uncompressed.
+    let mut bomb = bytes.clone();
+    let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+    for chunk in &summary.chunk_indexes {
+        let at = chunk.chunk_start_offset as usize + 9 + 16;
+        bomb[at..at + 8].copy_from_slice(&(1u64 << 30).to_le_bytes());
+    }
+    std::fs::write(bad.join("bomb.mcap"), &bomb).unwrap();
     std::fs::remove_file(&whole).unwrap();
     std::fs::write(
         t.join("orca_5/interrupted.mcap.part"),
@@ -484,6 +492,10 @@ fn assert_bad_files_named(stderr: &str, trials: &Path) {
         ),
         ("unknown_task.mcap", "unknown task \"Z9\""),
         ("truncated.mcap", "truncated file"),
+        (
+            "bomb.mcap",
+            "declares 1073741824 bytes uncompressed, over the limit of 67108864 bytes (64 MiB) per chunk",
+        ),
     ] {
         let line = format!("error: {}: ", bad.join(file).display());
         let found = stderr.lines().find(|l| l.starts_with(&line));
@@ -495,7 +507,7 @@ fn assert_bad_files_named(stderr: &str, trials: &Path) {
     assert!(stderr.contains("truncated file") && stderr.contains("pomdar recover"));
     assert!(stderr.contains("note: skipped") && stderr.contains("interrupted.mcap.part"));
     assert!(
-        stderr.contains("scored 5 of 10 trial files (5 rejected, 1 skipped)"),
+        stderr.contains("scored 5 of 11 trial files (6 rejected, 1 skipped)"),
         "{stderr}"
     );
 }
@@ -590,7 +602,7 @@ fn assert_aggregates(json: &Value) {
         (v1_score + 0.7) / 18.0,
         "overall all 18",
     );
-    assert_eq!(json["rejected"].as_array().unwrap().len(), 5);
+    assert_eq!(json["rejected"].as_array().unwrap().len(), 6);
 }
 
 /// Every report file, with the warning where a reader will see it.
@@ -661,7 +673,7 @@ fn score_names_every_bad_file_and_scores_the_good_ones() {
     // The table on stdout.
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("WARNING: NO BASELINE for H2"), "{stdout}");
-    assert!(stdout.contains("Rejected files (5)"));
+    assert!(stdout.contains("Rejected files (6)"), "{stdout}");
 
     // The values, from scores.json.
     let json: Value =

@@ -17,19 +17,26 @@ use crate::ingress::rokoko_node::{rokoko_source, run_rokoko_ingress, status_line
 pub enum IngressCommand {
     /// Rokoko Studio Live "custom streaming" (JSON v3 over UDP) to the lab's topics.
     ///
-    /// Listens for Studio's packets and publishes, for each new packet, the hand's keypoints
+    /// Listens for Studio's packets on UDP 127.0.0.1:14043 (this computer only) unless --bind
+    /// names the address of the interface Studio streams to; with --allow-sender (or the
+    /// file's allowed_senders) datagrams from any other sender are dropped and counted
+    /// (refused.sender). Publishes, for each new packet, the hand's keypoints
     /// on /ingress/mano (std_msgs/Float32MultiArray, 22 × 3 or 21 × 3, metres) and the hand
     /// bone's pose on /ingress/wrist (geometry_msgs/PoseStamped, stamped at receipt), both in
     /// a right-handed ROS frame (x forward, y left, z up; Studio's is y-up, z-forward,
-    /// left-handed). Nothing is republished on a timer. Malformed, truncated, oversized,
-    /// duplicated and out-of-order packets are dropped and counted (each kind logged once);
+    /// left-handed). Nothing is republished on a timer. Every packet is ordered by its
+    /// scene.timestamp: one without is refused (no_timestamp); duplicated and out-of-order
+    /// packets are dropped; a jump back is taken for a Studio restart only after 5 packets
+    /// in a row confirm it (restart_confirm_packets), so one stray old packet never resets
+    /// the order. Malformed, truncated, oversized and bone-missing packets are dropped and
+    /// counted by kind (each kind logged at most once per 10 s, with the count held back);
     /// the counts and the rate go out as JSON on /ingress/status every second and as a
-    /// line on stderr every 5 s. In Studio: Livestream → Custom → JSON v3, this computer's
-    /// address, port 14043.
+    /// line on stderr every 5 s. In Studio: Livestream → Custom → JSON v3, the address
+    /// given to --bind, port 14043. docs/SECURITY.md says what this trusts.
     ///
     /// Examples:
     ///   pomdar ingress rokoko
-    ///   pomdar ingress rokoko --port 14043 --actor Actor1 --hand right
+    ///   pomdar ingress rokoko --bind 10.251.0.1 --allow-sender 10.251.0.9 --actor Actor1 --hand right
     ///   pomdar ingress rokoko --config launch_configs/ingress/rokoko.toml --domain-id 7
     #[command(verbatim_doc_comment)]
     Rokoko(RokokoArgs),
@@ -80,9 +87,14 @@ pub struct RokokoArgs {
     /// UDP port to listen on [default: 14043].
     #[arg(long)]
     pub port: Option<u16>,
-    /// Local address to listen on [default: 0.0.0.0, every interface].
+    /// Local address to listen on: this computer's address on the network Studio streams
+    /// to [default: 127.0.0.1, this computer only; 0.0.0.0: every interface].
     #[arg(long, value_name = "ADDRESS")]
     pub bind: Option<IpAddr>,
+    /// Take datagrams only from this sender (repeatable; replaces the file's
+    /// allowed_senders) [default: any sender that can reach --bind].
+    #[arg(long = "allow-sender", value_name = "ADDRESS[:PORT]")]
+    pub allow_sender: Vec<String>,
     /// Follow this actor by name [default: the first actor in each packet].
     #[arg(long, value_name = "NAME")]
     pub actor: Option<String>,
@@ -135,14 +147,22 @@ async fn run_rokoko(args: RokokoArgs) -> anyhow::Result<()> {
     };
     config.port = args.port.unwrap_or(config.port);
     config.bind_address = args.bind.unwrap_or(config.bind_address);
+    if !args.allow_sender.is_empty() {
+        config.allowed_senders = args.allow_sender;
+    }
     config.actor = args.actor.or(config.actor);
     config.hand = args.hand.unwrap_or(config.hand);
     config.network = args.node.network(&config.network);
     config.validate()?;
     eprintln!(
-        "pomdar ingress rokoko: UDP {}:{} ({} hand, actor {}) -> {} and {} on domain {}; Ctrl-C stops",
+        "pomdar ingress rokoko: UDP {}:{} from {} ({} hand, actor {}) -> {} and {} on domain {}; Ctrl-C stops",
         config.bind_address,
         config.port,
+        if config.allowed_senders.is_empty() {
+            "any sender".to_string()
+        } else {
+            config.allowed_senders.join(", ")
+        },
         config.hand.bone_prefix(),
         config.actor.as_deref().unwrap_or("(first)"),
         config.keypoints_topic,

@@ -82,6 +82,24 @@ pub enum ConsoleError {
         #[source]
         source: serde_json::Error,
     },
+    /// A name read from the manifest is not one the console writes: it could point outside
+    /// the session directory, so nothing is read or renamed.
+    #[error(
+        "{path}: {field} = {value:?} is refused: {reason} (allowed: {allowed}); the manifest was \
+         edited or damaged: nothing in the session directory was touched"
+    )]
+    ManifestName {
+        /// The manifest.
+        path: PathBuf,
+        /// The field, e.g. `trials[2].file`.
+        field: String,
+        /// The value found.
+        value: String,
+        /// What is wrong with it.
+        reason: String,
+        /// The names allowed there.
+        allowed: String,
+    },
     /// The manifest is of another format.
     #[error("{path}: format {found:?}, expected {expected:?}")]
     ManifestFormat {

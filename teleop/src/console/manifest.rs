@@ -159,7 +159,42 @@ impl Manifest {
                 expected: MANIFEST_FORMAT,
             });
         }
+        manifest.check_names(path)?;
         Ok(manifest)
+    }
+
+    /// Checks every name the manifest gives that becomes part of a path: the task (it names
+    /// the trial logs) and each trial's file, which must be a trial log name this console
+    /// writes for this task ([`trial_file_problem`]). `path` names the manifest in errors.
+    pub fn check_names(&self, path: &Path) -> Result<(), ConsoleError> {
+        let refuse = |field: String, value: &str, reason: String, allowed: &str| {
+            Err(ConsoleError::ManifestName {
+                path: path.to_path_buf(),
+                field,
+                value: value.to_string(),
+                reason,
+                allowed: allowed.to_string(),
+            })
+        };
+        if super::session_dir::check_name("task", &self.task).is_err() {
+            return refuse(
+                "task".into(),
+                &self.task,
+                "not a task name".into(),
+                "1–64 letters, digits, '_', '-' or '.', not starting with '.'",
+            );
+        }
+        for (i, trial) in self.trials.iter().enumerate() {
+            if let Some(reason) = trial_file_problem(&trial.file, &self.task) {
+                return refuse(
+                    format!("trials[{i}].file"),
+                    &trial.file,
+                    reason,
+                    &allowed_trial_files(&self.task),
+                );
+            }
+        }
+        Ok(())
     }
 
     /// Writes the manifest atomically.
@@ -172,6 +207,60 @@ impl Manifest {
         text.push('\n');
         Ok(write_atomically(path, text)?)
     }
+}
+
+/// The suffixes the console adds to a trial log's name: none (scored or unscorable),
+/// `.redone` (set aside by the operator), `.interrupted` (cut short, recovered) and
+/// `.part.interrupted` (cut short, not recoverable: the `.part` file kept as it was).
+pub const TRIAL_FILE_SUFFIXES: [&str; 4] = ["", ".redone", ".interrupted", ".part.interrupted"];
+
+/// The trial log names allowed for `task`, for a person.
+fn allowed_trial_files(task: &str) -> String {
+    format!(
+        "{task}-pNN.mcap or {task}-tNN.mcap, with -aN after NN for a repeated attempt, \
+         optionally followed by .redone, .interrupted or .part.interrupted; a plain file name \
+         in the session directory"
+    )
+}
+
+/// Why `file` is not a trial log name the console writes for `task`, or `None` when it is:
+/// `TASK-pNN[-aN].mcap` or `TASK-tNN[-aN].mcap` (NN: two or more digits), then one of
+/// [`TRIAL_FILE_SUFFIXES`]. So no path separator, no `..` component, nothing absolute.
+pub fn trial_file_problem(file: &str, task: &str) -> Option<String> {
+    if file.contains(['/', '\\']) || file.contains('\0') {
+        return Some("a path, not a file name (it contains a path separator)".into());
+    }
+    if file == ".." || file == "." {
+        return Some("a directory, not a file name".into());
+    }
+    if Path::new(file).is_absolute() {
+        return Some("an absolute path".into());
+    }
+    let Some(log) = TRIAL_FILE_SUFFIXES.iter().rev().find_map(|suffix| {
+        file.strip_suffix(suffix)
+            .filter(|rest| rest.ends_with(".mcap"))
+    }) else {
+        return Some("not a trial log (.mcap, or one set aside)".into());
+    };
+    let rest = log
+        .strip_suffix(".mcap")
+        .and_then(|r| r.strip_prefix(task))
+        .and_then(|r| r.strip_prefix('-'));
+    let Some(rest) = rest else {
+        return Some(format!("not a trial log of task {task}"));
+    };
+    let (slot, attempt) = match rest.split_once("-a") {
+        Some((slot, attempt)) => (slot, Some(attempt)),
+        None => (rest, None),
+    };
+    let digits = |d: &str| !d.is_empty() && d.len() <= 10 && d.bytes().all(|b| b.is_ascii_digit());
+    let slot_ok = slot
+        .strip_prefix(['p', 't'])
+        .is_some_and(|n| n.len() >= 2 && digits(n));
+    if !slot_ok || !attempt.is_none_or(digits) {
+        return Some("not a trial log name the console writes".into());
+    }
+    None
 }
 
 /// An empty manifest for `task` with `practice` + `trials` planned (tests).
@@ -202,7 +291,7 @@ mod tests {
 
     fn trial(practice: bool, index: u32, status: TrialStatus, score: Option<f64>) -> ManifestTrial {
         ManifestTrial {
-            file: format!("t{index}.mcap"),
+            file: format!("V1-{}{index:02}.mcap", if practice { 'p' } else { 't' }),
             practice,
             index,
             status,
@@ -237,6 +326,64 @@ mod tests {
         done.trials.push(trial(false, 2, TrialStatus::Scored, None));
         assert_eq!(done.next_slot(), None);
         assert_eq!(done.series(), vec![0.9, 0.5]);
+    }
+
+    #[test]
+    fn only_the_consoles_own_trial_log_names_are_taken() {
+        for good in [
+            "V1-p01.mcap",
+            "V1-t12.mcap",
+            "V1-t01-a2.mcap",
+            "V1-t01.mcap.redone",
+            "V1-p03-a3.mcap.interrupted",
+            "V1-t101.mcap.part.interrupted",
+        ] {
+            assert_eq!(trial_file_problem(good, "V1"), None, "{good}");
+        }
+        for (bad, why) in [
+            ("../../etc/passwd", "path separator"),
+            ("/etc/passwd", "path separator"),
+            ("..", "directory"),
+            ("..\\x.mcap", "path separator"),
+            ("V1-t01.mcap/../../x", "path separator"),
+            ("G1-t01.mcap", "of task V1"),
+            ("V1-x01.mcap", "console writes"),
+            ("V1-t1.mcap", "console writes"),
+            ("V1-t01-a.mcap", "console writes"),
+            ("V1-t01.mcap.part", "not a trial log"),
+            ("V1-t01.mcap.bak", "not a trial log"),
+            ("session.json", "not a trial log"),
+            ("", "not a trial log"),
+        ] {
+            let problem = trial_file_problem(bad, "V1").unwrap_or_default();
+            assert!(problem.contains(why), "{bad}: {problem}");
+        }
+    }
+
+    #[test]
+    fn a_tampered_manifest_is_refused_naming_file_field_and_rule() {
+        let dir = std::env::temp_dir().join(format!("pomdar-manifest-bad-{}", std::process::id()));
+        let path = dir.join(MANIFEST_FILE);
+        let mut m = manifest(vec![
+            trial(false, 1, TrialStatus::Scored, None),
+            trial(false, 2, TrialStatus::Scored, None),
+        ]);
+        m.trials[0].file = "V1-t01.mcap".into();
+        m.trials[1].file = "../other/V1-t02.mcap".into();
+        assert!(m.save(&path).is_ok());
+        let e = Manifest::load(&path).unwrap_err().to_string();
+        assert!(e.starts_with(&path.display().to_string()), "{e}");
+        assert!(
+            e.contains("trials[1].file = \"../other/V1-t02.mcap\""),
+            "{e}"
+        );
+        assert!(e.contains("allowed: V1-pNN.mcap or V1-tNN.mcap"), "{e}");
+        let mut m = manifest(vec![]);
+        m.task = "../V1".into();
+        assert!(m.save(&path).is_ok());
+        let e = Manifest::load(&path).unwrap_err().to_string();
+        assert!(e.contains("task = \"../V1\""), "{e}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

@@ -60,6 +60,27 @@ pub enum IngressError {
         /// The threshold given, seconds.
         seconds: f64,
     },
+    /// A restart confirmation count out of range.
+    #[error(
+        "restart_confirm_packets = {packets} must be in 2..=1000 (one packet must never reset the order)"
+    )]
+    RestartConfirmPackets {
+        /// The count given.
+        packets: u32,
+    },
+    /// An entry of `allowed_senders` that is not an address.
+    #[error(
+        "allowed_senders[{index}] = '{value}': {reason} (allowed: an IP address such as \"10.251.0.1\", \
+         or address and source port such as \"10.251.0.1:50000\" or \"[fd00::1]:50000\")"
+    )]
+    AllowedSender {
+        /// Its place in the list.
+        index: usize,
+        /// The entry.
+        value: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// A topic name that is not absolute.
     #[error("{key} = '{topic}' must be an absolute topic name (start with '/')")]
     RelativeTopic {

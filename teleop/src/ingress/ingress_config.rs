@@ -1,7 +1,7 @@
 //! The Rokoko ingress's configuration (`launch_configs/ingress/rokoko.toml` spells out the
 //! defaults).
 
-use std::net::IpAddr;
+use std::net::{IpAddr, SocketAddr};
 use std::path::Path;
 
 use retarget::KeypointLayout;
@@ -34,8 +34,13 @@ impl Hand {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IngressConfig {
-    /// Local address to listen on (0.0.0.0: every interface; 127.0.0.1: this computer only).
+    /// Local address to listen on: the address of the interface Studio's packets arrive on
+    /// (127.0.0.1, the default: this computer only; 0.0.0.0: every interface).
     pub bind_address: IpAddr,
+    /// Senders whose datagrams are taken, each `"ADDRESS"` or `"ADDRESS:PORT"` (IPv6:
+    /// `"[ADDRESS]:PORT"`); datagrams from anyone else are dropped and counted as
+    /// `refused.sender`. Empty (the default): any sender that can reach `bind_address`.
+    pub allowed_senders: Vec<String>,
     /// UDP port Rokoko Studio streams to (14043 by convention).
     pub port: u16,
     /// The actor to follow, by name; unset: the first actor of each packet.
@@ -53,6 +58,11 @@ pub struct IngressConfig {
     /// restarted stream (accepted, counted) rather than an out-of-order packet (dropped),
     /// seconds.
     pub restart_after_backwards_s: f64,
+    /// How many such packets in a row (rising, each within `restart_after_backwards_s` of the
+    /// one before, no packet of the current stream between them) confirm a restart; the ones
+    /// before the last are dropped (`restart_unconfirmed`). At least 2: one packet never
+    /// resets the order.
+    pub restart_confirm_packets: u32,
     /// Keypoint topic (`std_msgs/Float32MultiArray`, N × 3 metres).
     pub keypoints_topic: String,
     /// Wrist topic (`geometry_msgs/PoseStamped`, stamped at receipt).
@@ -70,7 +80,8 @@ pub struct IngressConfig {
 impl Default for IngressConfig {
     fn default() -> Self {
         IngressConfig {
-            bind_address: IpAddr::from([0, 0, 0, 0]),
+            bind_address: IpAddr::from([127, 0, 0, 1]),
+            allowed_senders: Vec::new(),
             port: 14043,
             actor: None,
             hand: Hand::Right,
@@ -78,6 +89,7 @@ impl Default for IngressConfig {
             position_scale_to_m: 1.0,
             max_packet_bytes: 65_507,
             restart_after_backwards_s: 1.0,
+            restart_confirm_packets: 5,
             keypoints_topic: "/ingress/mano".into(),
             wrist_topic: "/ingress/wrist".into(),
             wrist_frame_id: "rokoko_world".into(),
@@ -121,6 +133,12 @@ impl IngressConfig {
         if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
             return Err(IngressError::RestartAfterBackwards { seconds });
         }
+        if !(2..=1000).contains(&self.restart_confirm_packets) {
+            return Err(IngressError::RestartConfirmPackets {
+                packets: self.restart_confirm_packets,
+            });
+        }
+        self.senders()?;
         check_topics([
             ("keypoints_topic", &self.keypoints_topic),
             ("wrist_topic", &self.wrist_topic),
@@ -135,6 +153,60 @@ impl IngressConfig {
         crate::ros::domain_id(self.network.domain_id)
             .map_err(|source| IngressError::DomainId { source })?;
         Ok(())
+    }
+}
+
+impl IngressConfig {
+    /// The allowed senders, parsed; an entry that is not an address names its place.
+    pub fn senders(&self) -> Result<Vec<AllowedSender>, IngressError> {
+        self.allowed_senders
+            .iter()
+            .enumerate()
+            .map(|(index, text)| {
+                AllowedSender::parse(text).map_err(|reason| IngressError::AllowedSender {
+                    index,
+                    value: text.clone(),
+                    reason,
+                })
+            })
+            .collect()
+    }
+}
+
+/// One entry of `allowed_senders`: an address, and the port when one was given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AllowedSender {
+    /// The sender's address.
+    pub address: IpAddr,
+    /// The sender's UDP source port; `None`: any port.
+    pub port: Option<u16>,
+}
+
+impl AllowedSender {
+    /// `"10.251.0.1"`, `"10.251.0.1:50000"`, `"::1"` or `"[::1]:50000"`; no host names.
+    pub fn parse(text: &str) -> Result<AllowedSender, String> {
+        let text = text.trim();
+        if let Ok(address) = text.parse::<IpAddr>() {
+            return Ok(AllowedSender {
+                address,
+                port: None,
+            });
+        }
+        match text.parse::<SocketAddr>() {
+            Ok(s) if s.port() == 0 => Err("port 0 is no sender's port".to_string()),
+            Ok(s) => Ok(AllowedSender {
+                address: s.ip(),
+                port: Some(s.port()),
+            }),
+            Err(_) => Err("not an IP address or IP:PORT (host names are not resolved)".to_string()),
+        }
+    }
+
+    /// Whether a datagram from `from` is this sender's (IPv4-mapped IPv6 addresses match
+    /// their IPv4 form).
+    pub fn matches(&self, from: SocketAddr) -> bool {
+        from.ip().to_canonical() == self.address.to_canonical()
+            && self.port.is_none_or(|p| p == from.port())
     }
 }
 
@@ -207,10 +279,39 @@ mod tests {
                 "qos.depth",
             ),
             ("port = 70000", "port"),
+            ("restart_confirm_packets = 1", "restart_confirm_packets"),
+            ("allowed_senders = [\"studio-pc\"]", "allowed_senders[0]"),
+            (
+                "allowed_senders = [\"10.251.0.1\", \"10.251.0.1:0\"]",
+                "allowed_senders[1]",
+            ),
+            ("allowed_senders = \"10.251.0.1\"", "allowed_senders"),
+            ("bind_address = \"lab\"", "bind_address"),
             ("colour = 1", "colour"),
         ] {
             let e = IngressConfig::from_toml_str(text).unwrap_err().to_string();
             assert!(e.contains(key), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn allowed_senders_match_address_and_port() {
+        let by_address = AllowedSender::parse("10.251.0.1").unwrap();
+        let by_port = AllowedSender::parse("10.251.0.1:50000").unwrap();
+        let v6 = AllowedSender::parse("[::1]:7").unwrap();
+        let from = |s: &str| s.parse::<SocketAddr>().unwrap();
+        assert!(by_address.matches(from("10.251.0.1:1234")));
+        assert!(by_address.matches(from("[::ffff:10.251.0.1]:1234")));
+        assert!(!by_address.matches(from("10.251.0.9:1234")));
+        assert!(by_port.matches(from("10.251.0.1:50000")));
+        assert!(!by_port.matches(from("10.251.0.1:50001")));
+        assert!(v6.matches(from("[::1]:7")));
+        let e = IngressConfig::from_toml_str("allowed_senders = [\"x\"]")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("allowed_senders[0] = 'x'") && e.contains("10.251.0.1"),
+            "{e}"
+        );
     }
 }

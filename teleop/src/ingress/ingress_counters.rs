@@ -5,8 +5,15 @@
 //! - newer: a new frame, published;
 //! - equal: a duplicate (Studio or the network sent the same frame twice), dropped;
 //! - older by less than `restart_after_backwards_s`: out of order (UDP reordering), dropped;
-//! - older by more: Studio restarted its clock; accepted as new, counted as a restart;
-//! - no timestamp: cannot be ordered, published.
+//! - older by more: maybe Studio restarted its clock, maybe a stray or spoofed packet. One
+//!   such packet proves nothing: it is dropped and counted (`restart_unconfirmed`). Only
+//!   `restart_confirm_packets` of them in a row, each newer than the one before by at most
+//!   `restart_after_backwards_s` (a restarted stream running on), with no new packet of the
+//!   current stream between them, are taken for a restart: the last is accepted as new and
+//!   counted as a restart. A single old-stamped packet never resets the order, and a single
+//!   far-future one is outlived the same way (the real stream, now "far older", restarts it).
+//! - no timestamp: refused before ordering (`no_timestamp`, see the packet parser): nothing
+//!   bypasses these checks.
 //!
 //! A message the DDS writer refuses is counted by topic (`publish_failed`); a frame counts as
 //! published when both its keypoints and its wrist pose went out.
@@ -34,8 +41,19 @@ pub enum Order {
     Duplicate,
     /// Older than the newest, within the restart threshold: drop.
     OutOfOrder,
-    /// Far older: the stream restarted; publish.
+    /// Far older, but not yet confirmed as a restart: drop.
+    RestartUnconfirmed,
+    /// Far older, the last of a confirmed run: the stream restarted; publish.
     Restart,
+}
+
+/// The ordering rule's two settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OrderRule {
+    /// A timestamp this much older than the newest is a restart candidate, seconds.
+    pub restart_after_s: f64,
+    /// Candidates in a row needed to accept a restart (at least 2).
+    pub confirm_packets: u32,
 }
 
 /// Counts since start, and the newest studio timestamp.
@@ -49,10 +67,12 @@ pub struct IngressCounters {
     pub duplicates: u64,
     /// Dropped: older than the newest frame.
     pub out_of_order: u64,
-    /// Timestamps that jumped back past the restart threshold (published).
+    /// Timestamps that jumped back past the restart threshold, confirmed (published).
     pub restarts: u64,
-    /// Refused packets by kind (`oversized`, `truncated`, `malformed`, `version`,
-    /// `no_actor`, `missing_bone`).
+    /// Dropped: far older than the newest, not (yet) confirmed as a restart.
+    pub restart_unconfirmed: u64,
+    /// Refused packets by kind (`sender`, `oversized`, `truncated`, `malformed`, `version`,
+    /// `no_timestamp`, `no_actor`, `missing_bone`).
     pub refused: BTreeMap<&'static str, u64>,
     /// Messages whose publishing failed (not sent), by topic.
     pub publish_failed: BTreeMap<String, u64>,
@@ -61,6 +81,8 @@ pub struct IngressCounters {
     /// Connections made after the first (the source went away and came back).
     pub reconnects: u64,
     newest_timestamp_s: Option<f64>,
+    /// The run of restart candidates: the last one's timestamp and how many in a row.
+    restart_run: Option<(f64, u32)>,
     logged: BTreeSet<&'static str>,
     window_start_ns: Option<i64>,
     window_published: u64,
@@ -76,32 +98,38 @@ impl IngressCounters {
     }
 
     /// Place a parsed packet's timestamp in the stream (and remember it when accepted).
-    pub fn order(&mut self, timestamp_s: Option<f64>, restart_after_s: f64) -> Order {
-        let (Some(t), Some(newest)) = (timestamp_s, self.newest_timestamp_s) else {
-            if timestamp_s.is_some() {
-                self.newest_timestamp_s = timestamp_s;
-            }
+    pub fn order(&mut self, t: f64, rule: OrderRule) -> Order {
+        let Some(newest) = self.newest_timestamp_s else {
+            self.newest_timestamp_s = Some(t);
             return Order::New;
         };
-        let order = if t > newest {
-            Order::New
-        } else if t == newest {
-            Order::Duplicate
-        } else if newest - t > restart_after_s {
+        if t > newest {
+            self.newest_timestamp_s = Some(t);
+            self.restart_run = None;
+            return Order::New;
+        }
+        if t == newest {
+            self.duplicates += 1;
+            return Order::Duplicate;
+        }
+        if newest - t <= rule.restart_after_s {
+            self.out_of_order += 1;
+            return Order::OutOfOrder;
+        }
+        let run = match self.restart_run {
+            Some((last, n)) if t > last && t - last <= rule.restart_after_s => n + 1,
+            _ => 1,
+        };
+        if run >= rule.confirm_packets {
+            self.newest_timestamp_s = Some(t);
+            self.restart_run = None;
+            self.restarts += 1;
             Order::Restart
         } else {
-            Order::OutOfOrder
-        };
-        match order {
-            Order::New => self.newest_timestamp_s = Some(t),
-            Order::Restart => {
-                self.newest_timestamp_s = Some(t);
-                self.restarts += 1;
-            }
-            Order::Duplicate => self.duplicates += 1,
-            Order::OutOfOrder => self.out_of_order += 1,
+            self.restart_run = Some((t, run));
+            self.restart_unconfirmed += 1;
+            Order::RestartUnconfirmed
         }
-        order
     }
 
     /// Count a refused packet; `true` the first time this kind is seen (log it then only).
@@ -141,7 +169,10 @@ impl IngressCounters {
 
     /// Dropped packets of every kind.
     pub fn dropped(&self) -> u64 {
-        self.duplicates + self.out_of_order + self.refused.values().sum::<u64>()
+        self.duplicates
+            + self.out_of_order
+            + self.restart_unconfirmed
+            + self.refused.values().sum::<u64>()
     }
 
     /// The status report at `now_ns` for `source` (also closes the rate window).
@@ -165,6 +196,7 @@ impl IngressCounters {
             "duplicates": self.duplicates,
             "out_of_order": self.out_of_order,
             "restarts": self.restarts,
+            "restart_unconfirmed": self.restart_unconfirmed,
             "refused": self.refused,
             "publish_failed": self.publish_failed,
             "last_packet_age_s": self.last_packet_ns.map(|t| (now_ns - t) as f64 * 1e-9),
@@ -183,20 +215,63 @@ mod tests {
         }
     }
 
+    const RULE: OrderRule = OrderRule {
+        restart_after_s: 1.0,
+        confirm_packets: 3,
+    };
+
     #[test]
     fn packets_are_ordered_by_their_timestamps() {
         let mut c = IngressCounters::default();
-        assert_eq!(c.order(Some(10.0), 1.0), Order::New);
-        assert_eq!(c.order(Some(10.01), 1.0), Order::New);
-        assert_eq!(c.order(Some(10.01), 1.0), Order::Duplicate);
-        assert_eq!(c.order(Some(10.0), 1.0), Order::OutOfOrder);
-        assert_eq!(c.order(None, 1.0), Order::New);
-        assert_eq!(c.order(Some(10.02), 1.0), Order::New);
-        // Studio restarted: its clock starts again near 0.
-        assert_eq!(c.order(Some(0.5), 1.0), Order::Restart);
-        assert_eq!(c.order(Some(0.51), 1.0), Order::New);
-        assert_eq!((c.duplicates, c.out_of_order, c.restarts), (1, 1, 1));
-        assert_eq!(c.dropped(), 2);
+        assert_eq!(c.order(10.0, RULE), Order::New);
+        assert_eq!(c.order(10.01, RULE), Order::New);
+        assert_eq!(c.order(10.01, RULE), Order::Duplicate);
+        assert_eq!(c.order(10.0, RULE), Order::OutOfOrder);
+        assert_eq!(c.order(10.02, RULE), Order::New);
+        // Studio restarted: its clock starts again near 0; the third packet in a row confirms.
+        assert_eq!(c.order(0.5, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(0.51, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(0.52, RULE), Order::Restart);
+        assert_eq!(c.order(0.53, RULE), Order::New);
+        assert_eq!(c.order(0.525, RULE), Order::OutOfOrder);
+        assert_eq!((c.duplicates, c.out_of_order, c.restarts), (1, 2, 1));
+        assert_eq!(c.restart_unconfirmed, 2);
+        assert_eq!(c.dropped(), 5);
+    }
+
+    #[test]
+    fn one_spoofed_old_packet_does_not_reset_the_order() {
+        let mut c = IngressCounters::default();
+        let mut t = 100.0;
+        for _ in 0..5 {
+            t += 0.01;
+            assert_eq!(c.order(t, RULE), Order::New);
+            // One old-stamped packet between each pair of real ones, even rising: each new
+            // packet of the real stream ends the run.
+            assert_eq!(c.order(t - 50.0, RULE), Order::RestartUnconfirmed);
+        }
+        assert_eq!(
+            c.order(t - 0.005, RULE),
+            Order::OutOfOrder,
+            "still ordered by {t}"
+        );
+        assert_eq!(c.restarts, 0);
+        // Candidates must rise and be close together: these three are not one stream.
+        assert_eq!(c.order(1.0, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(0.5, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(30.0, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.restarts, 0);
+    }
+
+    #[test]
+    fn a_spoofed_future_packet_is_outlived_by_the_real_stream() {
+        let mut c = IngressCounters::default();
+        assert_eq!(c.order(10.0, RULE), Order::New);
+        assert_eq!(c.order(1e9, RULE), Order::New);
+        assert_eq!(c.order(10.01, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(10.02, RULE), Order::RestartUnconfirmed);
+        assert_eq!(c.order(10.03, RULE), Order::Restart);
+        assert_eq!(c.order(10.04, RULE), Order::New);
     }
 
     #[test]

@@ -7,6 +7,7 @@
 //! | `rokoko_packet.rs` | one JSON v3 packet to keypoints and a wrist pose, or why not |
 //! | `rokoko_packet_builder.rs` | packets in Studio's format, for tests, benchmarks, stand-ins |
 //! | `ingress_counters.rs` | ordering by studio timestamp, drop counts, the status report |
+//! | `log_limit.rs` | at most one log line per kind per 10 s, with the count held back |
 //! | `ingress_config.rs` | the Rokoko settings (`launch_configs/ingress/rokoko.toml`) |
 //! | `rokoko_node.rs` | the UDP socket and the ROS publishers |
 //! | `avp_proto.rs` | the Vision Pro app's gRPC messages (prost derive) and codec |
@@ -24,6 +25,7 @@ pub mod avp_update_builder;
 mod error;
 pub mod ingress_config;
 pub mod ingress_counters;
+pub mod log_limit;
 pub mod rokoko_frame;
 pub mod rokoko_node;
 pub mod rokoko_packet;

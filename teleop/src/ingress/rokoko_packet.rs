@@ -61,6 +61,10 @@ pub enum PacketError {
         /// The version the packet declared.
         version: String,
     },
+    /// No finite `scene.timestamp`: the packet cannot be ordered, so it is refused rather
+    /// than let past the duplicate, out-of-order and restart checks.
+    #[error("no finite scene.timestamp (every packet is ordered by it, so one without is refused)")]
+    NoTimestamp,
     /// No actor (or none with the configured name).
     #[error("no actor {wanted} in the packet (actors: {present})")]
     NoActor {
@@ -87,6 +91,7 @@ impl PacketError {
             PacketError::Truncated { .. } => "truncated",
             PacketError::Malformed { .. } => "malformed",
             PacketError::Version { .. } => "version",
+            PacketError::NoTimestamp => "no_timestamp",
             PacketError::NoActor { .. } => "no_actor",
             PacketError::Bone { .. } => "missing_bone",
         }
@@ -111,8 +116,8 @@ pub struct Selection<'a> {
 /// One packet's hand, in ROS's frame, metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RokokoFrame {
-    /// The studio's `scene.timestamp`, seconds, when present and finite.
-    pub timestamp_s: Option<f64>,
+    /// The studio's `scene.timestamp`, seconds (finite: a packet without one is refused).
+    pub timestamp_s: f64,
     /// The layout's keypoints.
     pub keypoints: Vec<Point3<f64>>,
     /// The hand bone's pose.
@@ -197,6 +202,11 @@ pub fn parse_packet(bytes: &[u8], selection: &Selection<'_>) -> Result<RokokoFra
         }
     })?;
     check_version(packet.version.as_ref())?;
+    let timestamp_s = packet
+        .scene
+        .timestamp
+        .filter(|t| t.is_finite())
+        .ok_or(PacketError::NoTimestamp)?;
     let actor = pick_actor(&packet.scene.actors, selection.actor)?;
     let names = bone_names(selection.hand, selection.layout);
     let scale = selection.position_scale_to_m;
@@ -232,7 +242,7 @@ pub fn parse_packet(bytes: &[u8], selection: &Selection<'_>) -> Result<RokokoFra
     let wrist_index = selection.layout.wrist();
     let wrist = Isometry3::from_parts(Translation3::from(keypoints[wrist_index].coords), rotation);
     Ok(RokokoFrame {
-        timestamp_s: packet.scene.timestamp.filter(|t| t.is_finite()),
+        timestamp_s,
         keypoints,
         wrist,
     })

@@ -53,7 +53,7 @@ fn a_hand_written_packet_converts_as_computed_by_hand() {
         "actors": [{"name": "A", "body": body}]}})
     .to_string();
     let frame = parse_packet(text.as_bytes(), &selection(KeypointLayout::Lab22)).unwrap();
-    assert_eq!(frame.timestamp_s, Some(7.5));
+    assert_eq!(frame.timestamp_s, 7.5);
     assert_eq!(frame.keypoints.len(), 22);
     // Studio (x, y, z) = (0.1 k, 1.5, −0.2) → ROS (z, −x, y) = (−0.2, −0.1 k, 1.5).
     for (k, p) in frame.keypoints.iter().enumerate() {
@@ -83,7 +83,7 @@ fn built_packets_round_trip_through_the_parser() {
             assert!((a - b).norm() < 1e-12);
         }
         assert!(frame.wrist.rotation.angle_to(&wrist.rotation) < 1e-12);
-        assert_eq!(frame.timestamp_s, Some(3.25));
+        assert_eq!(frame.timestamp_s, 3.25);
     }
 }
 
@@ -161,6 +161,21 @@ fn each_kind_of_bad_packet_is_named() {
     let mut value: Value = serde_json::from_slice(&good).unwrap();
     value["scene"]["actors"] = json!([]);
     assert_eq!(kind(value.to_string().as_bytes(), &sel), "no_actor");
+    // No timestamp, or one that is not a finite number: refused, never ordered by arrival.
+    for stamp in [None, Some(json!(null)), Some(json!("soon"))] {
+        let mut value: Value = serde_json::from_slice(&good).unwrap();
+        match stamp {
+            None => {
+                value["scene"].as_object_mut().unwrap().remove("timestamp");
+            }
+            Some(v) => value["scene"]["timestamp"] = v,
+        }
+        let k = kind(value.to_string().as_bytes(), &sel);
+        assert!(k == "no_timestamp" || k == "malformed", "{k}");
+    }
+    let mut value: Value = serde_json::from_slice(&good).unwrap();
+    value["scene"].as_object_mut().unwrap().remove("timestamp");
+    assert_eq!(kind(value.to_string().as_bytes(), &sel), "no_timestamp");
     let mut value: Value = serde_json::from_slice(&good).unwrap();
     value["scene"]["actors"][0]["body"]
         .as_object_mut()

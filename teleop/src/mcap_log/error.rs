@@ -150,6 +150,21 @@ pub enum LogError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A chunk declares more uncompressed bytes than the file's decompression budget allows
+    /// ([`decompression_budget`](super::decompression_budget)); refused before anything
+    /// of it is decompressed.
+    #[error(
+        "{path}: refused: the chunk at byte {offset}: {reason}; nothing of it was decompressed \
+         (a crafted or damaged file: trial logs stay far below these limits)"
+    )]
+    OverBudget {
+        /// The file.
+        path: PathBuf,
+        /// Byte offset of the chunk.
+        offset: u64,
+        /// Which limit it breaks.
+        reason: String,
+    },
     /// The data section is intact but the file was never finished (no summary and footer).
     #[error(
         "{path}: incomplete MCAP ({reason}): the recording was interrupted; repair it with `pomdar recover`"

@@ -28,6 +28,7 @@ use mcap::records::{ChunkIndex, MessageHeader, Record, op};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use msgs::StringMsg;
 
+use super::decompression_budget::DecompressionBudget;
 use super::record_scan::{check_summary_section, chunk_records, parse};
 use super::{LogError, TRIAL_EVENTS_TOPIC, TrialReader};
 
@@ -76,8 +77,10 @@ pub fn read_trial_events(path: &Path) -> Result<TrialEvents, LogError> {
     if event_channels.is_empty() {
         return Ok(out);
     }
+    let mut budget = DecompressionBudget::for_file(size);
     for index in chunks_holding_events(&summary, &event_channels) {
-        let events = read_events_in_chunk(&mut file, size, path, index, &event_channels)?;
+        let events =
+            read_events_in_chunk(&mut file, (size, path), &mut budget, index, &event_channels)?;
         out.chunks_read += 1;
         out.events.extend(events);
     }
@@ -182,20 +185,32 @@ fn chunks_holding_events<'s>(
 /// in chunk order.
 fn read_events_in_chunk(
     file: &mut BufReader<File>,
-    size: u64,
-    path: &Path,
+    (size, path): (u64, &Path),
+    budget: &mut DecompressionBudget,
     index: &ChunkIndex,
     event_channels: &[u16],
 ) -> Result<Vec<(i64, String)>, LogError> {
     let offset = index.chunk_start_offset;
+    let over_budget = |reason| LogError::OverBudget {
+        path: path.to_path_buf(),
+        offset,
+        reason,
+    };
+    // The index's size first (before even reading the chunk), then the chunk's own header,
+    // which is what decompression would allocate.
+    let mut probe = *budget;
+    probe.charge(index.uncompressed_size).map_err(over_budget)?;
     let bytes = read_range(file, path, size, offset, index.chunk_length)?;
-    let Record::Chunk { .. } = parse_at(&bytes, offset, path)? else {
+    let Record::Chunk { header, .. } = parse_at(&bytes, offset, path)? else {
         return Err(damaged(
             path,
             offset,
             "the chunk index does not point at a chunk",
         ));
     };
+    budget
+        .charge(header.uncompressed_size)
+        .map_err(over_budget)?;
     // Bounded decompression (record lengths limited by the chunk's size): a damaged
     // chunk is an error, never a huge allocation.
     let records = chunk_records(&bytes).map_err(|reason| damaged(path, offset, &reason))?;

@@ -146,3 +146,89 @@ fn a_damaged_event_chunk_is_an_error_not_an_allocation() {
     let err = read_trial_events(&damaged).unwrap_err().to_string();
     assert!(err.contains("damaged.mcap: damaged at byte"), "{err}");
 }
+
+/// `path`'s bytes with every chunk record's declared uncompressed size set to `declared`
+/// (the chunk indexes in the summary keep the true sizes).
+fn with_declared_chunk_size(path: &Path, declared: u64) -> Vec<u8> {
+    let mut bytes = std::fs::read(path).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+    for chunk in &summary.chunk_indexes {
+        // Record prefix (opcode u8, length u64), then start and end times (u64 each), then
+        // the uncompressed size (u64).
+        let at = chunk.chunk_start_offset as usize + 9 + 16;
+        bytes[at..at + 8].copy_from_slice(&declared.to_le_bytes());
+    }
+    bytes
+}
+
+#[test]
+fn a_chunk_declaring_a_gibibyte_is_refused_before_it_is_decompressed() {
+    let dir = TestDir::new("event_reader_bomb");
+    let path = dir.path().join("t.mcap");
+    write_trial(&path);
+    let crafted = dir.path().join("crafted.mcap");
+    std::fs::write(&crafted, with_declared_chunk_size(&path, 1 << 30)).unwrap();
+    // Both readers refuse on the declared size, before decompressing (the decompressor would
+    // allocate the declared size; it is never called): the error is the budget's, not a
+    // decompression failure.
+    let events = read_trial_events(&crafted).unwrap_err();
+    let whole = TrialReader::open(&crafted).unwrap_err();
+    for e in [events, whole] {
+        assert!(matches!(e, LogError::OverBudget { .. }), "{e:?}");
+        let text = e.to_string();
+        assert!(text.starts_with(&crafted.display().to_string()), "{text}");
+        assert!(
+            text.contains("declares 1073741824 bytes uncompressed, over the limit of 67108864 bytes (64 MiB) per chunk"),
+            "{text}"
+        );
+        assert!(text.contains("nothing of it was decompressed"), "{text}");
+    }
+    // A declared size no allocator could give (8 EiB): still a clean refusal, no attempt.
+    std::fs::write(&crafted, with_declared_chunk_size(&path, 1 << 63)).unwrap();
+    assert!(matches!(
+        read_trial_events(&crafted),
+        Err(LogError::OverBudget { .. })
+    ));
+    assert!(matches!(
+        TrialReader::open(&crafted),
+        Err(LogError::OverBudget { .. })
+    ));
+    // The untouched file still reads.
+    assert!(read_trial_events(&path).is_ok());
+}
+
+#[test]
+fn a_small_file_of_many_real_chunks_is_refused_at_its_total_budget() {
+    let dir = TestDir::new("event_reader_budget");
+    let path = dir.path().join("zeros.mcap");
+    let options = TrialWriterOptions {
+        sync_on_flush: false,
+        ..TrialWriterOptions::default()
+    };
+    let mut w = TrialWriter::create(&path, options).unwrap();
+    // 0.96 MB of zeros and an event per chunk (under the writer's 1 MiB chunk size, so both
+    // share a chunk, closed by the event): zstd makes each a few hundred bytes; 300 of them
+    // declare 288 MB in all.
+    let zeros = Float32MultiArray {
+        data: vec![0.0; 240_000],
+        ..Float32MultiArray::default()
+    };
+    for i in 0..300 {
+        let t = T0 + i * MS;
+        w.write("/ingress/mano", t, t, &zeros).unwrap();
+        w.write_event(t, &json!({"event": "progress", "value": 1}))
+            .unwrap();
+    }
+    w.finish().unwrap();
+    let size = std::fs::metadata(&path).unwrap().len();
+    assert!(size < 1 << 20, "{size} bytes");
+    let e = read_trial_events(&path).unwrap_err();
+    assert!(matches!(e, LogError::OverBudget { .. }), "{e:?}");
+    assert!(
+        e.to_string()
+            .contains("over this file's decompression budget of 268435456 bytes"),
+        "{e}"
+    );
+    let e = TrialReader::open(&path).unwrap_err();
+    assert!(matches!(e, LogError::OverBudget { .. }), "{e:?}");
+}

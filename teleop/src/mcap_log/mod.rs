@@ -25,6 +25,8 @@
 //!   order as [`LoggedMessage`]s, decoded with the `msgs` types.
 //! - [`read_trial_events`]: only the metadata and the trial events, through the summary's
 //!   indexes (decompresses only the chunks that hold events): what scoring reads.
+//! - [`decompression_budget`]: every reader checks each chunk's declared uncompressed size
+//!   against a per-chunk and a per-file limit before decompressing it ([`LogError::OverBudget`]).
 //!
 //! ```no_run
 //! use std::collections::BTreeMap;
@@ -51,6 +53,7 @@
 //!
 //! This module reads no clock: every time is a parameter.
 
+pub mod decompression_budget;
 mod error;
 mod event_reader;
 mod logged_message;

@@ -17,6 +17,8 @@ use std::collections::HashMap;
 use mcap::records::{self, AttachmentHeader, MessageHeader, Record, op};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
+use super::decompression_budget::{DecompressionBudget, MAX_CHUNK_BYTES};
+
 /// One record of the data section that the log readers care about.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum DataRecord {
@@ -58,6 +60,13 @@ pub(crate) enum ScanEnd {
     DataEnd,
     /// At the end of the file, after a complete record, without a data end record.
     EndOfFile,
+    /// At a chunk over the file's decompression budget (not decompressed).
+    OverBudget {
+        /// Byte offset where that chunk starts.
+        offset: u64,
+        /// Which limit it breaks.
+        reason: String,
+    },
     /// At a record that cannot be read.
     Damaged {
         /// Byte offset where that record starts.
@@ -82,8 +91,9 @@ pub(crate) struct ScannedLog {
     pub end: ScanEnd,
 }
 
-/// Largest decompressed chunk accepted (a damaged size field must not exhaust memory).
-const MAX_CHUNK_UNCOMPRESSED_BYTES: u64 = 1 << 30;
+/// Largest decompressed chunk accepted (a damaged size field must not exhaust memory); the
+/// readers' [`DecompressionBudget`] refuses such a chunk before this is reached.
+const MAX_CHUNK_UNCOMPRESSED_BYTES: u64 = MAX_CHUNK_BYTES;
 const RECORD_PREFIX: usize = 9;
 
 /// Scans `bytes` up to the data end record, the end of the file or the first damage. `Err`
@@ -115,6 +125,7 @@ pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
         intact_end: offset,
         ..ScanState::default()
     };
+    let mut budget = DecompressionBudget::for_file(bytes.len() as u64);
     let end = loop {
         if offset == bytes.len() {
             break ScanEnd::EndOfFile;
@@ -133,7 +144,21 @@ pub(crate) fn scan(bytes: &[u8]) -> Result<ScannedLog, String> {
                 offset = next;
                 break ScanEnd::DataEnd;
             }
-            op::CHUNK => state.take_chunk(&bytes[offset..next]),
+            op::CHUNK => {
+                let record = &bytes[offset..next];
+                match chunk_declared_size(record) {
+                    Err(reason) => break damaged(reason),
+                    Ok(declared) => {
+                        if let Err(reason) = budget.charge(declared) {
+                            break ScanEnd::OverBudget {
+                                offset: offset as u64,
+                                reason,
+                            };
+                        }
+                    }
+                }
+                state.take_chunk(record)
+            }
             op::SCHEMA | op::CHANNEL | op::MESSAGE | op::METADATA => {
                 parse(opcode, body).and_then(|record| state.take(record))
             }
@@ -182,6 +207,16 @@ fn next_frame(bytes: &[u8], offset: usize) -> Result<(u8, &[u8], usize), String>
     }
     let end = RECORD_PREFIX + len as usize;
     Ok((opcode, &rest[RECORD_PREFIX..end], offset + end))
+}
+
+/// The uncompressed size a chunk record (as framed in the file) declares: what decompressing
+/// it would allocate, read before anything is decompressed.
+pub(crate) fn chunk_declared_size(record: &[u8]) -> Result<u64, String> {
+    let body = record.get(RECORD_PREFIX..).unwrap_or_default();
+    match parse(op::CHUNK, body)? {
+        Record::Chunk { header, .. } => Ok(header.uncompressed_size),
+        _ => Err("chunk record does not parse as a chunk".to_string()),
+    }
 }
 
 /// The records inside one chunk record (`record`: opcode, length and body, as framed in the

@@ -130,7 +130,9 @@ pub fn recover(part_path: &Path, out_path: &Path) -> Result<RecoveryReport, LogE
         damage: None,
         input_was_finished: scanned.end == ScanEnd::DataEnd,
     };
-    if let ScanEnd::Damaged { offset, reason } = &scanned.end {
+    if let ScanEnd::Damaged { offset, reason } | ScanEnd::OverBudget { offset, reason } =
+        &scanned.end
+    {
         report.tail_damaged = true;
         report.damage = Some((*offset, reason.clone()));
         report.unrecoverable_bytes = report.input_bytes.saturating_sub(scanned.intact_end);

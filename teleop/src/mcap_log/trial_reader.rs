@@ -216,6 +216,11 @@ fn check_finished(end: ScanEnd, path: &Path) -> Result<(), LogError> {
             offset,
             reason,
         }),
+        ScanEnd::OverBudget { offset, reason } => Err(LogError::OverBudget {
+            path: path.to_path_buf(),
+            offset,
+            reason,
+        }),
     }
 }
 
