@@ -96,6 +96,21 @@ fn memory(pid: u32) -> Option<Memory> {
     })
 }
 
+/// The station's memory once its resident size stops changing (it reads queued datagrams,
+/// zero-fills buffers): the same twice 500 ms apart, or after 15 s.
+fn settled_memory(pid: u32) -> Option<Memory> {
+    let started = Instant::now();
+    let mut last = memory(pid)?;
+    loop {
+        std::thread::sleep(Duration::from_millis(500));
+        let now = memory(pid)?;
+        if now.rss == last.rss || started.elapsed() > Duration::from_secs(15) {
+            return Some(now);
+        }
+        last = now;
+    }
+}
+
 /// What discovery tells about the station: its GUID prefix, its readers' entity ids (topic,
 /// id) and its unicast ports (discovery, user).
 struct Target {
@@ -441,11 +456,10 @@ fn crafted_data_frags_do_not_exhaust_the_station_memory() {
     let mut rows = Vec::new();
     for case in cases(&target) {
         send(&case, &prefix, &destinations);
-        std::thread::sleep(Duration::from_secs(1));
         let row = Row {
             name: case.name,
             datagrams: case.datagrams,
-            memory: memory(pid),
+            memory: settled_memory(pid),
             running: station.0.try_wait().unwrap().is_none(),
         };
         print_row(&row, idle);
