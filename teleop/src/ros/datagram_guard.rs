@@ -148,7 +148,8 @@ pub fn participant_ports(domain: u16, participant_id: u16) -> BTreeSet<u16> {
 }
 
 /// Attach the filter to every UDP socket of this process bound to one of `ports`; returns how
-/// many.
+/// many. Called right after the participant is built: a datagram queued before that is not
+/// filtered.
 pub fn guard_sockets_on(ports: &BTreeSet<u16>) -> io::Result<usize> {
     let pid = rustix::process::Pid::from_raw(std::process::id() as i32)
         .ok_or_else(|| io::Error::other("no process id"))?;
@@ -175,10 +176,14 @@ pub fn guard_sockets_on(ports: &BTreeSet<u16>) -> io::Result<usize> {
             continue;
         };
         let socket = SockRef::from(&socket);
-        if socket.r#type()? != Type::DGRAM {
+        if !socket.r#type().is_ok_and(|t| t == Type::DGRAM) {
             continue;
         }
-        let port = socket.local_addr()?.as_socket().map(|a| a.port());
+        let port = socket
+            .local_addr()
+            .ok()
+            .and_then(|a| a.as_socket())
+            .map(|a| a.port());
         if port.is_some_and(|p| ports.contains(&p)) {
             attach(socket)?;
             guarded += 1;
