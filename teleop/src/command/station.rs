@@ -43,6 +43,8 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     let mut config = load_station_config(Some(&args.config), args.profile.as_deref())?;
     config.network = args.node.network(&config.network);
     config.control.auto_engage |= args.engage;
+    // Crafted DATA_FRAG datagrams must not exhaust the station's memory (docs/SECURITY.md).
+    crate::ros::datagram_guard::enable();
     let shutdown = ctrl_c_shutdown();
     let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
     eprintln!(

@@ -1,6 +1,7 @@
 //! The ROS 2 adapter: a DDS participant on the configured domain, and typed publishers and
 //! subscriptions for the `msgs` types (ros2-client on RustDDS; no ROS installation needed).
 
+pub mod datagram_guard;
 pub mod discovery_probe;
 mod endpoint;
 mod error;

@@ -17,7 +17,7 @@ use ros2_client::Context;
 use ros2_client::dds::rustdds::DomainParticipantBuilder;
 use station::NetworkConfig;
 
-use crate::ros::RosError;
+use crate::ros::{RosError, datagram_guard};
 
 /// Check that `address` can restrict DDS to an interface of this host: a unicast address
 /// one of its interfaces holds (a UDP socket binds to it).
@@ -68,6 +68,14 @@ impl NetworkContext for NetworkConfig {
         let participant = builder
             .build()
             .map_err(|source| RosError::Participant { domain, source })?;
+        if datagram_guard::enabled() {
+            let ports = datagram_guard::participant_ports(domain, participant.participant_id());
+            match datagram_guard::guard_sockets_on(&ports) {
+                Ok(n) if n > 0 => log::debug!("RTPS datagram guard on {n} sockets"),
+                Ok(_) => log::warn!("RTPS datagram guard: no socket on ports {ports:?}"),
+                Err(e) => log::warn!("RTPS datagram guard not attached: {e}"),
+            }
+        }
         Context::from_domain_participant(participant).map_err(|source| RosError::Context { source })
     }
 }
