@@ -2,7 +2,7 @@
 //! timestamp itself, so a test can send frames out of order, duplicate a sample exactly, or
 //! make the sender's clock jump. ros2-client's publisher always stamps "now", so this one is
 //! a RustDDS data writer on the same ROS 2 topic and type, in its own participant (as a
-//! separate glove process would be).
+//! separate glove process would be). [`StampedWriter`] is the same for any message type.
 
 use std::time::{Duration, Instant};
 
@@ -23,15 +23,16 @@ pub fn dds_timestamp(unix_ns: i64) -> Timestamp {
     Timestamp::from_ticks((seconds << 32) | fraction)
 }
 
-/// The keypoint writer and the node that keeps its participant alive.
-pub struct StampedGlove {
-    writer: DataWriterCdr<Float32MultiArray>,
+/// A writer of `M` that sets each sample's DDS source timestamp, and the node that keeps its
+/// participant alive.
+pub struct StampedWriter<M: RosMessage> {
+    writer: DataWriterCdr<M>,
     _node: RosNode,
 }
 
-impl StampedGlove {
-    /// A writer of `std_msgs/Float32MultiArray` on `topic` (absolute, one namespace level,
-    /// e.g. `/ingress/mano`) with `qos`, in a new participant on `network`.
+impl<M: RosMessage + std::fmt::Debug> StampedWriter<M> {
+    /// A writer of `M` on `topic` (absolute, e.g. `/ingress/mano`) with `qos`, in a new
+    /// participant on `network`.
     pub fn new(network: &NetworkConfig, topic: &str, qos: QosConfig) -> anyhow::Result<Self> {
         let context = network.context()?;
         let node = RosNode::new(&context, "/", "stamped_glove")?;
@@ -39,7 +40,7 @@ impl StampedGlove {
             .rsplit_once('/')
             .ok_or_else(|| anyhow::anyhow!("topic {topic} has no '/'"))?;
         let namespace = if namespace.is_empty() { "/" } else { namespace };
-        let definition = Float32MultiArray::DEFINITION;
+        let definition = M::DEFINITION;
         let profile = qos.profile();
         let dds_topic = node
             .node()
@@ -55,15 +56,15 @@ impl StampedGlove {
             .create_publisher(&policies)
             .map_err(|e| anyhow::anyhow!("publisher: {e:?}"))?;
         let writer = publisher
-            .create_datawriter_no_key_cdr::<Float32MultiArray>(&dds_topic, Some(policies))
+            .create_datawriter_no_key_cdr::<M>(&dds_topic, Some(policies))
             .map_err(|e| anyhow::anyhow!("writer on {topic}: {e:?}"))?;
-        Ok(StampedGlove {
+        Ok(StampedWriter {
             writer,
             _node: node,
         })
     }
 
-    /// Wait until at least one reader (the station) matched, at most `timeout` (from the
+    /// Wait until at least one reader matched, at most `timeout` (from the
     /// writer's publication-matched status events).
     pub async fn wait_for_reader(&self, timeout: Duration) -> anyhow::Result<()> {
         let start = Instant::now();
@@ -79,19 +80,41 @@ impl StampedGlove {
             }
             anyhow::ensure!(
                 start.elapsed() < timeout,
-                "no reader matched the stamped glove within {timeout:?}"
+                "no reader matched the stamped writer within {timeout:?}"
             );
             tokio::time::sleep(Duration::from_millis(20)).await;
         }
     }
 
-    /// Publish keypoint rows with the DDS source timestamp `source_ns` (ns since the epoch).
-    pub async fn publish(&self, rows: &[[f32; 3]], source_ns: i64) -> anyhow::Result<()> {
-        let array = Float32MultiArray::from_points(rows)?;
+    /// Publish `message` with the DDS source timestamp `source_ns` (ns since the epoch).
+    pub async fn write(&self, message: M, source_ns: i64) -> anyhow::Result<()> {
         self.writer
-            .async_write(array, Some(dds_timestamp(source_ns)))
+            .async_write(message, Some(dds_timestamp(source_ns)))
             .await
             .map_err(|e| anyhow::anyhow!("write: {e:?}"))
+    }
+}
+
+/// The keypoint writer of a glove whose stamps the test chooses.
+pub struct StampedGlove(StampedWriter<Float32MultiArray>);
+
+impl StampedGlove {
+    /// A writer of `std_msgs/Float32MultiArray` on `topic` (e.g. `/ingress/mano`) with `qos`,
+    /// in a new participant on `network`.
+    pub fn new(network: &NetworkConfig, topic: &str, qos: QosConfig) -> anyhow::Result<Self> {
+        Ok(StampedGlove(StampedWriter::new(network, topic, qos)?))
+    }
+
+    /// Wait until at least one reader (the station) matched, at most `timeout`.
+    pub async fn wait_for_reader(&self, timeout: Duration) -> anyhow::Result<()> {
+        self.0.wait_for_reader(timeout).await
+    }
+
+    /// Publish keypoint rows with the DDS source timestamp `source_ns` (ns since the epoch).
+    pub async fn publish(&self, rows: &[[f32; 3]], source_ns: i64) -> anyhow::Result<()> {
+        self.0
+            .write(Float32MultiArray::from_points(rows)?, source_ns)
+            .await
     }
 }
 

@@ -43,6 +43,9 @@ pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
             settings.max_age_ms
         );
     }
+    // The relay is the robot's only source of commands: crafted DATA_FRAG datagrams must not
+    // exhaust its memory (docs/SECURITY.md).
+    crate::ros::datagram_guard::enable();
     let report = Mutex::new(RelayReport::default());
     let network = args.node.network(&config.network);
     run_relay(

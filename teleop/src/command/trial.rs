@@ -222,6 +222,9 @@ pub struct SessionEnd {
 
 /// `pomdar trial`.
 pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
+    // The console runs the station: crafted DATA_FRAG datagrams must not exhaust its memory
+    // (docs/SECURITY.md).
+    crate::ros::datagram_guard::enable();
     let end = run_session(&args, Vec::new()).await?;
     Ok(if end.interrupted {
         ExitCode::from(EXIT_INTERRUPTED)
