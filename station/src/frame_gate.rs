@@ -198,7 +198,7 @@ impl FrameGate {
         let interval_ns = self.config.jump_interval_ms as f64 * 1e6;
         let intervals = match (source_ns, self.last_ns) {
             (Some(now), Some(last)) => {
-                ((now - last) as f64 / interval_ns).clamp(1.0, MAX_JUMP_INTERVALS)
+                (now.saturating_sub(last) as f64 / interval_ns).clamp(1.0, MAX_JUMP_INTERVALS)
             }
             _ => 1.0,
         };

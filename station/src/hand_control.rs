@@ -251,7 +251,8 @@ impl HandControl {
         let step_ns = match self.last_solved {
             None => return FIRST_DT_S,
             Some((_, received)) if pending.clock_jump => pending.received_ns - received,
-            Some((source, _)) => pending.frame.source_ns - source,
+            // The sender's stamps may lie anywhere in i64 (saturated; clamped below anyway).
+            Some((source, _)) => pending.frame.source_ns.saturating_sub(source),
         };
         (step_ns as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
     }

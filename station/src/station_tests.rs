@@ -267,3 +267,28 @@ fn a_human_study_station_judges_and_times_frames_but_never_drives_a_robot() {
     );
     assert!(!status.arm.enabled, "no arm in a human study");
 }
+
+#[test]
+fn senders_stamps_at_the_ends_of_i64_overflow_nothing() {
+    // Found by the station fuzzer: the command-rate ceiling subtracted the last commanded
+    // stamp from the new one, which overflowed (a panic in debug builds, a wrong decision in
+    // release) for a sender whose stamps went from i64::MIN to near i64::MAX.
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let StationInput::Keypoints(mut first) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    first.source_ns = i64::MIN;
+    assert!(s.step(StationInput::Keypoints(first), 0).hand.is_some());
+    let StationInput::Keypoints(mut second) = frame(0.25, 0) else {
+        unreachable!()
+    };
+    second.source_ns = i64::MAX;
+    assert!(s.step(StationInput::Keypoints(second), 10 * MS).hand.is_some());
+    let StationInput::Keypoints(mut third) = frame(0.3, 0) else {
+        unreachable!()
+    };
+    third.source_ns = i64::MIN + 1;
+    assert!(s.step(StationInput::Keypoints(third), 20 * MS).hand.is_some());
+}
