@@ -302,7 +302,10 @@ impl Station {
                     self.hand.engage(now_ns);
                 }
             }
-            ControlInput::Disengage => self.hand.disengage(),
+            ControlInput::Disengage => {
+                self.hand.disengage();
+                self.output.disengage();
+            }
             ControlInput::ArmBlocked { blocked } => {
                 if blocked && !self.arm_inputs.blocked {
                     outputs.notices.push(Notice::ArmBlocked);

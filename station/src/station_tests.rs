@@ -292,3 +292,61 @@ fn senders_stamps_at_the_ends_of_i64_overflow_nothing() {
     third.source_ns = i64::MIN + 1;
     assert!(s.step(StationInput::Keypoints(third), 20 * MS).hand.is_some());
 }
+
+fn arm_feedback(x: f64) -> StationInput {
+    StationInput::ArmFeedback(isometry_to_pose(&nalgebra::Isometry3::translation(
+        x, 0.1, 0.3,
+    )))
+}
+
+fn arm_x(outputs: &StationOutputs) -> f64 {
+    outputs.arm.as_ref().unwrap().pose.position.x
+}
+
+#[test]
+fn a_disengage_and_engage_between_two_ticks_re_clutches_the_arm_from_its_current_pose() {
+    // Found by the station fuzzer: the arm clutch followed the drive state only at ticks, so
+    // a disengage and an engage between two ticks kept the old latch, and the arm was sent
+    // back to where it was clutched, however far the robot had been moved since.
+    let mut s = station(&StationConfig::default());
+    s.step(arm_feedback(0.4), 0);
+    s.step(wrist(0.0), 0);
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    assert_eq!(arm_x(&s.step(tick(), 10 * MS)), 0.4);
+    s.step(arm_feedback(0.6), 20 * MS);
+    s.step(StationInput::Control(ControlInput::Disengage), 21 * MS);
+    s.step(frame(0.25, 22), 22 * MS);
+    s.step(engage(), 23 * MS);
+    assert_eq!(
+        arm_x(&s.step(tick(), 30 * MS)),
+        0.6,
+        "latched afresh at the robot's pose"
+    );
+}
+
+#[test]
+fn a_hold_right_after_an_engage_sends_no_arm_target_of_an_earlier_engagement() {
+    // Found by the station fuzzer: when the first tick after an engage found the input
+    // already stale (held), the arm was sent the last target of the previous engagement.
+    let mut s = station(&StationConfig::default());
+    s.step(arm_feedback(0.4), 0);
+    s.step(wrist(0.0), 0);
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    assert_eq!(arm_x(&s.step(tick(), 10 * MS)), 0.4);
+    s.step(StationInput::Control(ControlInput::Disengage), 20 * MS);
+    s.step(tick(), 30 * MS);
+    s.step(arm_feedback(0.6), 40 * MS);
+    s.step(frame(0.25, 100), 100 * MS);
+    s.step(engage(), 200 * MS);
+    let held = s.step(tick(), 300 * MS);
+    assert_eq!(s.state(), DriveState::Held);
+    assert_eq!(held.arm, None, "nothing latched yet in this engagement");
+    s.step(frame(0.3, 310), 310 * MS);
+    assert_eq!(
+        arm_x(&s.step(tick(), 320 * MS)),
+        0.6,
+        "latched at the robot's pose"
+    );
+}
