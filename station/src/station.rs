@@ -288,9 +288,9 @@ impl Station {
     /// may lie anywhere in `i64`: the difference saturates.
     fn under_ceiling(&self, source_ns: i64) -> bool {
         let min_interval_ns = (1e9 / self.control.max_command_rate_hz) as i64;
-        self.hand
-            .last_solved_source_ns()
-            .is_none_or(|last| source_ns.saturating_sub(last) >= min_interval_ns || source_ns < last)
+        self.hand.last_solved_source_ns().is_none_or(|last| {
+            source_ns.saturating_sub(last) >= min_interval_ns || source_ns < last
+        })
     }
 
     fn on_control(&mut self, control: ControlInput, now_ns: i64) -> StationOutputs {

@@ -285,12 +285,20 @@ fn senders_stamps_at_the_ends_of_i64_overflow_nothing() {
         unreachable!()
     };
     second.source_ns = i64::MAX;
-    assert!(s.step(StationInput::Keypoints(second), 10 * MS).hand.is_some());
+    assert!(
+        s.step(StationInput::Keypoints(second), 10 * MS)
+            .hand
+            .is_some()
+    );
     let StationInput::Keypoints(mut third) = frame(0.3, 0) else {
         unreachable!()
     };
     third.source_ns = i64::MIN + 1;
-    assert!(s.step(StationInput::Keypoints(third), 20 * MS).hand.is_some());
+    assert!(
+        s.step(StationInput::Keypoints(third), 20 * MS)
+            .hand
+            .is_some()
+    );
 }
 
 fn arm_feedback(x: f64) -> StationInput {

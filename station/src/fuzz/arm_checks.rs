@@ -65,7 +65,9 @@ impl ArmTrack {
             holds_orientation,
             max_step_m: arm.max_translation_step_m,
             max_step_rad: arm.max_rotation_step_rad,
-            start_pose: arm.start_pose_isometry().unwrap_or_else(|_| Isometry3::identity()),
+            start_pose: arm
+                .start_pose_isometry()
+                .unwrap_or_else(|_| Isometry3::identity()),
             frame_id: frame_id.to_string(),
             feedback: None,
             wrist_seen: false,
@@ -126,22 +128,34 @@ impl ArmTrack {
         let (step, now_ns, disengaged) = ctx;
         let Some(target) = &outputs.arm else { return };
         tally.count("out.arm");
-        let Some(pose) = self.check_message(step, target, now_ns, tally) else { return };
+        let Some(pose) = self.check_message(step, target, now_ns, tally) else {
+            return;
+        };
         tally.check(step, "arm_engaged", !disengaged && !self.blocked, || {
-            format!("an arm target while disengaged ({disengaged}) or blocked ({})", self.blocked)
+            format!(
+                "an arm target while disengaged ({disengaged}) or blocked ({})",
+                self.blocked
+            )
         });
         tally.check(step, "arm_clutched", self.latched.is_some(), || {
             "an arm target before the clutch latched afresh".into()
         });
         let inside = self.workspace.contains(&pose.translation.vector);
-        tally.check(step, "arm_workspace", inside, || format!("{pose} outside the box"));
-        let Some((robot, previous)) = self.latched else { return };
+        tally.check(step, "arm_workspace", inside, || {
+            format!("{pose} outside the box")
+        });
+        let Some((robot, previous)) = self.latched else {
+            return;
+        };
         if std::mem::take(&mut self.first) {
             let moved = (pose.translation.vector - robot.translation.vector).norm();
             let turned = pose.rotation.angle_to(&robot.rotation);
-            tally.check(step, "arm_clutched", moved <= ON_LINE_M && turned <= SLACK_RAD, || {
-                format!("first target {moved} m, {turned} rad from the latched robot pose")
-            });
+            tally.check(
+                step,
+                "arm_clutched",
+                moved <= ON_LINE_M && turned <= SLACK_RAD,
+                || format!("first target {moved} m, {turned} rad from the latched robot pose"),
+            );
         }
         self.check_constraint(step, &pose, &robot, tally);
         let moved = (pose.translation.vector - previous.translation.vector).norm();
@@ -162,13 +176,19 @@ impl ArmTrack {
     ) -> Option<Isometry3<f64>> {
         let p = &target.pose.position;
         let q = &target.pose.orientation;
-        let finite = [p.x, p.y, p.z, q.x, q.y, q.z, q.w].iter().all(|v| v.is_finite());
+        let finite = [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
+            .iter()
+            .all(|v| v.is_finite());
         let norm = (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w).sqrt();
         let unit = (norm - 1.0).abs() <= SLACK_RAD;
-        tally.check(step, "arm_finite", finite && unit, || format!("{:?}", target.pose));
+        tally.check(step, "arm_finite", finite && unit, || {
+            format!("{:?}", target.pose)
+        });
         let stamped = target.header.stamp == Time::from_nanos(now_ns)
             && target.header.frame_id == self.frame_id;
-        tally.check(step, "arm_stamp", stamped, || format!("{:?}", target.header));
+        tally.check(step, "arm_stamp", stamped, || {
+            format!("{:?}", target.header)
+        });
         pose_to_isometry(&target.pose)
     }
 
@@ -193,9 +213,12 @@ impl ArmTrack {
             0.0
         };
         if self.constraint != Constraint::Free || self.holds_orientation {
-            tally.check(step, "arm_constraint", off_line <= ON_LINE_M && turned <= SLACK_RAD, || {
-                format!("{off_line} m off the constraint, turned {turned} rad from the latch")
-            });
+            tally.check(
+                step,
+                "arm_constraint",
+                off_line <= ON_LINE_M && turned <= SLACK_RAD,
+                || format!("{off_line} m off the constraint, turned {turned} rad from the latch"),
+            );
         }
     }
 }

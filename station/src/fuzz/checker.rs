@@ -67,14 +67,18 @@ impl Checker {
         self.count_verdict(input, now_ns, outputs, jumped, tally);
         let state = station.state();
         self.count_state(state, outputs, tally);
-        if matches!(input, StationInput::Control(ControlInput::Tick)) && state == DriveState::Engaged
+        if matches!(input, StationInput::Control(ControlInput::Tick))
+            && state == DriveState::Engaged
         {
             self.arm.engaged_tick(outputs);
         }
         let disengaged = self.model.disengaged();
-        tally.check(step, "drive_state", (state == DriveState::Disengaged) == disengaged, || {
-            format!("station {state:?}, model disengaged: {disengaged}")
-        });
+        tally.check(
+            step,
+            "drive_state",
+            (state == DriveState::Disengaged) == disengaged,
+            || format!("station {state:?}, model disengaged: {disengaged}"),
+        );
         let ctx = (step, now_ns, disengaged);
         self.hand.check(outputs, ctx, station, tally);
         self.arm.check(outputs, ctx, tally);
@@ -88,7 +92,9 @@ impl Checker {
         jumped: bool,
         tally: &mut Tally,
     ) {
-        let StationInput::Keypoints(frame) = input else { return };
+        let StationInput::Keypoints(frame) = input else {
+            return;
+        };
         match outputs.verdict {
             Some(Verdict::New) => {
                 tally.count("verdict.new");

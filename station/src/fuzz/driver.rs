@@ -34,12 +34,12 @@ pub fn config_for_seed(base: &StationConfig, seed: u64) -> StationConfig {
         Constraint::HorizontalAxis,
         Constraint::Free,
     ][(seed % 4) as usize];
-    config.control.mode = if (seed / 4) % 2 == 0 {
+    config.control.mode = if (seed / 4).is_multiple_of(2) {
         ControlMode::OnArrival
     } else {
         ControlMode::Rate
     };
-    config.control.auto_engage = seed % 3 == 0;
+    config.control.auto_engage = seed.is_multiple_of(3);
     config
 }
 
@@ -74,6 +74,9 @@ pub fn run(
     tally.add("station.solves", counters.solves);
     tally.add("station.frames_superseded", counters.frames_superseded);
     tally.add("station.source_clock_jumps", counters.source_clock_jumps);
-    tally.add("station.rejected.retargeter", counters.rejected.get("retargeter").copied().unwrap_or(0));
+    tally.add(
+        "station.rejected.retargeter",
+        counters.rejected.get("retargeter").copied().unwrap_or(0),
+    );
     Ok(tally)
 }

@@ -116,7 +116,11 @@ impl HandTrack {
         let q = &hand.joint_state.position;
         self.check_values(step, hand, tally);
         let fresh = outputs.fresh_frame_received_ns.is_some();
-        tally.count(if fresh { "out.hand.fresh" } else { "out.hand.repeated_or_held" });
+        tally.count(if fresh {
+            "out.hand.fresh"
+        } else {
+            "out.hand.repeated_or_held"
+        });
         if disengaged {
             tally.check(step, "hand_held_after_disengage", !fresh, || {
                 "a fresh hand command while disengaged".into()
@@ -128,21 +132,36 @@ impl HandTrack {
         }
         let stamp_ns = hand.joint_state.header.stamp.to_nanos();
         let last = self.last.as_ref();
-        tally.check(step, "hand_held_is_last", last.is_some_and(|l| &l.q == q), || {
-            format!("repeated {q:?}, last fresh {:?}", last.map(|l| &l.q))
-        });
-        let repeat_engaged = self.rate_mode && !disengaged && station.state() == DriveState::Engaged;
+        tally.check(
+            step,
+            "hand_held_is_last",
+            last.is_some_and(|l| &l.q == q),
+            || format!("repeated {q:?}, last fresh {:?}", last.map(|l| &l.q)),
+        );
+        let repeat_engaged =
+            self.rate_mode && !disengaged && station.state() == DriveState::Engaged;
         let expected = match (repeat_engaged, last) {
             (true, Some(l)) => l.source_ns,
             _ => now_ns,
         };
-        tally.check(step, "hand_stamp_order", stamp(expected) == hand.joint_state.header.stamp, || {
-            format!("repeated command stamped {stamp_ns}, expected {expected}")
-        });
+        tally.check(
+            step,
+            "hand_stamp_order",
+            stamp(expected) == hand.joint_state.header.stamp,
+            || format!("repeated command stamped {stamp_ns}, expected {expected}"),
+        );
         if !repeat_engaged {
-            tally.check(step, "hand_stamp_order", stamp_ns >= self.last_held_ns, || {
-                format!("held stamp {stamp_ns} before the previous {}", self.last_held_ns)
-            });
+            tally.check(
+                step,
+                "hand_stamp_order",
+                stamp_ns >= self.last_held_ns,
+                || {
+                    format!(
+                        "held stamp {stamp_ns} before the previous {}",
+                        self.last_held_ns
+                    )
+                },
+            );
             self.last_held_ns = stamp_ns;
         }
     }
@@ -160,17 +179,24 @@ impl HandTrack {
             || format!("{q:?}"),
         );
         let within = q.iter().zip(&self.limits).all(|(v, l)| l.contains(*v));
-        tally.check(step, "hand_limits", within, || format!("{q:?} outside the limits"));
+        tally.check(step, "hand_limits", within, || {
+            format!("{q:?} outside the limits")
+        });
     }
 
     fn check_fresh(&mut self, step: u64, outputs: &StationOutputs, tally: &mut Tally) {
         let Some(hand) = &outputs.hand else { return };
         let q = &hand.joint_state.position;
         let pending = self.pending.take();
-        let newest = pending.is_some_and(|p| Some(p.received_ns) == outputs.fresh_frame_received_ns
-            && stamp(p.source_ns) == hand.joint_state.header.stamp);
+        let newest = pending.is_some_and(|p| {
+            Some(p.received_ns) == outputs.fresh_frame_received_ns
+                && stamp(p.source_ns) == hand.joint_state.header.stamp
+        });
         tally.check(step, "hand_newest_frame", newest, || {
-            format!("fresh command from {:?}, newest new frame {pending:?}", outputs.fresh_frame_received_ns)
+            format!(
+                "fresh command from {:?}, newest new frame {pending:?}",
+                outputs.fresh_frame_received_ns
+            )
         });
         let Some(pending) = pending else { return };
         let dt_s = self.time_step_s(&pending);
@@ -187,7 +213,10 @@ impl HandTrack {
         if let Some(last) = &self.last {
             let back = pending.source_ns < last.source_ns;
             tally.check(step, "hand_stamp_order", !back || self.jumped, || {
-                format!("fresh stamp {} after {} without a clock jump", pending.source_ns, last.source_ns)
+                format!(
+                    "fresh stamp {} after {} without a clock jump",
+                    pending.source_ns, last.source_ns
+                )
             });
         }
         self.last = Some(Fresh {
@@ -204,7 +233,9 @@ impl HandTrack {
         let step_ns = match &self.last {
             None => return FIRST_DT_S,
             Some(_) if self.first_after_engage => return FIRST_DT_S,
-            Some(l) if pending.clock_jump => i128::from(pending.received_ns) - i128::from(l.received_ns),
+            Some(l) if pending.clock_jump => {
+                i128::from(pending.received_ns) - i128::from(l.received_ns)
+            }
             Some(l) => i128::from(pending.source_ns) - i128::from(l.source_ns),
         };
         (step_ns as f64 * 1e-9).clamp(DT_RANGE_S.0, DT_RANGE_S.1)

@@ -18,7 +18,10 @@ const WILD: [f64; 7] = [
 ];
 
 /// A hostile version of the plausible frame `valid`, and its kind's name.
-pub fn hostile_points(rng: &mut FuzzRng, valid: &[Point3<f64>]) -> (Vec<Point3<f64>>, &'static str) {
+pub fn hostile_points(
+    rng: &mut FuzzRng,
+    valid: &[Point3<f64>],
+) -> (Vec<Point3<f64>>, &'static str) {
     let mut points = valid.to_vec();
     let n = points.len().max(1);
     let kind = match rng.below(9) {
@@ -39,7 +42,13 @@ pub fn hostile_points(rng: &mut FuzzRng, valid: &[Point3<f64>]) -> (Vec<Point3<f
         }
         2 => {
             points = (0..n)
-                .map(|_| Point3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+                .map(|_| {
+                    Point3::new(
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                    )
+                })
                 .collect();
             "garbage"
         }
@@ -55,7 +64,11 @@ pub fn hostile_points(rng: &mut FuzzRng, valid: &[Point3<f64>]) -> (Vec<Point3<f
         }
         5 => {
             let i = 1 + rng.below(n.saturating_sub(1).max(1));
-            let jump = Vector3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+            let jump = Vector3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            );
             if let Some(p) = points.get_mut(i) {
                 *p += jump * rng.range(0.05, 0.6);
             }
@@ -71,7 +84,11 @@ pub fn hostile_points(rng: &mut FuzzRng, valid: &[Point3<f64>]) -> (Vec<Point3<f
             "collapsed_palm"
         }
         7 => {
-            let offset = Vector3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), rng.range(-5.0, 5.0));
+            let offset = Vector3::new(
+                rng.range(-5.0, 5.0),
+                rng.range(-5.0, 5.0),
+                rng.range(-5.0, 5.0),
+            );
             points.iter_mut().for_each(|p| *p += offset);
             "whole_hand_teleport"
         }
@@ -89,7 +106,7 @@ pub fn hostile_points(rng: &mut FuzzRng, valid: &[Point3<f64>]) -> (Vec<Point3<f
 
 /// A hostile version of the pose `valid`, and its kind's name.
 pub fn hostile_pose(rng: &mut FuzzRng, valid: &Pose) -> (Pose, &'static str) {
-    let mut pose = valid.clone();
+    let mut pose = *valid;
     let kind = match rng.below(8) {
         0 => {
             *position_field(&mut pose, rng.below(3)) = rng.pick(&WILD);
