@@ -6,7 +6,8 @@
 //! the pending one, and [`HandControl::command`] retargets it. The time step handed to the
 //! retargeter comes from the frames' own stamps (their senders' clocks), so frames delivered
 //! together by a busy network keep the spacing at which they were captured; after a jump of the
-//! sender's clock the receive times stand in for one step.
+//! sender's clock (at any frame taken since the last retargeted one, a repeat or a superseded
+//! frame included) the receive times stand in for one step.
 
 use std::collections::BTreeMap;
 
@@ -95,8 +96,10 @@ pub struct Counters {
 struct PendingFrame {
     frame: KeypointFrame,
     received_ns: i64,
-    /// The sender's clock jumped at this frame: its stamp cannot be compared with the last.
-    clock_jump: bool,
+    /// The sender's clock jumps counted when it was taken: more than at the last retargeted
+    /// frame, and the two frames' stamps cannot be compared (the jump may have come at this
+    /// frame, or at a repeat or a superseded frame between the two).
+    clock_jumps: u64,
 }
 
 /// The hand side of the station.
@@ -108,8 +111,9 @@ pub struct HandControl {
     gate: FrameGate,
     watchdog: Watchdog,
     pending: Option<PendingFrame>,
-    /// (source, receive) times of the last retargeted frame.
-    last_solved: Option<(i64, i64)>,
+    /// (source, receive) times of the last retargeted frame, and the sender's clock jumps
+    /// counted when it was taken.
+    last_solved: Option<(i64, i64, u64)>,
     last_command: Option<HandCommand>,
     counters: Counters,
 }
@@ -161,7 +165,7 @@ impl HandControl {
 
     /// Source stamp of the last retargeted frame.
     pub fn last_solved_source_ns(&self) -> Option<i64> {
-        self.last_solved.map(|(source, _)| source)
+        self.last_solved.map(|(source, _, _)| source)
     }
 
     /// A keypoint frame arrived at `received_ns`. A frame stamped before the newest accepted
@@ -188,7 +192,7 @@ impl HandControl {
                 self.pending = Some(PendingFrame {
                     frame,
                     received_ns,
-                    clock_jump: stamp == StampOrder::ClockJump,
+                    clock_jumps: self.counters.source_clock_jumps,
                 });
             }
             Verdict::Repeat => {
@@ -250,9 +254,11 @@ impl HandControl {
     fn time_step_s(&self, pending: &PendingFrame) -> f64 {
         let step_ns = match self.last_solved {
             None => return FIRST_DT_S,
-            Some((_, received)) if pending.clock_jump => pending.received_ns - received,
+            Some((_, received, jumps)) if pending.clock_jumps > jumps => {
+                pending.received_ns - received
+            }
             // The sender's stamps may lie anywhere in i64 (saturated; clamped below anyway).
-            Some((source, _)) => pending.frame.source_ns.saturating_sub(source),
+            Some((source, _, _)) => pending.frame.source_ns.saturating_sub(source),
         };
         (step_ns as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
     }
@@ -264,7 +270,11 @@ impl HandControl {
             self.count_rejection(Rejection::Retargeter);
             return None;
         };
-        self.last_solved = Some((pending.frame.source_ns, pending.received_ns));
+        self.last_solved = Some((
+            pending.frame.source_ns,
+            pending.received_ns,
+            pending.clock_jumps,
+        ));
         let counters = &mut self.counters;
         counters.solves += 1;
         match solution.status {

@@ -358,3 +358,28 @@ fn a_hold_right_after_an_engage_sends_no_arm_target_of_an_earlier_engagement() {
         "latched at the robot's pose"
     );
 }
+
+#[test]
+fn a_jump_of_the_senders_clock_at_a_repeat_times_the_next_command_by_receive_times() {
+    // Found by the station fuzzer: a jump seen at a repeated (or superseded) frame left the
+    // next retargeted frame's stamp compared across the jump, a time step clamped to 0.1 ms
+    // that froze the hand for a frame.
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let index = model().dof_index("index_mcp").unwrap();
+    let before = q_of(&s.step(frame(0.2, 0), 0))[index];
+    let StationInput::Keypoints(mut repeat) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    repeat.source_ns = -3_600_000 * MS;
+    let out = s.step(StationInput::Keypoints(repeat), 20 * MS);
+    assert_eq!(out.verdict, Some(Verdict::Repeat));
+    assert_eq!(s.counters().source_clock_jumps, 1);
+    let after = q_of(&s.step(frame(0.8, 40 - 3_600_000), 40 * MS))[index];
+    assert!(
+        after - before > 0.05,
+        "moved {} rad in 40 ms of receive time",
+        after - before
+    );
+}

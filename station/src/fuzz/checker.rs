@@ -61,10 +61,7 @@ impl Checker {
         let jumps = station.counters().source_clock_jumps;
         let jumped = jumps > self.seen_clock_jumps;
         self.seen_clock_jumps = jumps;
-        if jumped {
-            self.hand.clock_jump();
-        }
-        self.count_verdict(input, now_ns, outputs, jumped, tally);
+        self.count_verdict(input, now_ns, outputs, (jumps, jumped), tally);
         let state = station.state();
         self.count_state(state, outputs, tally);
         if matches!(input, StationInput::Control(ControlInput::Tick))
@@ -89,7 +86,7 @@ impl Checker {
         input: &StationInput,
         now_ns: i64,
         outputs: &StationOutputs,
-        jumped: bool,
+        (jumps, jumped): (u64, bool),
         tally: &mut Tally,
     ) {
         let StationInput::Keypoints(frame) = input else {
@@ -98,7 +95,7 @@ impl Checker {
         match outputs.verdict {
             Some(Verdict::New) => {
                 tally.count("verdict.new");
-                self.hand.new_frame(frame.source_ns, now_ns, jumped);
+                self.hand.new_frame(frame.source_ns, now_ns, jumps);
             }
             Some(Verdict::Repeat) => tally.count("verdict.repeat"),
             Some(Verdict::Rejected(reason)) => tally.count(match reason.name() {

@@ -5,14 +5,14 @@
 //! - `hand_rate`: a fresh command moves each joint at most `max_joint_speed_rad_s ×
 //!   min(Δt, max_rate_dt_s)` from the previous command (the retargeter's rate bound), with
 //!   `Δt` the station's time step: 40 ms after an engage from disengaged, else the source
-//!   stamps' gap (the receive times' after a jump of the sender's clock), clamped to
-//!   [0.1 ms, 0.5 s];
+//!   stamps' gap (the receive times' when a jump of the sender's clock was counted between
+//!   the two frames' arrivals), clamped to [0.1 ms, 0.5 s];
 //! - `hand_newest_frame`: a fresh command comes from the newest new frame, once;
 //! - `hand_held_is_last`: a repeated or held command is the last fresh one, unchanged;
 //! - `hand_held_after_disengage`: while disengaged only the held command goes out (stamped
 //!   with the station clock);
-//! - `hand_stamp_order`: fresh commands' stamps never go back except across a counted jump of
-//!   the sender's clock; held ones carry the station clock.
+//! - `hand_stamp_order`: fresh commands' stamps never go back unless a jump of the sender's
+//!   clock was counted between the two frames' arrivals; held ones carry the station clock.
 
 use msgs::Time;
 use retarget::Limits;
@@ -35,7 +35,8 @@ const DT_RANGE_S: (f64, f64) = (1e-4, 0.5);
 struct Pending {
     source_ns: i64,
     received_ns: i64,
-    clock_jump: bool,
+    /// The station's count of the sender's clock jumps when the frame was taken.
+    clock_jumps: u64,
 }
 
 /// The last fresh command.
@@ -44,6 +45,7 @@ struct Fresh {
     q: Vec<f64>,
     source_ns: i64,
     received_ns: i64,
+    clock_jumps: u64,
 }
 
 /// What the hand checks remember between steps.
@@ -58,8 +60,6 @@ pub struct HandTrack {
     last: Option<Fresh>,
     /// No frame retargeted since the last engage from disengaged.
     first_after_engage: bool,
-    /// A jump of the sender's clock was counted since the last fresh command.
-    jumped: bool,
     last_held_ns: i64,
 }
 
@@ -78,24 +78,18 @@ impl HandTrack {
             pending: None,
             last: None,
             first_after_engage: true,
-            jumped: false,
             last_held_ns: i64::MIN,
         }
     }
 
-    /// A new frame received at `received_ns`, stamped `source_ns`, at a counted jump of the
-    /// sender's clock or not.
-    pub fn new_frame(&mut self, source_ns: i64, received_ns: i64, clock_jump: bool) {
+    /// A new frame received at `received_ns`, stamped `source_ns`, taken when the station had
+    /// counted `clock_jumps` jumps of the sender's clock.
+    pub fn new_frame(&mut self, source_ns: i64, received_ns: i64, clock_jumps: u64) {
         self.pending = Some(Pending {
             source_ns,
             received_ns,
-            clock_jump,
+            clock_jumps,
         });
-    }
-
-    /// The sender's clock jumped (counted by the station).
-    pub fn clock_jump(&mut self) {
-        self.jumped = true;
     }
 
     /// An engage was granted while disengaged.
@@ -212,7 +206,8 @@ impl HandTrack {
         });
         if let Some(last) = &self.last {
             let back = pending.source_ns < last.source_ns;
-            tally.check(step, "hand_stamp_order", !back || self.jumped, || {
+            let jumped = pending.clock_jumps > last.clock_jumps;
+            tally.check(step, "hand_stamp_order", !back || jumped, || {
                 format!(
                     "fresh stamp {} after {} without a clock jump",
                     pending.source_ns, last.source_ns
@@ -223,9 +218,9 @@ impl HandTrack {
             q: q.clone(),
             source_ns: pending.source_ns,
             received_ns: pending.received_ns,
+            clock_jumps: pending.clock_jumps,
         });
         self.first_after_engage = false;
-        self.jumped = false;
     }
 
     /// The time step the station hands the retargeter for `pending`, seconds.
@@ -233,7 +228,7 @@ impl HandTrack {
         let step_ns = match &self.last {
             None => return FIRST_DT_S,
             Some(_) if self.first_after_engage => return FIRST_DT_S,
-            Some(l) if pending.clock_jump => {
+            Some(l) if pending.clock_jumps > l.clock_jumps => {
                 i128::from(pending.received_ns) - i128::from(l.received_ns)
             }
             Some(l) => i128::from(pending.source_ns) - i128::from(l.source_ns),
