@@ -115,6 +115,9 @@ pub struct HandControl {
     /// counted when it was taken.
     last_solved: Option<(i64, i64, u64)>,
     last_command: Option<HandCommand>,
+    /// (source, receive) times of the gate's reference (the last new frame), and the sender's
+    /// clock jumps counted when it was taken.
+    gate_reference: Option<(i64, i64, u64)>,
     counters: Counters,
 }
 
@@ -134,6 +137,7 @@ impl HandControl {
             pending: None,
             last_solved: None,
             last_command: None,
+            gate_reference: None,
             counters,
         }
     }
@@ -178,12 +182,16 @@ impl HandControl {
             self.count_rejection(Rejection::OutOfOrder);
             return Verdict::Rejected(Rejection::OutOfOrder);
         }
-        // A clock jump makes the stamps incomparable: judged as one interval then.
-        let stamp_ns = (stamp != StampOrder::ClockJump).then_some(frame.source_ns);
-        let verdict = self.gate.judge_at(&frame.points, stamp_ns);
+        let since_ns = self.since_gate_reference(&frame, stamp, received_ns);
+        let verdict = self.gate.judge_after(&frame.points, since_ns);
         match verdict {
             Verdict::New => {
                 self.accept_stamp(&frame, stamp, received_ns);
+                self.gate_reference = Some((
+                    frame.source_ns,
+                    received_ns,
+                    self.counters.source_clock_jumps,
+                ));
                 self.counters.frames_new += 1;
                 self.watchdog.frame(received_ns);
                 if self.pending.is_some() {
@@ -202,6 +210,27 @@ impl HandControl {
             Verdict::Rejected(reason) => self.count_rejection(reason),
         }
         verdict
+    }
+
+    /// The time since the gate's reference frame: by the sender's stamps, or by the receive
+    /// times when the sender's clock jumped at this frame or since the reference (the stamps
+    /// cannot be compared then; compared anyway, a frame after a jump back was judged as one
+    /// interval after the reference however long ago that was, and a hand that had moved on
+    /// stayed rejected as jumps for as long as the sender's clock ran behind).
+    fn since_gate_reference(
+        &self,
+        frame: &KeypointFrame,
+        stamp: StampOrder,
+        received_ns: i64,
+    ) -> Option<i64> {
+        let (source, received, jumps) = self.gate_reference?;
+        Some(
+            if stamp == StampOrder::ClockJump || self.counters.source_clock_jumps > jumps {
+                received_ns.saturating_sub(received)
+            } else {
+                frame.source_ns.saturating_sub(source)
+            },
+        )
     }
 
     fn accept_stamp(&mut self, frame: &KeypointFrame, stamp: StampOrder, received_ns: i64) {

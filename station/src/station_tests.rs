@@ -383,3 +383,36 @@ fn a_jump_of_the_senders_clock_at_a_repeat_times_the_next_command_by_receive_tim
         after - before
     );
 }
+
+#[test]
+fn after_a_jump_of_the_senders_clock_the_gate_times_its_jump_allowance_by_receive_times() {
+    // Found by the station fuzzer: after a jump back of the sender's clock the gate compared
+    // the new stamps with its reference's, found no time had passed and allowed one interval's
+    // motion however long ago the reference was, so a hand that had moved on stayed rejected
+    // as jumps (for seconds at a time in the fuzzer's runs).
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let StationInput::Keypoints(reference) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    s.step(StationInput::Keypoints(reference.clone()), 0);
+    let hour_ago = -3_600_000 * MS;
+    let repeat = KeypointFrame {
+        source_ns: hour_ago,
+        ..reference.clone()
+    };
+    assert_eq!(
+        s.step(StationInput::Keypoints(repeat), 20 * MS).verdict,
+        Some(Verdict::Repeat)
+    );
+    let mut moved = reference;
+    moved.points[9].z += 0.13;
+    moved.source_ns = hour_ago + 600 * MS;
+    let out = s.step(StationInput::Keypoints(moved), 620 * MS);
+    assert_eq!(
+        out.verdict,
+        Some(Verdict::New),
+        "13 cm in 600 ms is no jump"
+    );
+}

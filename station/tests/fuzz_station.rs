@@ -31,7 +31,7 @@ const REACHED: [(&str, u64); 28] = [
     ("rejected.non_finite", 400),
     ("rejected.wrong_size", 300),
     ("rejected.bone_length", 1_000),
-    ("rejected.jump", 3_000),
+    ("rejected.jump", 1_300),
     ("station.rejected.retargeter", 1),
     ("station.arm_refused.implausible_position", 20),
     ("clock.sender_jump_ahead", 30),
