@@ -6,10 +6,12 @@
 //! between consecutive points of each digit chain, and wrist to each digit base) within
 //! `[min_bone_m, max_bone_m]`; no point moving more than `max_jump_m` per `jump_interval_ms`
 //! relative to the wrist since the last accepted frame (the arm may move the whole hand
-//! freely; a finger may not teleport). The allowance grows with the senders' time since that
-//! frame (up to [`MAX_JUMP_INTERVALS`] intervals): a glove that drops a frame, or a frame
-//! rejected for a moment, does not make every later frame look like a jump, which held the
-//! last command for 168 of 647 frames of a recording with 10 % of its frames dropped. Before these, frames stamped by their sender before the newest accepted one are
+//! freely; a finger may not teleport). The allowance grows with the time since that frame (up
+//! to [`MAX_JUMP_INTERVALS`] intervals; the hand control measures it by the sender's clock, by
+//! the receive clock across a jump of the sender's clock): a glove that drops a frame, or a
+//! frame rejected for a moment, does not make every later frame look like a jump, which held
+//! the last command for 168 of 647 frames of a recording with 10 % of its frames dropped.
+//! Before these, frames stamped by their sender before the newest accepted one are
 //! turned away as late ([`source_order`](crate::source_order); the hand control applies it).
 
 use nalgebra::Point3;
@@ -146,8 +148,6 @@ pub struct FrameGate {
     layout: KeypointLayout,
     config: GateConfig,
     last: Option<Vec<Point3<f64>>>,
-    /// The senders' stamp of the last accepted frame, when given.
-    last_ns: Option<i64>,
 }
 
 /// Most intervals of `max_jump_m` a frame is allowed (a stall longer than this is judged as
@@ -161,7 +161,6 @@ impl FrameGate {
             layout,
             config,
             last: None,
-            last_ns: None,
         }
     }
 
@@ -173,35 +172,31 @@ impl FrameGate {
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).
     pub fn reset(&mut self) {
         self.last = None;
-        self.last_ns = None;
     }
 
     /// Judge `points` as one interval after the last accepted frame; a `New` frame becomes
     /// the reference for the next one.
     pub fn judge(&mut self, points: &[Point3<f64>]) -> Verdict {
-        self.judge_at(points, None)
+        self.judge_after(points, None)
     }
 
-    /// Judge `points` stamped `source_ns` by their sender: the jump allowance grows with the
-    /// time since the last accepted frame. A `New` frame becomes the reference for the next.
-    pub fn judge_at(&mut self, points: &[Point3<f64>], source_ns: Option<i64>) -> Verdict {
-        let verdict = self.check(points, self.jump_allowance_m(source_ns));
+    /// Judge `points` taken `since_last_ns` after the last accepted frame (`None`: one
+    /// interval): the jump allowance grows with that time. A `New` frame becomes the reference
+    /// for the next.
+    pub fn judge_after(&mut self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> Verdict {
+        let verdict = self.check(points, self.jump_allowance_m(since_last_ns));
         if verdict == Verdict::New {
             self.last = Some(points.to_vec());
-            self.last_ns = source_ns;
         }
         verdict
     }
 
-    /// The jump allowed for a frame stamped `source_ns`, metres.
-    fn jump_allowance_m(&self, source_ns: Option<i64>) -> f64 {
+    /// The jump allowed for a frame taken `since_last_ns` after the last accepted one, metres.
+    fn jump_allowance_m(&self, since_last_ns: Option<i64>) -> f64 {
         let interval_ns = self.config.jump_interval_ms as f64 * 1e6;
-        let intervals = match (source_ns, self.last_ns) {
-            (Some(now), Some(last)) => {
-                ((now - last) as f64 / interval_ns).clamp(1.0, MAX_JUMP_INTERVALS)
-            }
-            _ => 1.0,
-        };
+        let intervals = since_last_ns.map_or(1.0, |since| {
+            (since as f64 / interval_ns).clamp(1.0, MAX_JUMP_INTERVALS)
+        });
         self.config.max_jump_m * intervals
     }
 
@@ -306,20 +301,20 @@ mod tests {
             f[9] += Vector3::new(0.0, 0.0, dz);
             f
         };
-        assert_eq!(gate.judge_at(&frame, Some(0)), Verdict::New);
+        assert_eq!(gate.judge_after(&frame, None), Verdict::New);
         // 13 cm in one 40 ms frame: a teleport.
         assert_eq!(
-            gate.judge_at(&moved(0.13), Some(40 * MS)),
+            gate.judge_after(&moved(0.13), Some(40 * MS)),
             Verdict::Rejected(Rejection::Jump)
         );
         // The same 13 cm two frames after the last accepted one (one dropped): 0.12 m × 80/50.
-        assert_eq!(gate.judge_at(&moved(0.13), Some(80 * MS)), Verdict::New);
-        // The allowance: one interval for a stamp going back (a sender's clock jump) or
-        // none given, the time since the last accepted frame otherwise, at most 10 intervals.
+        assert_eq!(gate.judge_after(&moved(0.13), Some(80 * MS)), Verdict::New);
+        // The allowance: one interval for a time going back or none given, the time since
+        // the last accepted frame otherwise, at most 10 intervals.
         let allowance = |ns| gate.jump_allowance_m(ns);
-        assert!((allowance(Some(0)) - 0.12).abs() < 1e-12);
+        assert!((allowance(Some(-5 * MS)) - 0.12).abs() < 1e-12);
         assert!((allowance(None) - 0.12).abs() < 1e-12);
-        assert!((allowance(Some(80 * MS + 100 * MS)) - 0.24).abs() < 1e-12);
+        assert!((allowance(Some(100 * MS)) - 0.24).abs() < 1e-12);
         assert!((allowance(Some(10_000 * MS)) - 1.2).abs() < 1e-12);
     }
 }

@@ -6,7 +6,8 @@
 //! the pending one, and [`HandControl::command`] retargets it. The time step handed to the
 //! retargeter comes from the frames' own stamps (their senders' clocks), so frames delivered
 //! together by a busy network keep the spacing at which they were captured; after a jump of the
-//! sender's clock the receive times stand in for one step.
+//! sender's clock (at any frame taken since the last retargeted one, a repeat or a superseded
+//! frame included) the receive times stand in for one step.
 
 use std::collections::BTreeMap;
 
@@ -95,8 +96,10 @@ pub struct Counters {
 struct PendingFrame {
     frame: KeypointFrame,
     received_ns: i64,
-    /// The sender's clock jumped at this frame: its stamp cannot be compared with the last.
-    clock_jump: bool,
+    /// The sender's clock jumps counted when it was taken: more than at the last retargeted
+    /// frame, and the two frames' stamps cannot be compared (the jump may have come at this
+    /// frame, or at a repeat or a superseded frame between the two).
+    clock_jumps: u64,
 }
 
 /// The hand side of the station.
@@ -108,9 +111,13 @@ pub struct HandControl {
     gate: FrameGate,
     watchdog: Watchdog,
     pending: Option<PendingFrame>,
-    /// (source, receive) times of the last retargeted frame.
-    last_solved: Option<(i64, i64)>,
+    /// (source, receive) times of the last retargeted frame, and the sender's clock jumps
+    /// counted when it was taken.
+    last_solved: Option<(i64, i64, u64)>,
     last_command: Option<HandCommand>,
+    /// (source, receive) times of the gate's reference (the last new frame), and the sender's
+    /// clock jumps counted when it was taken.
+    gate_reference: Option<(i64, i64, u64)>,
     counters: Counters,
 }
 
@@ -130,6 +137,7 @@ impl HandControl {
             pending: None,
             last_solved: None,
             last_command: None,
+            gate_reference: None,
             counters,
         }
     }
@@ -161,7 +169,7 @@ impl HandControl {
 
     /// Source stamp of the last retargeted frame.
     pub fn last_solved_source_ns(&self) -> Option<i64> {
-        self.last_solved.map(|(source, _)| source)
+        self.last_solved.map(|(source, _, _)| source)
     }
 
     /// A keypoint frame arrived at `received_ns`. A frame stamped before the newest accepted
@@ -174,12 +182,16 @@ impl HandControl {
             self.count_rejection(Rejection::OutOfOrder);
             return Verdict::Rejected(Rejection::OutOfOrder);
         }
-        // A clock jump makes the stamps incomparable: judged as one interval then.
-        let stamp_ns = (stamp != StampOrder::ClockJump).then_some(frame.source_ns);
-        let verdict = self.gate.judge_at(&frame.points, stamp_ns);
+        let since_ns = self.since_gate_reference(&frame, stamp, received_ns);
+        let verdict = self.gate.judge_after(&frame.points, since_ns);
         match verdict {
             Verdict::New => {
                 self.accept_stamp(&frame, stamp, received_ns);
+                self.gate_reference = Some((
+                    frame.source_ns,
+                    received_ns,
+                    self.counters.source_clock_jumps,
+                ));
                 self.counters.frames_new += 1;
                 self.watchdog.frame(received_ns);
                 if self.pending.is_some() {
@@ -188,7 +200,7 @@ impl HandControl {
                 self.pending = Some(PendingFrame {
                     frame,
                     received_ns,
-                    clock_jump: stamp == StampOrder::ClockJump,
+                    clock_jumps: self.counters.source_clock_jumps,
                 });
             }
             Verdict::Repeat => {
@@ -198,6 +210,27 @@ impl HandControl {
             Verdict::Rejected(reason) => self.count_rejection(reason),
         }
         verdict
+    }
+
+    /// The time since the gate's reference frame: by the sender's stamps, or by the receive
+    /// times when the sender's clock jumped at this frame or since the reference (the stamps
+    /// cannot be compared then; compared anyway, a frame after a jump back was judged as one
+    /// interval after the reference however long ago that was, and a hand that had moved on
+    /// stayed rejected as jumps for as long as the sender's clock ran behind).
+    fn since_gate_reference(
+        &self,
+        frame: &KeypointFrame,
+        stamp: StampOrder,
+        received_ns: i64,
+    ) -> Option<i64> {
+        let (source, received, jumps) = self.gate_reference?;
+        Some(
+            if stamp == StampOrder::ClockJump || self.counters.source_clock_jumps > jumps {
+                received_ns.saturating_sub(received)
+            } else {
+                frame.source_ns.saturating_sub(source)
+            },
+        )
     }
 
     fn accept_stamp(&mut self, frame: &KeypointFrame, stamp: StampOrder, received_ns: i64) {
@@ -250,8 +283,11 @@ impl HandControl {
     fn time_step_s(&self, pending: &PendingFrame) -> f64 {
         let step_ns = match self.last_solved {
             None => return FIRST_DT_S,
-            Some((_, received)) if pending.clock_jump => pending.received_ns - received,
-            Some((source, _)) => pending.frame.source_ns - source,
+            Some((_, received, jumps)) if pending.clock_jumps > jumps => {
+                pending.received_ns - received
+            }
+            // The sender's stamps may lie anywhere in i64 (saturated; clamped below anyway).
+            Some((source, _, _)) => pending.frame.source_ns.saturating_sub(source),
         };
         (step_ns as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
     }
@@ -263,7 +299,11 @@ impl HandControl {
             self.count_rejection(Rejection::Retargeter);
             return None;
         };
-        self.last_solved = Some((pending.frame.source_ns, pending.received_ns));
+        self.last_solved = Some((
+            pending.frame.source_ns,
+            pending.received_ns,
+            pending.clock_jumps,
+        ));
         let counters = &mut self.counters;
         counters.solves += 1;
         match solution.status {

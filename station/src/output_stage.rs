@@ -55,6 +55,9 @@ pub struct OutputStage {
     previous_state: DriveState,
     /// Engaged, but the arm clutch still waits for the first glove wrist pose.
     arm_engage_pending: bool,
+    /// The last target sent since the clutch last latched: what a hold repeats (never one
+    /// of an earlier engagement).
+    held_target: Option<Isometry3<f64>>,
 }
 
 impl OutputStage {
@@ -76,6 +79,7 @@ impl OutputStage {
             ),
             previous_state: DriveState::Disengaged,
             arm_engage_pending: false,
+            held_target: None,
         })
     }
 
@@ -112,10 +116,25 @@ impl OutputStage {
         }
     }
 
-    /// The arm on a tick at `now_ns` in drive `state`. The clutch engages at the first tick
-    /// with a glove wrist pose after the station engaged (the wrist topic may deliver after the
-    /// keypoints that engaged it) and releases on disengage; while held the last target is
-    /// repeated. `Err` says why the clutch could not engage (the station warns the operator).
+    /// The operator disengaged: release the arm clutch at once, not at the next tick, so an
+    /// engage granted before that tick latches afresh from the robot's current pose.
+    pub fn disengage(&mut self) {
+        self.previous_state = DriveState::Disengaged;
+        self.release_arm();
+    }
+
+    fn release_arm(&mut self) {
+        self.arm_engage_pending = false;
+        self.held_target = None;
+        self.arm.disengage();
+    }
+
+    /// The arm on a tick at `now_ns` in drive `state`. The clutch engages at the first engaged
+    /// tick with a glove wrist pose after the station left the disengaged state (the wrist
+    /// topic may deliver after the keypoints that engaged it, and the first tick may find the
+    /// input already stale, held) and releases on disengage; while held the last target of
+    /// this engagement is repeated. `Err` says why the clutch could not engage (the station
+    /// warns the operator).
     pub fn arm_step(
         &mut self,
         state: DriveState,
@@ -131,10 +150,13 @@ impl OutputStage {
         };
         let target = match state {
             DriveState::Engaged => match self.arm.step(wrist) {
-                Ok(command) => command.map(|c| c.target),
+                Ok(command) => {
+                    self.held_target = command.map(|c| c.target);
+                    self.held_target
+                }
                 Err(e) => return (ArmStep::Refused(e), engage_error),
             },
-            DriveState::Held => self.arm.last_command().map(|c| c.target),
+            DriveState::Held => self.held_target,
             DriveState::Disengaged => None,
         };
         let step = match target {
@@ -151,11 +173,10 @@ impl OutputStage {
         let was = self.previous_state;
         self.previous_state = state;
         match (was, state) {
-            (DriveState::Disengaged, DriveState::Engaged) => self.arm_engage_pending = true,
-            (_, DriveState::Disengaged) => {
-                self.arm_engage_pending = false;
-                self.arm.disengage();
+            (DriveState::Disengaged, DriveState::Engaged | DriveState::Held) => {
+                self.arm_engage_pending = true;
             }
+            (_, DriveState::Disengaged) => self.release_arm(),
             _ => {}
         }
         let (true, DriveState::Engaged, Some(wrist)) =
@@ -164,6 +185,7 @@ impl OutputStage {
             return None;
         };
         self.arm_engage_pending = false;
+        self.held_target = None;
         let engaged = match inputs.robot_pose {
             Some(robot) => self.arm.engage(wrist, robot),
             None => self.arm.engage_at_start_pose(wrist),

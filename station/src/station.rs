@@ -284,12 +284,13 @@ impl Station {
 
     /// Whether a frame stamped `source_ns` may be commanded now: at least
     /// `1 / max_command_rate_hz` after the last commanded frame by the senders' stamps (a
-    /// backwards stamp, after a sender's clock jump, always may).
+    /// backwards stamp, after a sender's clock jump, always may). Stamps are the sender's and
+    /// may lie anywhere in `i64`: the difference saturates.
     fn under_ceiling(&self, source_ns: i64) -> bool {
         let min_interval_ns = (1e9 / self.control.max_command_rate_hz) as i64;
-        self.hand
-            .last_solved_source_ns()
-            .is_none_or(|last| source_ns - last >= min_interval_ns || source_ns < last)
+        self.hand.last_solved_source_ns().is_none_or(|last| {
+            source_ns.saturating_sub(last) >= min_interval_ns || source_ns < last
+        })
     }
 
     fn on_control(&mut self, control: ControlInput, now_ns: i64) -> StationOutputs {
@@ -301,7 +302,10 @@ impl Station {
                     self.hand.engage(now_ns);
                 }
             }
-            ControlInput::Disengage => self.hand.disengage(),
+            ControlInput::Disengage => {
+                self.hand.disengage();
+                self.output.disengage();
+            }
             ControlInput::ArmBlocked { blocked } => {
                 if blocked && !self.arm_inputs.blocked {
                     outputs.notices.push(Notice::ArmBlocked);

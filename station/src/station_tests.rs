@@ -267,3 +267,152 @@ fn a_human_study_station_judges_and_times_frames_but_never_drives_a_robot() {
     );
     assert!(!status.arm.enabled, "no arm in a human study");
 }
+
+#[test]
+fn senders_stamps_at_the_ends_of_i64_overflow_nothing() {
+    // Found by the station fuzzer: the command-rate ceiling subtracted the last commanded
+    // stamp from the new one, which overflowed (a panic in debug builds, a wrong decision in
+    // release) for a sender whose stamps went from i64::MIN to near i64::MAX.
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let StationInput::Keypoints(mut first) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    first.source_ns = i64::MIN;
+    assert!(s.step(StationInput::Keypoints(first), 0).hand.is_some());
+    let StationInput::Keypoints(mut second) = frame(0.25, 0) else {
+        unreachable!()
+    };
+    second.source_ns = i64::MAX;
+    assert!(
+        s.step(StationInput::Keypoints(second), 10 * MS)
+            .hand
+            .is_some()
+    );
+    let StationInput::Keypoints(mut third) = frame(0.3, 0) else {
+        unreachable!()
+    };
+    third.source_ns = i64::MIN + 1;
+    assert!(
+        s.step(StationInput::Keypoints(third), 20 * MS)
+            .hand
+            .is_some()
+    );
+}
+
+fn arm_feedback(x: f64) -> StationInput {
+    StationInput::ArmFeedback(isometry_to_pose(&nalgebra::Isometry3::translation(
+        x, 0.1, 0.3,
+    )))
+}
+
+fn arm_x(outputs: &StationOutputs) -> f64 {
+    outputs.arm.as_ref().unwrap().pose.position.x
+}
+
+#[test]
+fn a_disengage_and_engage_between_two_ticks_re_clutches_the_arm_from_its_current_pose() {
+    // Found by the station fuzzer: the arm clutch followed the drive state only at ticks, so
+    // a disengage and an engage between two ticks kept the old latch, and the arm was sent
+    // back to where it was clutched, however far the robot had been moved since.
+    let mut s = station(&StationConfig::default());
+    s.step(arm_feedback(0.4), 0);
+    s.step(wrist(0.0), 0);
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    assert_eq!(arm_x(&s.step(tick(), 10 * MS)), 0.4);
+    s.step(arm_feedback(0.6), 20 * MS);
+    s.step(StationInput::Control(ControlInput::Disengage), 21 * MS);
+    s.step(frame(0.25, 22), 22 * MS);
+    s.step(engage(), 23 * MS);
+    assert_eq!(
+        arm_x(&s.step(tick(), 30 * MS)),
+        0.6,
+        "latched afresh at the robot's pose"
+    );
+}
+
+#[test]
+fn a_hold_right_after_an_engage_sends_no_arm_target_of_an_earlier_engagement() {
+    // Found by the station fuzzer: when the first tick after an engage found the input
+    // already stale (held), the arm was sent the last target of the previous engagement.
+    let mut s = station(&StationConfig::default());
+    s.step(arm_feedback(0.4), 0);
+    s.step(wrist(0.0), 0);
+    s.step(frame(0.2, 0), 0);
+    s.step(engage(), MS);
+    assert_eq!(arm_x(&s.step(tick(), 10 * MS)), 0.4);
+    s.step(StationInput::Control(ControlInput::Disengage), 20 * MS);
+    s.step(tick(), 30 * MS);
+    s.step(arm_feedback(0.6), 40 * MS);
+    s.step(frame(0.25, 100), 100 * MS);
+    s.step(engage(), 200 * MS);
+    let held = s.step(tick(), 300 * MS);
+    assert_eq!(s.state(), DriveState::Held);
+    assert_eq!(held.arm, None, "nothing latched yet in this engagement");
+    s.step(frame(0.3, 310), 310 * MS);
+    assert_eq!(
+        arm_x(&s.step(tick(), 320 * MS)),
+        0.6,
+        "latched at the robot's pose"
+    );
+}
+
+#[test]
+fn a_jump_of_the_senders_clock_at_a_repeat_times_the_next_command_by_receive_times() {
+    // Found by the station fuzzer: a jump seen at a repeated (or superseded) frame left the
+    // next retargeted frame's stamp compared across the jump, a time step clamped to 0.1 ms
+    // that froze the hand for a frame.
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let index = model().dof_index("index_mcp").unwrap();
+    let before = q_of(&s.step(frame(0.2, 0), 0))[index];
+    let StationInput::Keypoints(mut repeat) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    repeat.source_ns = -3_600_000 * MS;
+    let out = s.step(StationInput::Keypoints(repeat), 20 * MS);
+    assert_eq!(out.verdict, Some(Verdict::Repeat));
+    assert_eq!(s.counters().source_clock_jumps, 1);
+    let after = q_of(&s.step(frame(0.8, 40 - 3_600_000), 40 * MS))[index];
+    assert!(
+        after - before > 0.05,
+        "moved {} rad in 40 ms of receive time",
+        after - before
+    );
+}
+
+#[test]
+fn after_a_jump_of_the_senders_clock_the_gate_times_its_jump_allowance_by_receive_times() {
+    // Found by the station fuzzer: after a jump back of the sender's clock the gate compared
+    // the new stamps with its reference's, found no time had passed and allowed one interval's
+    // motion however long ago the reference was, so a hand that had moved on stayed rejected
+    // as jumps (for seconds at a time in the fuzzer's runs).
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    let mut s = station(&config);
+    let StationInput::Keypoints(reference) = frame(0.2, 0) else {
+        unreachable!()
+    };
+    s.step(StationInput::Keypoints(reference.clone()), 0);
+    let hour_ago = -3_600_000 * MS;
+    let repeat = KeypointFrame {
+        source_ns: hour_ago,
+        ..reference.clone()
+    };
+    assert_eq!(
+        s.step(StationInput::Keypoints(repeat), 20 * MS).verdict,
+        Some(Verdict::Repeat)
+    );
+    let mut moved = reference;
+    moved.points[9].z += 0.13;
+    moved.source_ns = hour_ago + 600 * MS;
+    let out = s.step(StationInput::Keypoints(moved), 620 * MS);
+    assert_eq!(
+        out.verdict,
+        Some(Verdict::New),
+        "13 cm in 600 ms is no jump"
+    );
+}
