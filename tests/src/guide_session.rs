@@ -88,6 +88,26 @@ pub struct Session<'a> {
     pub nodes: Vec<Node>,
 }
 
+/// The guide's three hosts and their addresses on the lab network.
+pub const GUIDE_HOSTS: [(&str, std::net::Ipv4Addr); 3] = [
+    ("A", std::net::Ipv4Addr::new(10, 251, 0, 1)),
+    ("B", std::net::Ipv4Addr::new(10, 251, 0, 2)),
+    ("C", std::net::Ipv4Addr::new(10, 251, 0, 3)),
+];
+
+impl<'a> Session<'a> {
+    /// A session on `lab` in `dir`, with `bin` first on the hosts' PATH; nothing run yet.
+    pub fn new(lab: &'a NetnsLab, dir: PathBuf, bin: PathBuf) -> Session<'a> {
+        Session {
+            lab,
+            dir,
+            bin,
+            env: BTreeMap::new(),
+            nodes: Vec::new(),
+        }
+    }
+}
+
 impl Session<'_> {
     /// A host's home directory.
     pub fn home(&self, host: &str) -> PathBuf {

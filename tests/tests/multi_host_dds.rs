@@ -13,14 +13,12 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::collections::BTreeMap;
-use std::net::Ipv4Addr;
 use std::path::Path;
 use std::time::Duration;
 
 use msgs::{JointState, StringMsg};
 use pomdar_tests::guide_session::{
-    Session, guide_blocks_and_station_config, lab_tag_or_skip, session_dir, wall_ns,
+    GUIDE_HOSTS, Session, guide_blocks_and_station_config, lab_tag_or_skip, session_dir, wall_ns,
 };
 use pomdar_tests::interop::reference_file;
 use pomdar_tests::netns_lab::NetnsLab;
@@ -34,11 +32,6 @@ const MS: i64 = 1_000_000;
 const CUT: Duration = Duration::from_secs(3);
 /// How long the replay runs after the cable is back, before everything stops.
 const AFTER_RESTORE: Duration = Duration::from_secs(4);
-const HOSTS: [(&str, Ipv4Addr); 3] = [
-    ("A", Ipv4Addr::new(10, 251, 0, 1)),
-    ("B", Ipv4Addr::new(10, 251, 0, 2)),
-    ("C", Ipv4Addr::new(10, 251, 0, 3)),
-];
 const JOINT_TARGETS: &str = "/pomdar/hand/joint_targets";
 const ARM_TARGETS: &str = "/franka/end_effector_pose_cmd";
 const KEYPOINTS: &str = "/ingress/mano";
@@ -404,14 +397,8 @@ fn three_hosts_deployed_as_the_guide_says_drive_the_robot_and_hold_when_the_glov
     let (blocks, config) = guide_blocks_and_station_config(&workspace_root());
     let (dir, bin) = session_dir("multi-host", &tag);
 
-    let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
-    let mut session = Session {
-        lab: &lab,
-        dir: dir.clone(),
-        bin,
-        env: BTreeMap::new(),
-        nodes: Vec::new(),
-    };
+    let lab = NetnsLab::create(&tag, &GUIDE_HOSTS).unwrap();
+    let mut session = Session::new(&lab, dir.clone(), bin);
     let mut reports = Vec::new();
     for block in &blocks {
         println!("== {}", block.title);

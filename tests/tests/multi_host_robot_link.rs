@@ -15,14 +15,12 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
-use std::collections::BTreeMap;
-use std::net::Ipv4Addr;
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 use pomdar_tests::deployment_guide::{GuideStep, HostBlock};
 use pomdar_tests::guide_session::{
-    Session, guide_blocks_and_station_config, lab_tag_or_skip, session_dir, wall_ns,
+    GUIDE_HOSTS, Session, guide_blocks_and_station_config, lab_tag_or_skip, session_dir, wall_ns,
 };
 use pomdar_tests::netns_lab::NetnsLab;
 use pomdar_tests::workspace_root;
@@ -30,11 +28,6 @@ use serde_json::Value;
 use station::StationConfig;
 
 const MS: i64 = 1_000_000;
-const HOSTS: [(&str, Ipv4Addr); 3] = [
-    ("A", Ipv4Addr::new(10, 251, 0, 1)),
-    ("B", Ipv4Addr::new(10, 251, 0, 2)),
-    ("C", Ipv4Addr::new(10, 251, 0, 3)),
-];
 /// How long the robot PC's cable stays pulled, in turn.
 const CUTS: [Duration; 2] = [Duration::from_secs(3), Duration::from_secs(8)];
 /// Before the first cut, between the cuts and after the last.
@@ -171,14 +164,8 @@ fn cuts_of_the_robot_link_deliver_no_old_command_and_commands_resume_within_a_ti
         "the guide's station configuration relays nothing"
     );
     let (dir, bin) = session_dir("robot-link", &tag);
-    let lab = NetnsLab::create(&tag, &HOSTS).unwrap();
-    let mut session = Session {
-        lab: &lab,
-        dir: dir.clone(),
-        bin,
-        env: BTreeMap::new(),
-        nodes: Vec::new(),
-    };
+    let lab = NetnsLab::create(&tag, &GUIDE_HOSTS).unwrap();
+    let mut session = Session::new(&lab, dir.clone(), bin);
     // The guide's robot PC, then its station PC (its last block, the probe, is the other
     // test's); the glove PC runs the steady simulated glove.
     for block in blocks.iter().filter(|b| b.host != "A").take(2) {
