@@ -357,6 +357,96 @@ fn enter_unlisted_logs(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mcap_log::{TrialWriter, TrialWriterOptions};
+    use serde_json::json;
+
+    fn plan() -> SessionPlan {
+        SessionPlan {
+            task: "V1".into(),
+            embodiment: "orca_full".into(),
+            user: "u".into(),
+            operator: "o".into(),
+            practice: 0,
+            trials: 3,
+            calibration_profile: None,
+            config_digest: String::new(),
+            baseline: None,
+        }
+    }
+
+    fn not_scored(_: &Path) -> Result<TrialScore, String> {
+        Err("not scored here".into())
+    }
+
+    /// A trial log cut short as a kill leaves it: `NAME.part` with its start event.
+    fn killed_log(dir: &Path, name: &str) {
+        let mut writer = TrialWriter::create(&dir.join(name), TrialWriterOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let started = writer.write_event(1_000, &json!({"event": "start"}));
+        assert!(started.is_ok());
+    }
+
+    fn files(m: &Manifest) -> Vec<(&str, TrialStatus)> {
+        m.trials
+            .iter()
+            .map(|t| (t.file.as_str(), t.status))
+            .collect()
+    }
+
+    #[test]
+    fn a_resume_enters_what_a_kill_left_between_a_step_and_the_manifest() {
+        let dir = std::env::temp_dir().join(format!("pomdar-session-dir-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        let opened = open_session(&dir, &plan(), &not_scored);
+        assert!(opened.is_ok());
+        // t01 finished (the station linked it to its name, the .part not yet removed), t02
+        // recovered by a resume killed before it removed the .part, t03 recovered by one
+        // killed mid-recovery, t03-a2's set-aside name the manifest missed.
+        killed_log(&dir, "V1-t01.mcap");
+        std::fs::hard_link(dir.join("V1-t01.mcap.part"), dir.join("V1-t01.mcap")).unwrap();
+        killed_log(&dir, "V1-t02.mcap");
+        assert!(
+            recover(
+                &dir.join("V1-t02.mcap.part"),
+                &dir.join("V1-t02.mcap.interrupted")
+            )
+            .is_ok()
+        );
+        killed_log(&dir, "V1-t03.mcap");
+        std::fs::write(dir.join("V1-t03.mcap.interrupted.recovering"), b"cut short").unwrap();
+        std::fs::write(dir.join("V1-t03-a2.mcap.redone"), b"set aside").unwrap();
+        let (manifest, said) = open_session(&dir, &plan(), &not_scored).unwrap();
+        assert_eq!(
+            files(&manifest),
+            [
+                ("V1-t03.mcap.interrupted", TrialStatus::Interrupted),
+                ("V1-t01.mcap", TrialStatus::Unscorable),
+                ("V1-t02.mcap.interrupted", TrialStatus::Interrupted),
+                ("V1-t03-a2.mcap.redone", TrialStatus::Redone),
+            ],
+            "{said:?}"
+        );
+        let mut left: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            [
+                "V1-t01.mcap",
+                "V1-t02.mcap.interrupted",
+                "V1-t03-a2.mcap.redone",
+                "V1-t03.mcap.interrupted",
+                "session.json"
+            ]
+        );
+        // Entered once: a second resume finds nothing more.
+        let (again, _) = open_session(&dir, &plan(), &not_scored).unwrap();
+        assert_eq!(files(&again), files(&manifest));
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     #[test]
     fn names_are_checked_and_slots_parse() {
