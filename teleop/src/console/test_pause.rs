@@ -33,11 +33,17 @@ fn pause() -> Option<Duration> {
     })
 }
 
-/// With [`TEST_PAUSE_ENV`] set: says `test pause N ms: STEP` on stderr and sleeps N ms.
-/// Without it, nothing.
+/// With [`TEST_PAUSE_ENV`] set: says `test pause N ms: STEP` on stderr and sleeps N ms (on a
+/// multi-thread runtime, with its other tasks moved off this worker, so the station and the
+/// simulated glove keep running). Without it, nothing.
 pub fn test_pause(step: &str) {
-    if let Some(pause) = pause() {
-        eprintln!("test pause {} ms: {step}", pause.as_millis());
-        std::thread::sleep(pause);
+    let Some(pause) = pause() else { return };
+    eprintln!("test pause {} ms: {step}", pause.as_millis());
+    let sleep = || std::thread::sleep(pause);
+    match tokio::runtime::Handle::try_current() {
+        Ok(h) if h.runtime_flavor() == tokio::runtime::RuntimeFlavor::MultiThread => {
+            tokio::task::block_in_place(sleep);
+        }
+        _ => sleep(),
     }
 }
