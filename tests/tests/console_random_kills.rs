@@ -390,8 +390,9 @@ struct Kill {
     /// The kill's wall time, ns since the Unix epoch.
     wall_ns: i64,
     phase: String,
-    /// The running trial's log (`NAME.mcap.part`) at the kill, if one was being written.
-    part: Option<String>,
+    /// The running trial's log (`NAME.mcap.part`) at the kill, if one was being written, and
+    /// when it was created (ns since the Unix epoch).
+    part: Option<(String, i64)>,
     /// What the files said at the kill.
     files: String,
     /// Of the running trial: how much its recovered log lacks before the kill, ms.
@@ -515,7 +516,10 @@ fn look_after_kill(session: &Session, before: &[String], kill: &mut Kill, seen: 
         {
             // A .part beside its finished log is the same file, linked just before the kill.
             if !names.iter().any(|n| n == log) && !before.contains(name) {
-                kill.part = Some(name.clone());
+                let meta = std::fs::metadata(dir.join(name)).unwrap();
+                let born = meta.created().or_else(|_| meta.modified()).unwrap();
+                let born_ns = born.duration_since(UNIX_EPOCH).unwrap().as_nanos() as i64;
+                kill.part = Some((name.clone(), born_ns));
             }
         }
     }
@@ -523,7 +527,7 @@ fn look_after_kill(session: &Session, before: &[String], kill: &mut Kill, seen: 
         "{logs} logs, {listed} in the manifest{}",
         kill.part
             .as_ref()
-            .map(|p| format!(", {p}"))
+            .map(|(p, _)| format!(", {p}"))
             .unwrap_or_default()
     );
 }
@@ -578,7 +582,9 @@ fn last_log_time_ns(path: &Path) -> Option<i64> {
 /// kill.
 fn measure_losses(sessions: &[Session], seen: &mut Seen) {
     for kill in &mut seen.kills {
-        let Some(part) = &kill.part else { continue };
+        let Some((part, born_ns)) = &kill.part else {
+            continue;
+        };
         let session = sessions.iter().find(|s| s.task == kill.task).unwrap();
         let recovered = session
             .dir
@@ -589,8 +595,12 @@ fn measure_losses(sessions: &[Session], seen: &mut Seen) {
             kill.phase,
             recovered.display()
         );
-        let last = last_log_time_ns(&recovered)
-            .unwrap_or_else(|| panic!("{}: nothing recovered", recovered.display()));
+        // Killed between the log's creation and its first flush (the start event), nothing
+        // is recovered: the trial lost all it had, since the file was created.
+        let last = last_log_time_ns(&recovered).unwrap_or_else(|| {
+            kill.phase.push_str(" (log created, nothing flushed yet)");
+            *born_ns
+        });
         kill.lost_ms = Some((kill.wall_ns - last) as f64 * 1e-6);
     }
 }
