@@ -56,6 +56,11 @@ use crate::console::view::{ConsoleView, Screen, SessionInfo};
 use crate::tui::script_player::ScriptPlayer;
 use crate::tui::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
 
+/// How often a trial's log is flushed (and synced) at least, ns of log time: a kill or a
+/// crash loses at most this much of the running trial, plus the writes in flight, well within
+/// the second the console promises (the writer's default, 1 s, left no margin for them).
+const TRIAL_LOG_FLUSH_INTERVAL_NS: i64 = 500_000_000;
+
 /// Exit status after Ctrl-C (or SIGTERM).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
@@ -524,6 +529,7 @@ fn spawn_station(
             status: Some(status_tx),
             events: Some(events_tx),
             tap,
+            trial_log_flush_interval_ns: Some(TRIAL_LOG_FLUSH_INTERVAL_NS),
             ..StationHooks::default()
         },
     ));
