@@ -4,10 +4,10 @@
 //! loopback DDS).
 //!
 //! The moments are drawn by a seeded generator (the seed is printed; `POMDAR_KILL_SEED=N`
-//! replays a run) from a deck that covers the console's whole life: the start of a resumed
-//! process (its first 400 ms), a running trial, a finished trial's log being saved and scored,
-//! the manifest being written, the report being written, and the recovery of a `.part` log on
-//! resume. The saving steps take milliseconds, so the console runs with its test-only
+//! draws the same moments again, where they land may still shift with the machine's timing)
+//! from a deck that covers the console's whole life: the start of a resumed process (its
+//! first 1.2 s), a running trial, a finished trial's log being saved and scored, the manifest
+//! just saved, the report being written, and the recovery of a `.part` log on resume. The saving steps take milliseconds, so the console runs with its test-only
 //! slow-down `POMDAR_CONSOLE_TEST_PAUSE_MS` (a pause at each step, announced on stderr) and a
 //! kill aimed at a step lands at a random point of its pause. Each kill's phase is read from
 //! the console's last line before it and the files it left, and printed in a table.
