@@ -696,7 +696,7 @@ fn print_table(seen: &Seen) {
 fn the_console_killed_at_random_moments_resumes_losing_no_finished_trial() {
     let started = Instant::now();
     let seed = seed();
-    println!("seed {seed} (POMDAR_KILL_SEED={seed} replays these kill moments)");
+    println!("seed {seed} (POMDAR_KILL_SEED={seed} draws these kill moments again)");
     let mut rng = Rng(seed);
     let root = scratch_dir("console-random-kills");
     std::fs::write(
