@@ -3,6 +3,13 @@
 //! takes the operator's keys (or a `--script`), logs one MCAP per trial, keeps the session
 //! manifest, scores each trial as it ends and writes the session's report when the plan is
 //! done.
+//!
+//! Test-only slow-down, off by default: `POMDAR_CONSOLE_TEST_PAUSE_MS=N` makes the console
+//! sleep N ms (saying `test pause N ms: STEP` on stderr) inside its saving steps (a `.part`
+//! recovered on resume, the resumed manifest, a finished trial's scoring, the manifest after a
+//! trial, the report), so a test's random kills land in them; see
+//! [`crate::console::test_pause`] and `tests/tests/console_random_kills.rs`. Nothing else
+//! changes with it.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -42,11 +49,17 @@ use crate::console::manifest::{MANIFEST_FILE, TrialStatus};
 use crate::console::plain_output::PlainOutput;
 use crate::console::screen::draw;
 use crate::console::session_dir::{SessionPlan, check_name, open_session, session_dir};
+use crate::console::test_pause::test_pause;
 use crate::console::trial_flow::{Effect, Phase, Slot, TrialFlow};
 use crate::console::trial_script::{TrialScriptLine, load_script};
 use crate::console::view::{ConsoleView, Screen, SessionInfo};
 use crate::tui::script_player::ScriptPlayer;
 use crate::tui::terminal::{FullScreen, Input, full_screen_wanted, read_stdin_lines};
+
+/// How often a trial's log is flushed (and synced) at least, ns of log time: a kill or a
+/// crash loses at most this much of the running trial, plus the writes in flight, well within
+/// the second the console promises (the writer's default, 1 s, left no margin for them).
+const TRIAL_LOG_FLUSH_INTERVAL_NS: i64 = 500_000_000;
 
 /// Exit status after Ctrl-C (or SIGTERM).
 pub const EXIT_INTERRUPTED: u8 = 130;
@@ -260,7 +273,8 @@ pub async fn run_session(
 
     let plan = session_plan(args, &task, &config);
     let dir = session_dir(&args.out, &plan);
-    let (manifest, opened) = open_session(&dir, &plan)?;
+    let score = |path: &Path| inputs.score_file(path).map_err(|e| e.to_string());
+    let (manifest, opened) = open_session(&dir, &plan, &score)?;
     let limits = StartLimits {
         min_glove_rate_hz: args.console.min_glove_rate,
         max_input_age_ms: args.console.max_input_age,
@@ -518,6 +532,7 @@ fn spawn_station(
             status: Some(status_tx),
             events: Some(events_tx),
             tap,
+            trial_log_flush_interval_ns: Some(TRIAL_LOG_FLUSH_INTERVAL_NS),
             ..StationHooks::default()
         },
     ));
@@ -683,6 +698,7 @@ impl Session {
             self.flow
                 .say(format!("error: cannot save the manifest: {e:#}"));
         }
+        test_pause("the manifest saved");
     }
 
     /// A trial set aside: its file renamed.
@@ -700,6 +716,7 @@ impl Session {
             self.report_written = false;
         } else if !self.report_written {
             self.report_written = true;
+            test_pause("the session complete: writing its report");
             match write_session_report(&self.dir, &self.flow, &self.inputs) {
                 Ok(path) => self
                     .flow
@@ -840,6 +857,7 @@ impl TrialConsole {
                 effects.extend(flow.trial_start_failed(&format!("{}: {error}", path.display())));
             }
             StationEvent::TrialFinished(path) => {
+                test_pause(&format!("{} finished: scoring it", path.display()));
                 effects
                     .extend(flow.trial_logged(inputs.score_file(&path).map_err(|e| e.to_string())));
             }

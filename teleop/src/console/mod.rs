@@ -9,6 +9,7 @@ pub mod manifest;
 pub mod plain_output;
 pub mod screen;
 pub mod session_dir;
+pub mod test_pause;
 pub mod trial_flow;
 pub mod trial_script;
 pub mod view;

@@ -571,33 +571,10 @@ impl TrialFlow {
         else {
             return vec![];
         };
-        let mut trial = ManifestTrial {
-            file: file.clone(),
-            practice: slot.practice,
-            index: slot.index,
-            status: TrialStatus::Scored,
-            outcome: None,
-            time_s: Some(time_s),
-            progress: None,
-            correctness: None,
-            score: None,
-            notes: vec![],
-        };
-        match result {
-            Ok(score) => {
-                trial.outcome = Some(score.outcome.name().to_string());
-                trial.time_s = Some(score.time_s);
-                trial.progress = Some(score.progress);
-                trial.correctness = Some(score.correctness);
-                trial.score = score.score;
-                trial.notes = score.notes;
-            }
-            Err(reason) => {
-                trial.status = TrialStatus::Unscorable;
-                self.say(format!("{file} cannot be scored: {reason}; it runs again"));
-                trial.notes.push(reason);
-            }
+        if let Err(reason) = &result {
+            self.say(format!("{file} cannot be scored: {reason}; it runs again"));
         }
+        let mut trial = logged_trial(&file, slot, Some(time_s), result);
         let mut effects = Vec::new();
         let aside = match after {
             AfterLog::Score => None,
@@ -626,6 +603,44 @@ impl TrialFlow {
         };
         effects
     }
+}
+
+/// A finished trial log's manifest entry: scored (`Ok`: its outcome, time, progress,
+/// correctness and score) or not scorable (`Err`: the reason kept in its notes, `time_s` as
+/// the console timed it, if known).
+pub fn logged_trial(
+    file: &str,
+    slot: Slot,
+    time_s: Option<f64>,
+    result: Result<TrialScore, String>,
+) -> ManifestTrial {
+    let mut trial = ManifestTrial {
+        file: file.to_string(),
+        practice: slot.practice,
+        index: slot.index,
+        status: TrialStatus::Scored,
+        outcome: None,
+        time_s,
+        progress: None,
+        correctness: None,
+        score: None,
+        notes: vec![],
+    };
+    match result {
+        Ok(score) => {
+            trial.outcome = Some(score.outcome.name().to_string());
+            trial.time_s = Some(score.time_s);
+            trial.progress = Some(score.progress);
+            trial.correctness = Some(score.correctness);
+            trial.score = score.score;
+            trial.notes = score.notes;
+        }
+        Err(reason) => {
+            trial.status = TrialStatus::Unscorable;
+            trial.notes.push(reason);
+        }
+    }
+    trial
 }
 
 #[cfg(test)]

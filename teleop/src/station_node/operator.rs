@@ -35,6 +35,9 @@ pub struct StationHooks {
     pub tap: Option<Tap>,
     /// The robot's URDF text, published on `/robot_description` (latched) when given.
     pub robot_description: Option<String>,
+    /// The trial logs started by [`OperatorCommand::StartTrial`] flush at least this often,
+    /// ns of log time (`None`: the log writer's default, 1 s).
+    pub trial_log_flush_interval_ns: Option<i64>,
 }
 
 /// A station event for the process that runs it.

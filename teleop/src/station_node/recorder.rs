@@ -66,7 +66,22 @@ impl StationRecorder {
         config: &StationConfig,
         now_ns: i64,
     ) -> Result<StationRecorder, NodeError> {
-        let mut writer = TrialWriter::create(&options.path, TrialWriterOptions::default())?;
+        StationRecorder::start_flushing(options, config, now_ns, None)
+    }
+
+    /// As [`StationRecorder::start`], flushing at least every `flush_interval_ns` of log time
+    /// (`None`: the writer's default, 1 s).
+    pub fn start_flushing(
+        options: &RecordingOptions,
+        config: &StationConfig,
+        now_ns: i64,
+        flush_interval_ns: Option<i64>,
+    ) -> Result<StationRecorder, NodeError> {
+        let mut writer_options = TrialWriterOptions::default();
+        if let Some(interval) = flush_interval_ns {
+            writer_options.auto_flush_interval_ns = Some(interval);
+        }
+        let mut writer = TrialWriter::create(&options.path, writer_options)?;
         let input_qos = OfferedQos::from(config.input.qos);
         let output_qos = OfferedQos::from(config.output.qos);
         for topic in [&config.input.keypoints_topic] {

@@ -586,7 +586,8 @@ impl StationNode {
     fn start_trial(&mut self, options: &RecordingOptions, now: i64) {
         self.finish_trial(now);
         let options = &with_source(options, self.keypoint_source.as_ref(), &self.config);
-        match StationRecorder::start(options, &self.config, now) {
+        let flush = self.hooks.trial_log_flush_interval_ns;
+        match StationRecorder::start_flushing(options, &self.config, now, flush) {
             Ok(r) => {
                 self.recorder = Some(r);
                 self.record_latched(now);
