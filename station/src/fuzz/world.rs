@@ -92,7 +92,12 @@ impl World {
             self.rng.int(10 * MS, 40 * MS)
         } else if r < 0.997 {
             tally.count("clock.station_gap_150ms_to_1s");
-            self.rng.int(150 * MS, 1000 * MS)
+            // Most of them between the default hold (150 ms) and disengage (500 ms) timeouts,
+            // so that a tick in the gap finds the station holding.
+            match self.rng.unit() < 0.6 {
+                true => self.rng.int(150 * MS, 450 * MS),
+                false => self.rng.int(450 * MS, 1000 * MS),
+            }
         } else {
             tally.count("clock.station_gap_1s_to_5s");
             self.rng.int(1000 * MS, 5000 * MS)

@@ -176,7 +176,7 @@ impl Manifest {
                 allowed: allowed.to_string(),
             })
         };
-        if super::session_dir::check_name("task", &self.task).is_err() {
+        if check_name("task", &self.task).is_err() {
             return refuse(
                 "task".into(),
                 &self.task,
@@ -264,6 +264,23 @@ pub fn trial_file_problem(file: &str, task: &str) -> Option<String> {
 }
 
 /// An empty manifest for `task` with `practice` + `trials` planned (tests).
+/// Checks a name used in file names and metadata: letters, digits, `_`, `-`, `.`.
+pub fn check_name(flag: &str, value: &str) -> Result<(), ConsoleError> {
+    let ok = !value.is_empty()
+        && value.len() <= 64
+        && !value.starts_with('.')
+        && value
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    if !ok {
+        return Err(ConsoleError::Name {
+            flag: flag.to_string(),
+            value: value.to_string(),
+        });
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 pub(crate) fn test_manifest(task: &str, practice: u32, trials: u32) -> Manifest {
     Manifest {

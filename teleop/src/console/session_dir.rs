@@ -38,22 +38,7 @@ pub struct SessionPlan {
     pub baseline: Option<String>,
 }
 
-/// Checks a name used in file names and metadata: letters, digits, `_`, `-`, `.`.
-pub fn check_name(flag: &str, value: &str) -> Result<(), ConsoleError> {
-    let ok = !value.is_empty()
-        && value.len() <= 64
-        && !value.starts_with('.')
-        && value
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
-    if !ok {
-        return Err(ConsoleError::Name {
-            flag: flag.to_string(),
-            value: value.to_string(),
-        });
-    }
-    Ok(())
-}
+pub use super::manifest::check_name;
 
 /// The session directory of a plan under `root`: `ROOT/<user>/<embodiment>/<task>`.
 pub fn session_dir(root: &Path, plan: &SessionPlan) -> PathBuf {
