@@ -11,8 +11,9 @@ use teleop::command;
 /// Today: the ROS 2 station (glove keypoints in, ORCA joint targets and a constrained Franka
 /// pose out), trial recording to MCAP, re-simulation, recovery and replay, a simulated
 /// glove, mock robot nodes, the all-in-one demo, hand model inspection, the per-user glove
-/// calibration, scoring trial logs against a human baseline, the Rokoko Studio glove
-/// ingress, a DDS discovery probe for multi-host set-ups (docs/DEPLOYMENT.md), a
+/// calibration, scoring trial logs against a human baseline, the Rokoko Studio and Apple
+/// Vision Pro ingresses, a DDS discovery probe and the robot PC's command relay for
+/// multi-host set-ups (docs/DEPLOYMENT.md), a
 /// retargeting quality report for a recording, commanded vs measured joint angles of a trial,
 /// and the operator console for timed trials.
 #[derive(Debug, Parser)]
