@@ -39,7 +39,8 @@ pub struct DemoArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "motion")]
     pub glove_script: Option<PathBuf>,
     /// Keypoint noise of the simulated glove, standard deviation per axis, mm (0–50; default
-    /// 1, or 0 with --glove-script: a task script plays exactly unless given noise).
+    /// 1, or 0.5 with --glove-script: the noise of a hand at rest, so the script's still
+    /// phases are not taken for a stalled glove).
     #[arg(long, value_name = "MM")]
     pub glove_jitter_mm: Option<f64>,
     /// Glove publishing rate, Hz.
@@ -193,7 +194,10 @@ pub(crate) fn glove_jitter_m(jitter_mm: Option<f64>, scripted: bool) -> anyhow::
             anyhow::bail!("--glove-jitter-mm {mm} must be in [0, 50] mm")
         }
         Some(mm) => Ok(mm * 1e-3),
-        None if scripted => Ok(0.0),
+        // A worn glove is never perfectly still: a script's still phases carry the noise of a
+        // hand at rest, or the station would take their identical frames for a stalled stream
+        // and release the arm after its disengage timeout.
+        None if scripted => Ok(crate::sim::sim_glove_node::REST_JITTER_M),
         None => Ok(SimGloveConfig::default().jitter_m),
     }
 }

@@ -141,7 +141,8 @@ pub struct TrialArgs {
     #[arg(long, value_name = "FILE", requires = "physics")]
     pub scene: Option<PathBuf>,
     /// With --simulate: the simulated glove's keypoint noise, standard deviation per axis, mm
-    /// (0–50; default 1, or 0 with --simulate-glove-script).
+    /// (0–50; default 1, or 0.5 with --simulate-glove-script: the noise of a hand at rest, so
+    /// the script's still phases are not taken for a stalled glove).
     #[arg(long, value_name = "MM", requires = "simulate")]
     pub simulate_glove_jitter_mm: Option<f64>,
     /// With --simulate: the simulated hand's size relative to an average adult hand

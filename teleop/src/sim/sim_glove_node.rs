@@ -213,6 +213,9 @@ pub async fn publish_glove(
         }
     }
     let first_subscriber_ns = clock.now_ns();
+    // Before its shared origin the glove holds the first posture with noise keyed by the
+    // (negative) time: its own noise, else a hand's at rest. Never identical frames, which
+    // the station takes for a stalled glove.
     let resting = match &origin {
         GloveOrigin::Shared(_) if glove.jitter_sd_m() == 0.0 => Some(
             glove
@@ -220,7 +223,8 @@ pub async fn publish_glove(
                 .with_jitter(REST_JITTER_M, config.seed)
                 .map_err(|source| SimError::Glove { source })?,
         ),
-        _ => None,
+        GloveOrigin::Shared(_) => Some(glove.clone()),
+        GloveOrigin::FirstSubscriber => None,
     };
     let start_ns = || match &origin {
         GloveOrigin::FirstSubscriber => Some(first_subscriber_ns),
