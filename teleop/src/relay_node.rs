@@ -6,7 +6,6 @@
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
-use std::time::{Duration, Instant};
 
 use futures::StreamExt as _;
 use msgs::{Float32MultiArray, JointState, PoseStamped, RosMessage};
@@ -17,10 +16,11 @@ use station::robot_link::{AgeCounts, AgeVerdict, CommandAgeGate};
 use tokio::sync::watch;
 
 use crate::clock::StationClock;
+use crate::ingress::log_limit::LogLimiter;
 use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
 
-/// How often at most the relay says it dropped commands.
-const WARNING_PERIOD: Duration = Duration::from_secs(5);
+/// How often at most the relay says it dropped commands, nanoseconds.
+const WARNING_PERIOD_NS: i64 = 5_000_000_000;
 
 /// One relayed topic: from the station's relay topic to the robot's.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -168,15 +168,15 @@ struct LegContext<'a> {
     report: &'a Mutex<RelayReport>,
 }
 
-/// Drops since the last warning, said at most once per [`WARNING_PERIOD`].
+/// Drops since the last warning, said at most once per [`WARNING_PERIOD_NS`].
 struct DropWarning {
-    last: Option<Instant>,
+    limiter: LogLimiter,
     counts_at_last: AgeCounts,
 }
 
 impl DropWarning {
-    fn maybe_say(&mut self, topic: &str, counts: &AgeCounts, max_age_ms: u64) {
-        if self.last.is_some_and(|t| t.elapsed() < WARNING_PERIOD) {
+    fn maybe_say(&mut self, topic: &str, counts: &AgeCounts, max_age_ms: u64, now_ns: i64) {
+        if self.limiter.allow("dropped", now_ns).is_none() {
             return;
         }
         let old = counts.too_old - self.counts_at_last.too_old;
@@ -198,7 +198,6 @@ impl DropWarning {
             parts.push(format!("{unstamped} without a send time"));
         }
         eprintln!("relay: {topic}: dropped {}", parts.join(", "));
-        self.last = Some(Instant::now());
         self.counts_at_last = counts.clone();
     }
 }
@@ -212,7 +211,7 @@ async fn relay_leg<M: RosMessage + 'static>(
     let topic = leg.route.to.as_str();
     let mut gate = CommandAgeGate::new(context.max_age_ms);
     let mut warning = DropWarning {
-        last: None,
+        limiter: LogLimiter::new(WARNING_PERIOD_NS),
         counts_at_last: AgeCounts::default(),
     };
     let mut stream = Box::pin(leg.subscription.async_stream());
@@ -240,7 +239,7 @@ async fn relay_leg<M: RosMessage + 'static>(
         entry.input_errors += u64::from(verdict.is_none());
         entry.publish_failed += u64::from(failed);
         if verdict.is_some_and(|v| !matches!(v, AgeVerdict::Forward)) {
-            warning.maybe_say(topic, gate.counts(), context.max_age_ms);
+            warning.maybe_say(topic, gate.counts(), context.max_age_ms, now);
         }
     }
 }
