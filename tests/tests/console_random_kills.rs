@@ -21,6 +21,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+use station::fuzz::rng::FuzzRng as Rng;
 use std::collections::BTreeMap;
 use std::io::{BufRead as _, BufReader};
 use std::path::{Path, PathBuf};
@@ -57,25 +58,10 @@ fn unix_ns() -> i64 {
         .as_nanos() as i64
 }
 
-/// xorshift64*: the kill moments, reproducible from the seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-
-    /// Uniform in [low, high) ms.
-    fn millis(&mut self, low: u64, high: u64) -> Duration {
-        Duration::from_millis(low + self.next() % (high - low).max(1))
-    }
+/// Uniform in [low, high) ms, from the seeded generator (the kill moments, reproducible from
+/// the seed).
+fn millis(rng: &mut Rng, low: u64, high: u64) -> Duration {
+    Duration::from_millis(low + rng.below((high - low).max(1) as usize) as u64)
 }
 
 /// The seed: `POMDAR_KILL_SEED`, else the clock.
@@ -436,7 +422,7 @@ fn next_aim(deck: &mut Vec<Aim>, rng: &mut Rng, left: usize, part_waiting: bool)
 fn kill_run(session: &Session, aim: Aim, rng: &mut Rng) -> Option<Kill> {
     let mut run = Run::start(session);
     let delay = match (aim, aim.marker()) {
-        (Aim::StartUp, _) | (_, None) => rng.millis(0, 1200),
+        (Aim::StartUp, _) | (_, None) => millis(rng, 0, 1200),
         (_, Some(marker)) => {
             // A recovery: the pause after the .part's recovery, or the manifest's after it.
             let nth = if aim == Aim::Recovery {
@@ -454,7 +440,7 @@ fn kill_run(session: &Session, aim: Aim, rng: &mut Rng) -> Option<Kill> {
                 PAUSE_MS
             };
             let since = run.started.elapsed();
-            since + rng.millis(0, window)
+            since + millis(rng, 0, window)
         }
     };
     std::thread::sleep(delay.saturating_sub(run.started.elapsed()));
@@ -697,7 +683,7 @@ fn the_console_killed_at_random_moments_resumes_losing_no_finished_trial() {
     let started = Instant::now();
     let seed = seed();
     println!("seed {seed} (POMDAR_KILL_SEED={seed} draws these kill moments again)");
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let root = scratch_dir("console-random-kills");
     std::fs::write(
         root.join("baseline.toml"),
