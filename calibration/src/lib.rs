@@ -1,6 +1,6 @@
 //! # calibration: fitting a user's glove to the robot hand
 //!
-//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/dependency_rule.rs`).
+//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/suite/dependency_rule.rs`).
 //!
 //! A new user performs seven poses ([`PoseSet`]: four pinches, open hand without and with
 //! abduction, closed hand), each a ground-truth joint configuration of the robot hand that the

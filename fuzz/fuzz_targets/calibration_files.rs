@@ -1,8 +1,8 @@
 //! Any text as calibration settings, a calibration profile or a pose set:
-//! calibration/tests/config_oracle.
+//! calibration/tests/suite/config_oracle.
 #![no_main]
 
-#[path = "../../calibration/tests/config_oracle/mod.rs"]
+#[path = "../../calibration/tests/suite/config_oracle/mod.rs"]
 mod config_oracle;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {

@@ -1,12 +1,12 @@
 //! Any bytes as a trial log on disk: scoring's event reader, then `recover` (its output must
-//! read): teleop/tests/mcap_oracle. Scratch files in RAM where /dev/shm exists.
+//! read): teleop/tests/suite/mcap_oracle. Scratch files in RAM where /dev/shm exists.
 #![no_main]
 
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
 #[allow(dead_code)]
-#[path = "../../teleop/tests/mcap_oracle/mod.rs"]
+#[path = "../../teleop/tests/suite/mcap_oracle/mod.rs"]
 mod mcap_oracle;
 
 fn scratch() -> &'static PathBuf {

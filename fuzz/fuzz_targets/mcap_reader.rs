@@ -1,8 +1,8 @@
-//! Any bytes as a complete trial log (`TrialReader::from_bytes`): teleop/tests/mcap_oracle.
+//! Any bytes as a complete trial log (`TrialReader::from_bytes`): teleop/tests/suite/mcap_oracle.
 #![no_main]
 
 #[allow(dead_code)]
-#[path = "../../teleop/tests/mcap_oracle/mod.rs"]
+#[path = "../../teleop/tests/suite/mcap_oracle/mod.rs"]
 mod mcap_oracle;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {

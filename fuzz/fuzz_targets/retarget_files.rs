@@ -1,9 +1,9 @@
 //! Any text as a retargeting configuration, hand model or embodiment catalog:
-//! retarget/tests/config_oracle.
+//! retarget/tests/suite/config_oracle.
 #![no_main]
 
 #[allow(dead_code)]
-#[path = "../../retarget/tests/config_oracle/mod.rs"]
+#[path = "../../retarget/tests/suite/config_oracle/mod.rs"]
 mod config_oracle;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {

@@ -1,9 +1,9 @@
 //! Any text as a task catalog, scoring rules or a baseline table, and any JSON as a trial
 //! log (`{"metadata": {..}, "events": [[ns, {..}], ..]}`) to check and score:
-//! scoring/tests/config_oracle.
+//! scoring/tests/suite/config_oracle.
 #![no_main]
 
-#[path = "../../scoring/tests/config_oracle/mod.rs"]
+#[path = "../../scoring/tests/suite/config_oracle/mod.rs"]
 mod config_oracle;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {

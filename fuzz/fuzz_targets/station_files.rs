@@ -1,8 +1,8 @@
 //! Any text as a station configuration, arm settings, URDF import file or ingress settings:
-//! teleop/tests/config_oracle.
+//! teleop/tests/suite/config_oracle.
 #![no_main]
 
-#[path = "../../teleop/tests/config_oracle/mod.rs"]
+#[path = "../../teleop/tests/suite/config_oracle/mod.rs"]
 mod config_oracle;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {

@@ -1,5 +1,5 @@
 //! Any text as a URDF, imported with the shipped ORCA import file:
-//! retarget/tests/config_oracle. Seed it with ../shared/reference/orcahand_v1_right.urdf.
+//! retarget/tests/suite/config_oracle. Seed it with ../shared/reference/orcahand_v1_right.urdf.
 #![no_main]
 
 use std::sync::OnceLock;
@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 use retarget::{FrameSpec, UrdfImport};
 
 #[allow(dead_code)]
-#[path = "../../retarget/tests/config_oracle/mod.rs"]
+#[path = "../../retarget/tests/suite/config_oracle/mod.rs"]
 mod config_oracle;
 
 fn import() -> &'static UrdfImport {

@@ -5,7 +5,7 @@
 //! removed, added (unknown keys), arrays resized, and the text itself is cut or has a byte
 //! changed. The loader under test must return `Ok` or `Err` and never panic.
 //!
-//! Shared by the config fuzz tests of the crates (`*/tests/fuzz_config.rs`, included with
+//! Shared by the config fuzz tests of the crates (`*/tests/suite/fuzz_config.rs`, included with
 //! `#[path]`); not part of any crate.
 
 #![allow(dead_code)] // each test file uses what it needs

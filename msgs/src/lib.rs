@@ -4,7 +4,7 @@
 //! and their `.msg` schema texts. The same structs are published by ros2-client (which takes
 //! any serde type) and decoded from MCAP logs, so this crate needs no ROS dependency: it never
 //! depends on ros2-client, rustdds or tokio, and does no I/O (checked by
-//! `tests/tests/dependency_rule.rs`).
+//! `tests/tests/suite/dependency_rule.rs`).
 //!
 //! | module | types |
 //! |---|---|

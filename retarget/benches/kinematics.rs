@@ -3,7 +3,7 @@
 //! `cargo bench -p retarget --bench kinematics` prints one JSON line per measured operation:
 //! per-call time p50/p99/mean in nanoseconds over batches of calls at seeded random poses.
 
-#[path = "../tests/common/poses.rs"]
+#[path = "../tests/suite/common/poses.rs"]
 #[allow(dead_code)]
 mod poses;
 

@@ -9,7 +9,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
-#[path = "../tests/common/recording.rs"]
+#[path = "../tests/suite/common/recording.rs"]
 mod recording;
 
 use std::hint::black_box;

@@ -1,6 +1,6 @@
 //! # scoring: POMDAR scores from trial logs
 //!
-//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/dependency_rule.rs`).
+//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/suite/dependency_rule.rs`).
 //! `teleop` reads the MCAP files and the configuration files and hands this crate text and
 //! [`TrialLog`]s; this crate checks, scores, aggregates and renders.
 //!

@@ -2,7 +2,7 @@
 
 Usage: cyclone_peer.py PLAN.json
 
-The plan (written by tests/tests/interop_cyclonedds.rs) gives the domain id, the ROS topic names,
+The plan (written by tests/tests/suite/interop_cyclonedds.rs) gives the domain id, the ROS topic names,
 the QoS the station expects (`{"reliability": "reliable" | "best_effort", "depth": N}` for the
 glove inputs, the command outputs and the status), the pacing and the glove frames (keypoint rows
 and wrist poses). The message types are written here from the ROS 2 interface definitions, with

@@ -3,7 +3,7 @@ calls its services the way rmw_cyclonedds does.
 
 Usage: cyclone_tools_peer.py PLAN.json
 
-The plan (written by tests/tests/interop_cyclonedds.rs) gives the domain id, the topic and
+The plan (written by tests/tests/suite/interop_cyclonedds.rs) gives the domain id, the topic and
 service names, the QoS, the pacing, the glove frames and the service calls (`{"service": NAME,
 "after_frame": I}`). The message types are written here from the ROS 2 Humble/Jazzy interface
 definitions (tf2_msgs/TFMessage, visualization_msgs/MarkerArray with the texture, UV and

@@ -2,7 +2,7 @@
 
 Usage: write_mcap.py PLAN.json OUT_DIR
 
-The plan (written by tests/tests/interop_mcap.rs) holds the frames: log time, keypoint rows
+The plan (written by tests/tests/suite/interop_mcap.rs) holds the frames: log time, keypoint rows
 (the lab's Float32MultiArray N x 3 layout) and the wrist pose (PoseStamped with its stamp and
 frame), plus a few joint states and notes. Two files are written into OUT_DIR:
 

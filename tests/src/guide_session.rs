@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicU8, Ordering};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use station::StationConfig;
@@ -209,10 +210,13 @@ impl Session<'_> {
     }
 }
 
-/// A tag for this test process's namespaces, or None (after saying SKIPPED) where network
-/// namespaces cannot be created; under CI (`CI` set) that is a failure instead.
+/// A tag for one lab's namespaces, unique on the machine (the process id and a letter per lab
+/// of this process, as tests of one binary run side by side), or None (after saying SKIPPED)
+/// where network namespaces cannot be created; under CI (`CI` set) that is a failure instead.
 pub fn lab_tag_or_skip() -> Option<String> {
-    let tag = format!("{}", std::process::id() % 100_000);
+    static LABS: AtomicU8 = AtomicU8::new(0);
+    let lab = LABS.fetch_add(1, Ordering::Relaxed) % 26;
+    let tag = format!("{}{}", std::process::id() % 100_000, char::from(b'a' + lab));
     if let Err(why) = namespaces_available(&tag) {
         assert!(
             std::env::var_os("CI").is_none(),

@@ -2,6 +2,12 @@
 //! package, so Cargo does not build it for this crate's tests: the helper builds it (a no-op
 //! when it is up to date) with the same profile and target directory as the running test, so
 //! a test never runs a stale binary.
+//!
+//! The build selects what `cargo test --workspace` selects (every member's bins and tests), so
+//! Cargo resolves the same features and, under that command, finds the binary it has just
+//! built fresh. A narrower `-p teleop --bin pomdar` resolves features without the members'
+//! dev-dependencies (tonic's `server`, for the Vision Pro benchmark's in-process headset), and
+//! so built hyper, tonic and teleop a second time, about 1.5 min of every test run.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -29,10 +35,9 @@ fn build() -> Result<PathBuf, String> {
         .args([
             "build",
             "--quiet",
-            "-p",
-            "teleop",
-            "--bin",
-            "pomdar",
+            "--workspace",
+            "--bins",
+            "--tests",
             "--profile",
         ])
         .arg(&profile)

@@ -19,9 +19,15 @@ use teleop::station_node::ros_node::{OperatorCommand, StationSummary, run_statio
 use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
-/// A test-unique ROS domain id: `slot` (0–9) within a block chosen by the process id.
-pub fn test_domain(slot: u16) -> u16 {
-    10 + (std::process::id() % 20) as u16 * 10 + slot
+/// A ROS domain id of the calling test's own: leased on this machine for as long as the test
+/// process lives ([`teleop::ros::domain_lease`]), so that tests running side by side, in one
+/// test binary or in several processes, never hear each other. Each call leases a new id.
+///
+/// # Panics
+/// When no id can be leased (a test's failure report).
+pub fn test_domain() -> u16 {
+    use teleop::ros::domain_lease::{TEST_DOMAINS, lease_domain};
+    lease_domain(TEST_DOMAINS).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Loopback-only network on `domain`.

@@ -1,5 +1,5 @@
 //! Unit tests of the clutch and the per-step pipeline (property tests are in
-//! `teleop/tests/arm_properties.rs`).
+//! `station/tests/suite/arm_properties.rs`).
 
 use std::f64::consts::FRAC_PI_2;
 

@@ -3,7 +3,7 @@
 //! A deterministic driver feeds one [`Station`](crate::Station) a long stream of hostile
 //! inputs and checks invariants on every output. Pure like the rest of the crate: no threads,
 //! no clock, no I/O; a seed replays a run exactly. The CI-sized run is the test
-//! `station/tests/fuzz_station.rs`; the long one the example `fuzz_station`.
+//! `station/tests/suite/fuzz_station.rs`; the long one the example `fuzz_station`.
 //!
 //! - [`world`]: what is fed — plausible frames of a moving hand (so the station engages,
 //!   retargets and drives the arm) mixed with duplicated, restamped, replayed (late), bursty

@@ -8,7 +8,7 @@
 //! sleep N ms (saying `test pause N ms: STEP` on stderr) inside its saving steps (a `.part`
 //! recovered on resume, the resumed manifest, a finished trial's scoring, the manifest after a
 //! trial, the report), so a test's random kills land in them; see
-//! [`crate::console::test_pause`] and `tests/tests/console_random_kills.rs`. Nothing else
+//! [`crate::console::test_pause`] and `tests/tests/suite/console_random_kills.rs`. Nothing else
 //! changes with it.
 
 use std::collections::BTreeMap;

@@ -13,7 +13,7 @@
 //! - the session complete, before its report is written.
 //!
 //! Read only by the operator console (`pomdar trial`, and `pomdar study` through it); no
-//! other command looks at it. Used by `tests/tests/console_random_kills.rs`.
+//! other command looks at it. Used by `tests/tests/suite/console_random_kills.rs`.
 
 use std::sync::OnceLock;
 use std::time::Duration;

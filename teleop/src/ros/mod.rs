@@ -3,6 +3,7 @@
 
 pub mod datagram_guard;
 pub mod discovery_probe;
+pub mod domain_lease;
 mod endpoint;
 mod error;
 mod participant;

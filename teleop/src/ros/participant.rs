@@ -17,7 +17,7 @@ use ros2_client::Context;
 use ros2_client::dds::rustdds::DomainParticipantBuilder;
 use station::NetworkConfig;
 
-use crate::ros::{RosError, datagram_guard};
+use crate::ros::{RosError, datagram_guard, domain_lease};
 
 /// Check that `address` can restrict DDS to an interface of this host: a unicast address
 /// one of its interfaces holds (a UDP socket binds to it).
@@ -81,9 +81,17 @@ impl NetworkContext for NetworkConfig {
 }
 
 /// The default domain id of an all-in-one run (the demo, a simulated trial or calibration):
-/// away from 0 (the lab's usual), different per process.
+/// away from 0 (the lab's usual), leased so that no other run on this machine has it
+/// ([`domain_lease`]); where no lease can be taken (an unwritable temporary directory, every
+/// id held), one chosen by the process id, with a note on stderr.
 pub fn default_domain_id() -> u16 {
-    150 + (std::process::id() % 80) as u16
+    let range = domain_lease::ALL_IN_ONE_DOMAINS;
+    domain_lease::lease_domain(range.clone()).unwrap_or_else(|e| {
+        let span = u32::from(range.end() - range.start()) + 1;
+        let id = range.start() + (std::process::id() % span) as u16;
+        eprintln!("note: {e}; using domain {id}");
+        id
+    })
 }
 
 #[cfg(test)]

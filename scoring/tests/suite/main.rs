@@ -1,0 +1,17 @@
+//! `scoring`'s integration tests, one module per concern, linked into one test
+//! binary: the dependency tree is linked once for all of them, not once per file.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
+
+mod common;
+mod config_oracle;
+#[path = "../../../fuzz/support/toml_mutation.rs"]
+mod toml_mutation;
+
+mod aggregation;
+mod config_files;
+mod fuzz_config;
+mod plots;
+mod properties;
+mod report_figures;
+mod trial_scores;
