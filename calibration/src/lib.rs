@@ -28,8 +28,11 @@
 
 mod capture;
 mod error;
+mod expected_improvement;
 mod fit;
+mod gaussian_process;
 mod human_copy;
+mod nelder_mead;
 mod objective;
 mod optimiser;
 mod poses;
