@@ -28,9 +28,11 @@
 //! ```
 //!
 //! **Length scales.** `λ` is maximised over `ln ℓ_d ∈ [ln 0.03, ln 30]` by Nelder–Mead in
-//! log-length-scale space (initial steps of 0.5), from three isotropic starts `ℓ = 0.15, 0.5,
-//! 2` at the first fit, and from the previous fit's length scales and `ℓ = 0.5` at the later
-//! ones (the likelihood moves little when one point is added).
+//! log-length-scale space (at most 200 evaluations per start, ending when the simplex's
+//! values span less than 10⁻⁴): from the previous fit's length scales (first steps of 0.25)
+//! when there is one, since the likelihood moves little when one point is added, and from the
+//! three isotropic starts `ℓ = 0.15, 0.5, 2` (first steps of 0.5) at the first fit and at
+//! every fit the caller asks to be fresh.
 //!
 //! **Prediction.** At `u`, with `cᵢ = k(r(u, uᵢ))` and `v = L⁻¹ c`, the kriging mean and
 //! variance, the second including the uncertainty of the estimated mean, are
@@ -60,13 +62,14 @@ pub(crate) type UnitPoint = [f64; 4];
 const JITTERS: [f64; 4] = [1e-10, 1e-8, 1e-6, 1e-4];
 /// The range of every length scale (unit cube).
 const LENGTH_SCALES: (f64, f64) = (0.03, 30.0);
-/// Isotropic length scales the first fit starts from.
-const FIRST_STARTS: [f64; 3] = [0.15, 0.5, 2.0];
-/// Isotropic length scale every later fit also starts from.
-const FRESH_START: f64 = 0.5;
+/// Isotropic length scales a fresh fit starts from, and the first step (log length scale).
+const FRESH_STARTS: [f64; 3] = [0.15, 0.5, 2.0];
+const FRESH_STEP: f64 = 0.5;
+/// The first step from the previous fit's length scales.
+const WARM_STEP: f64 = 0.25;
 /// Likelihood evaluations per start, and the spread of the simplex at which a start ends.
 const EVALUATIONS_PER_START: usize = 200;
-const LIKELIHOOD_TOLERANCE: f64 = 1e-6;
+const LIKELIHOOD_TOLERANCE: f64 = 1e-4;
 /// Smallest standardised variance (the values all equal).
 const VARIANCE_FLOOR: f64 = 1e-12;
 
@@ -103,48 +106,30 @@ fn matern52(r: f64) -> f64 {
 }
 
 impl GaussianProcess {
-    /// Fit to `values` at `points` with the length scales of maximum likelihood, searched from
-    /// `previous` (the last fit's length scales) when given.
+    /// Fit to `values` at `points` with the length scales of maximum likelihood, searched
+    /// from `previous` (the last fit's length scales) when given, and from the isotropic
+    /// starts when there is no previous fit or when `fresh`.
     pub(crate) fn fit(
         points: &[UnitPoint],
         values: &[f64],
         previous: Option<[f64; 4]>,
+        fresh: bool,
     ) -> Result<GaussianProcess, Error> {
         let data = Data::new(points, values)?;
-        let starts: Vec<[f64; 4]> = match previous {
-            Some(p) => vec![p, [FRESH_START; 4]],
-            None => FIRST_STARTS.iter().map(|&l| [l; 4]).collect(),
-        };
-        let (lo, hi) = (LENGTH_SCALES.0.ln(), LENGTH_SCALES.1.ln());
+        let mut starts: Vec<([f64; 4], f64)> =
+            previous.map(|p| (p, WARM_STEP)).into_iter().collect();
+        if fresh || previous.is_none() {
+            starts.extend(FRESH_STARTS.iter().map(|&l| ([l; 4], FRESH_STEP)));
+        }
         let mut best: Option<([f64; 4], f64)> = None;
-        for start in starts {
-            let mut left = EVALUATIONS_PER_START;
-            let mut negative_likelihood = |theta: &[f64; 4]| -> Result<Option<f64>, Infallible> {
-                if left == 0 {
-                    return Ok(None);
-                }
-                left -= 1;
-                let ls = theta.map(f64::exp);
-                Ok(Some(
-                    data.factorise(&ls)
-                        .map_or(f64::INFINITY, |f| -f.log_likelihood),
-                ))
-            };
-            let theta0 = start.map(|l| l.clamp(LENGTH_SCALES.0, LENGTH_SCALES.1).ln());
-            let simplex = simplex_at(theta0, 0.5, (lo, hi));
-            let Ok(found) = nelder_mead(
-                &mut negative_likelihood,
-                &simplex,
-                (lo, hi),
-                LIKELIHOOD_TOLERANCE,
-            );
-            if let Some((theta, y)) = found
+        for (start, step) in starts {
+            if let Some((theta, y)) = data.maximise_likelihood(start, step)
                 && best.is_none_or(|b| y < b.1)
             {
                 best = Some((theta, y));
             }
         }
-        let theta = best.map_or([FRESH_START.ln(); 4], |b| b.0);
+        let theta = best.map_or([FRESH_STARTS[1].ln(); 4], |b| b.0);
         data.into_process(theta.map(f64::exp))
     }
 
@@ -197,15 +182,18 @@ fn scaled_distance(u: &UnitPoint, p: &UnitPoint, ls: &[f64; 4]) -> f64 {
         .sqrt()
 }
 
-/// `L⁻¹ b` for lower-triangular `L` with a positive diagonal.
+/// `L⁻¹ b` for lower-triangular `L` with a positive diagonal (column by column: nalgebra
+/// stores `L` by columns).
 fn forward_substitution(l: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+    let n = b.len();
     let mut x = b.clone();
-    for i in 0..x.len() {
-        let mut s = x[i];
-        for j in 0..i {
-            s -= l[(i, j)] * x[j];
+    let xs = x.as_mut_slice();
+    for (j, column) in l.as_slice().chunks_exact(n).enumerate() {
+        let xj = xs[j] / column[j];
+        xs[j] = xj;
+        for (xi, lij) in xs[j + 1..].iter_mut().zip(&column[j + 1..]) {
+            *xi -= lij * xj;
         }
-        x[i] = s / l[(i, i)];
     }
     x
 }
@@ -247,6 +235,33 @@ impl Data {
             scale,
             squared_differences,
         })
+    }
+
+    /// Nelder–Mead on `−λ` over the log length scales from `start` (length scales) with
+    /// first steps `step`: the best log length scales and their `−λ`.
+    fn maximise_likelihood(&self, start: [f64; 4], step: f64) -> Option<([f64; 4], f64)> {
+        let (lo, hi) = (LENGTH_SCALES.0.ln(), LENGTH_SCALES.1.ln());
+        let mut left = EVALUATIONS_PER_START;
+        let mut negative_likelihood = |theta: &[f64; 4]| -> Result<Option<f64>, Infallible> {
+            if left == 0 {
+                return Ok(None);
+            }
+            left -= 1;
+            let ls = theta.map(f64::exp);
+            Ok(Some(
+                self.factorise(&ls)
+                    .map_or(f64::INFINITY, |f| -f.log_likelihood),
+            ))
+        };
+        let theta0 = start.map(|l| l.clamp(LENGTH_SCALES.0, LENGTH_SCALES.1).ln());
+        let simplex = simplex_at(theta0, step, (lo, hi));
+        let Ok(found) = nelder_mead(
+            &mut negative_likelihood,
+            &simplex,
+            (lo, hi),
+            LIKELIHOOD_TOLERANCE,
+        );
+        found
     }
 
     /// The correlation matrix for `ls` with `jitter` on its diagonal.
@@ -340,7 +355,7 @@ mod tests {
     #[test]
     fn the_process_interpolates_its_data_and_is_uncertain_away_from_it() {
         let (points, values) = sample();
-        let gp = GaussianProcess::fit(&points, &values, None).unwrap();
+        let gp = GaussianProcess::fit(&points, &values, None, true).unwrap();
         for (u, y) in points.iter().zip(&values) {
             let (m, s) = gp.predict(u);
             assert!((m - y).abs() < 1e-4 && s < 1e-3, "{m} vs {y}, sd {s}");
@@ -354,7 +369,7 @@ mod tests {
     #[test]
     fn maximum_likelihood_finds_the_axes_that_matter_and_beats_fixed_length_scales() {
         let (points, values) = sample();
-        let gp = GaussianProcess::fit(&points, &values, None).unwrap();
+        let gp = GaussianProcess::fit(&points, &values, None, true).unwrap();
         let ls = gp.length_scales();
         assert!(ls[2] > 3.0 * ls[0] && ls[3] > 3.0 * ls[0], "{ls:?}");
         assert!(ls[2] > 3.0 * ls[1] && ls[3] > 3.0 * ls[1], "{ls:?}");
@@ -362,14 +377,14 @@ mod tests {
             let fixed = GaussianProcess::with_length_scales(&points, &values, [l; 4]).unwrap();
             assert!(gp.log_likelihood() > fixed.log_likelihood(), "ℓ = {l}");
         }
-        let warm = GaussianProcess::fit(&points, &values, Some(ls)).unwrap();
+        let warm = GaussianProcess::fit(&points, &values, Some(ls), false).unwrap();
         assert!(warm.log_likelihood() >= gp.log_likelihood() - 1e-6);
     }
 
     #[test]
     fn equal_values_and_coincident_points_still_fit() {
         let points = vec![[0.2; 4], [0.2; 4], [0.7, 0.1, 0.3, 0.9]];
-        let gp = GaussianProcess::fit(&points, &[1.0, 1.0, 1.0], None).unwrap();
+        let gp = GaussianProcess::fit(&points, &[1.0, 1.0, 1.0], None, true).unwrap();
         let (m, s) = gp.predict(&[0.5; 4]);
         assert!((m - 1.0).abs() < 1e-9 && s.is_finite(), "{m} {s}");
     }
@@ -377,12 +392,12 @@ mod tests {
     #[test]
     fn a_process_that_cannot_be_fitted_is_an_optimiser_error() {
         let points = vec![[0.2; 4], [f64::NAN, 0.5, 0.5, 0.5]];
-        let e = GaussianProcess::fit(&points, &[1.0, 2.0], None).unwrap_err();
+        let e = GaussianProcess::fit(&points, &[1.0, 2.0], None, true).unwrap_err();
         assert!(
             matches!(&e, Error::Optimiser(m) if m.contains("not positive definite")),
             "{e}"
         );
-        let e = GaussianProcess::fit(&[], &[], None).unwrap_err();
+        let e = GaussianProcess::fit(&[], &[], None, true).unwrap_err();
         assert!(matches!(e, Error::Optimiser(_)), "{e}");
     }
 }

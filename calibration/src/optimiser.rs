@@ -7,8 +7,9 @@
 //!
 //! The Bayesian search, `N` evaluations in all: the initial design's points are evaluated in
 //! turn; then, until `N` evaluations are made, the process is fitted to every evaluation so
-//! far (in the unit cube of the bounds, length scales searched from the previous fit's) and
-//! the point of largest expected improvement is evaluated.
+//! far (in the unit cube of the bounds; length scales searched from the previous fit's, and
+//! every 10 iterations from fresh starts as well) and the point of largest expected
+//! improvement is evaluated.
 
 use crate::error::Error;
 use crate::expected_improvement::next_point;
@@ -69,13 +70,19 @@ pub fn bayesian_optimise(
         evaluate(f, &mut trace, point)?;
     }
     let mut length_scales = None;
-    while trace.evaluations.len() < settings.evaluations {
-        let (point, fitted) = propose(&trace, bounds, length_scales, settings.seed)?;
+    let iterations = settings.evaluations.saturating_sub(trace.evaluations.len());
+    for iteration in 0..iterations {
+        let fresh = iteration.is_multiple_of(FRESH_FIT_EVERY);
+        let (point, fitted) = propose(&trace, bounds, length_scales, fresh, settings.seed)?;
         length_scales = Some(fitted);
         evaluate(f, &mut trace, point)?;
     }
     Ok(trace)
 }
+
+/// Every how many iterations the length scales are also searched from the fresh starts (in
+/// between, from the previous fit's only).
+const FRESH_FIT_EVERY: usize = 10;
 
 /// Evaluate `f` at `point` into `trace`; a value that is not finite is an error.
 fn evaluate(f: &mut ObjectiveFn<'_>, trace: &mut Trace, point: Parameters) -> Result<(), Error> {
@@ -90,11 +97,13 @@ fn evaluate(f: &mut ObjectiveFn<'_>, trace: &mut Trace, point: Parameters) -> Re
 }
 
 /// The next point of the Bayesian search after the evaluations of `trace`, and the fitted
-/// length scales (the next fit's start).
+/// length scales (the next fit's start): the process fitted from `previous` (and from the
+/// fresh starts too when `fresh`), its expected improvement maximised.
 fn propose(
     trace: &Trace,
     bounds: &ParameterBounds,
     previous: Option<[f64; 4]>,
+    fresh: bool,
     seed: u64,
 ) -> Result<(Parameters, [f64; 4]), Error> {
     let points: Vec<[f64; 4]> = trace
@@ -103,7 +112,7 @@ fn propose(
         .map(|(x, _)| to_unit(bounds, x))
         .collect();
     let values: Vec<f64> = trace.evaluations.iter().map(|e| e.1).collect();
-    let gp = GaussianProcess::fit(&points, &values, previous)?;
+    let gp = GaussianProcess::fit(&points, &values, previous, fresh)?;
     let best = points
         .iter()
         .zip(&values)
