@@ -40,11 +40,12 @@ pub enum Error {
     /// The retargeter refused its model, configuration or a capture.
     #[error("retargeter: {0}")]
     Retarget(#[from] retarget::Error),
-    /// The optimiser failed.
+    /// The optimiser failed (a value that is not finite, a Gaussian process that cannot be
+    /// fitted).
     #[error("Bayesian optimisation failed: {0}")]
     Optimiser(String),
-    /// The fit was cancelled before it finished (its caller's cancel check said so, or the
-    /// Bayesian optimiser reported an interrupt): there is no result, not even a partial one.
+    /// The fit was cancelled before it finished (its caller's cancel check said so): there is
+    /// no result, not even a partial one.
     #[error("the fit was interrupted before it finished")]
     Interrupted,
 }

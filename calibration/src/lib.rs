@@ -18,7 +18,11 @@
 //! | `capture.rs` | [`capture_pose`]: validity and stability checks, palm-frame average |
 //! | `objective.rs` | [`Objective`]: joint error (plus pinch gap) of the retargeter's output |
 //! | `search_space.rs` | parameters ↔ transform, bounds, seeded Latin hypercube |
-//! | `optimiser.rs` | [`bayesian_optimise`] (egobox: GP, Matérn 5/2, EI) and [`random_search`] |
+//! | `optimiser.rs` | [`bayesian_optimise`] (Gaussian process + expected improvement), [`polish`], [`random_search`] |
+//! | `gaussian_process.rs` | the surrogate: constant mean, Matérn 5/2 ARD, length scales by maximum likelihood; prediction |
+//! | `gp_likelihood.rs` | its likelihood: Cholesky with jitter, GLS mean and variance profiled out |
+//! | `expected_improvement.rs` | the acquisition: `ln EI`, maximised by a seeded multistart |
+//! | `nelder_mead.rs` | the downhill simplex in a box (polish, length scales, acquisition) |
 //! | `fit.rs` | [`calibrate`]: before, optimise, after |
 //! | `profile.rs` | [`CalibrationProfile`]: the per-user TOML file |
 //! | `settings.rs` | [`CalibrationSettings`]: bounds, budget, thresholds |
@@ -28,8 +32,12 @@
 
 mod capture;
 mod error;
+mod expected_improvement;
 mod fit;
+mod gaussian_process;
+mod gp_likelihood;
 mod human_copy;
+mod nelder_mead;
 mod objective;
 mod optimiser;
 mod poses;

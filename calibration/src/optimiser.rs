@@ -1,18 +1,20 @@
-//! Minimising the objective over the search space: Bayesian optimisation (egobox: a Gaussian
-//! process with a constant mean and a Matérn 5/2 kernel whose length scales are fitted by
-//! maximum likelihood at every iteration, expected improvement as the acquisition, our seeded
-//! Latin hypercube as the initial design) and, as the baseline it must beat, random search
-//! with the same budget. A short Nelder–Mead [`polish`] sharpens the Bayesian optimum.
-
-use std::cell::RefCell;
-
-use egobox_ego::{
-    CorrelationSpec, EgoError, EgorBuilder, InfillStrategy, RegressionSpec, TerminationReason,
-    TerminationStatus,
-};
-use ndarray::{Array2, ArrayView2};
+//! Minimising the objective over the search space: Bayesian optimisation (the project's own:
+//! a Gaussian process with a constant mean and a Matérn 5/2 kernel whose length scales are
+//! fitted by maximum likelihood at every iteration, `gaussian_process.rs`; expected
+//! improvement as the acquisition, `expected_improvement.rs`; our seeded Latin hypercube as
+//! the initial design) and, as the baseline it must beat, random search with the same budget.
+//! A short Nelder–Mead [`polish`] sharpens the Bayesian optimum.
+//!
+//! The Bayesian search, `N` evaluations in all: the initial design's points are evaluated in
+//! turn; then, until `N` evaluations are made, the process is fitted to every evaluation so
+//! far (in the unit cube of the bounds; length scales searched from the previous fit's, and
+//! every 10 iterations from fresh starts as well) and the point of largest expected
+//! improvement is evaluated.
 
 use crate::error::Error;
+use crate::expected_improvement::next_point;
+use crate::gaussian_process::GaussianProcess;
+use crate::nelder_mead::nelder_mead;
 use crate::search_space::{Parameters, box_bounds, initial_design, to_unit, uniform_points};
 use crate::settings::{OptimiserSettings, ParameterBounds};
 
@@ -49,106 +51,78 @@ impl Trace {
 /// the optimisation).
 pub type ObjectiveFn<'a> = dyn FnMut(&Parameters) -> Result<f64, Error> + 'a;
 
-/// Bayesian optimisation of `f` within `bounds`, `settings.evaluations` evaluations in all.
+/// Bayesian optimisation of `f` within `bounds`, `settings.evaluations` evaluations in all
+/// (the initial design's `settings.initial_design` included), deterministic in
+/// `settings.seed`.
 ///
 /// An error from `f` ([`Error::Interrupted`] included) stops the search at that evaluation
-/// and is returned as it is; an interrupt egobox reports itself (its own Ctrl-C handler, when
-/// no other was installed first) is [`Error::Interrupted`]. Either way no trace is returned:
-/// a cut search is never passed off as a finished one.
+/// and is returned as it is, and so does a value that is not finite or a Gaussian process
+/// that cannot be fitted ([`Error::Optimiser`]). Either way no trace is returned: a cut
+/// search is never passed off as a finished one.
 pub fn bayesian_optimise(
     f: &mut ObjectiveFn<'_>,
     bounds: &ParameterBounds,
     settings: &OptimiserSettings,
 ) -> Result<Trace, Error> {
+    let mut trace = Trace::default();
     let design = initial_design(bounds, settings.initial_design, settings.seed);
-    let doe = Array2::from_shape_fn((design.len(), 4), |(i, j)| design[i][j]);
-    let limits = box_bounds(bounds);
-    let xlimits = Array2::from_shape_fn(
-        (4, 2),
-        |(i, j)| {
-            if j == 0 { limits[i].0 } else { limits[i].1 }
-        },
-    );
-    let state = RefCell::new((Trace::default(), None::<Error>, f));
-    let budget = settings.evaluations;
-    let objective = |x: &ArrayView2<f64>| -> Result<Array2<f64>, &'static str> {
-        let mut guard = state.borrow_mut();
-        let (trace, failure, f) = &mut *guard;
-        let mut y = Array2::zeros((x.nrows(), 1));
-        for (row, out) in x.rows().into_iter().zip(y.iter_mut()) {
-            let point: Parameters = std::array::from_fn(|i| row[i]);
-            if trace.evaluations.len() >= budget {
-                // The budget is spent: the optimiser finishes its iteration on a flat value.
-                *out = f64::MAX.sqrt();
-                continue;
-            }
-            match f(&point) {
-                Ok(v) if v.is_finite() => {
-                    trace.evaluations.push((point, v));
-                    *out = v;
-                }
-                Ok(v) => {
-                    *failure = Some(Error::Optimiser(format!(
-                        "the objective is {v} at {point:?}"
-                    )));
-                    return Err(OBJECTIVE_FAILED);
-                }
-                Err(e) => {
-                    *failure = Some(e);
-                    return Err(OBJECTIVE_FAILED);
-                }
-            }
-        }
-        Ok(y)
-    };
-    let iterations = settings.evaluations.saturating_sub(design.len());
-    // egobox panics when its Gaussian process cannot be trained: contain it and report it as
-    // an error.
-    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        EgorBuilder::optimize(objective)
-            .configure(|config| {
-                config
-                    .doe(&doe)
-                    .max_iters(iterations)
-                    .infill_strategy(InfillStrategy::EI)
-                    // An objective error ends the search at once (no further iteration).
-                    .stop_on_error(true)
-                    .seed(settings.seed)
-                    .configure_gp(|gp| {
-                        gp.regression_spec(RegressionSpec::CONSTANT)
-                            .correlation_spec(CorrelationSpec::MATERN52)
-                    })
-            })
-            .min_within(&xlimits)
-            .and_then(|egor| egor.run())
-            .map(|result| result.state.termination_status)
-    }));
-    let (trace, failure, _) = state.into_inner();
-    search_outcome(trace, failure, run)
+    for point in design.into_iter().take(settings.evaluations) {
+        evaluate(f, &mut trace, point)?;
+    }
+    let mut length_scales = None;
+    let iterations = settings.evaluations.saturating_sub(trace.evaluations.len());
+    for iteration in 0..iterations {
+        let fresh = iteration.is_multiple_of(FRESH_FIT_EVERY);
+        let (point, fitted) = propose(&trace, bounds, length_scales, fresh, settings.seed)?;
+        length_scales = Some(fitted);
+        evaluate(f, &mut trace, point)?;
+    }
+    Ok(trace)
 }
 
-/// What the objective tells egobox when it fails (the error itself is kept aside).
-const OBJECTIVE_FAILED: &str = "the objective failed";
+/// Every how many iterations the length scales are also searched from the fresh starts (in
+/// between, from the previous fit's only).
+const FRESH_FIT_EVERY: usize = 10;
 
-/// The Bayesian search's result from how it ended (`run`: egobox's result, or its panic as
-/// `catch_unwind` returns it): the objective's own error first, then egobox's interrupt, its
-/// error or its panic; otherwise the trace.
-fn search_outcome(
-    trace: Trace,
-    failure: Option<Error>,
-    run: Result<Result<TerminationStatus, EgoError>, Box<dyn std::any::Any + Send>>,
-) -> Result<Trace, Error> {
-    match (failure, run) {
-        (Some(e), _) => Err(e),
-        (None, Ok(Ok(TerminationStatus::Terminated(TerminationReason::Interrupt)))) => {
-            Err(Error::Interrupted)
-        }
-        (None, Ok(Ok(_))) => Ok(trace),
-        (None, Ok(Err(e))) => Err(Error::Optimiser(e.to_string())),
-        (None, Err(_)) => Err(Error::Optimiser(
-            "the Gaussian process could not be trained on the evaluations".into(),
-        )),
+/// Evaluate `f` at `point` into `trace`; a value that is not finite is an error.
+fn evaluate(f: &mut ObjectiveFn<'_>, trace: &mut Trace, point: Parameters) -> Result<(), Error> {
+    let value = f(&point)?;
+    if !value.is_finite() {
+        return Err(Error::Optimiser(format!(
+            "the objective is {value} at {point:?}"
+        )));
     }
+    trace.evaluations.push((point, value));
+    Ok(())
+}
+
+/// The next point of the Bayesian search after the evaluations of `trace`, and the fitted
+/// length scales (the next fit's start): the process fitted from `previous` (and from the
+/// fresh starts too when `fresh`), its expected improvement maximised.
+fn propose(
+    trace: &Trace,
+    bounds: &ParameterBounds,
+    previous: Option<[f64; 4]>,
+    fresh: bool,
+    seed: u64,
+) -> Result<(Parameters, [f64; 4]), Error> {
+    let points: Vec<[f64; 4]> = trace
+        .evaluations
+        .iter()
+        .map(|(x, _)| to_unit(bounds, x))
+        .collect();
+    let values: Vec<f64> = trace.evaluations.iter().map(|e| e.1).collect();
+    let gp = GaussianProcess::fit(&points, &values, previous, fresh)?;
+    let best = points
+        .iter()
+        .zip(&values)
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(u, y)| (*u, *y))
+        .ok_or_else(|| Error::Optimiser("the initial design is empty".into()))?;
+    let u = next_point(&gp, &points, best, seed);
+    let b = box_bounds(bounds);
+    let x = std::array::from_fn(|i| b[i].0 + u[i] * (b[i].1 - b[i].0));
+    Ok((x, gp.length_scales()))
 }
 
 /// Nelder–Mead from `start` within `bounds`, `evaluations` evaluations at most: sharpens the
@@ -177,65 +151,18 @@ pub fn polish(
         trace.evaluations.push((x, y));
         Ok(Some(y))
     };
-    let mut simplex: Vec<([f64; 4], f64)> = Vec::with_capacity(5);
-    for k in 0..5 {
-        let mut u = u0;
-        if k > 0 {
-            let i = k - 1;
-            u[i] += if u[i] > 0.97 { -0.03 } else { 0.03 };
-        }
-        let Some(y) = eval(&u, &mut trace)? else {
-            return Ok(trace);
-        };
-        simplex.push((u, y));
-    }
-    loop {
-        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let worst = simplex[4];
-        let centroid: [f64; 4] =
-            std::array::from_fn(|i| simplex[..4].iter().map(|v| v.0[i]).sum::<f64>() / 4.0);
-        let along = |t: f64| -> [f64; 4] {
-            std::array::from_fn(|i| (centroid[i] + t * (worst.0[i] - centroid[i])).clamp(0.0, 1.0))
-        };
-        let reflected = along(-1.0);
-        let Some(yr) = eval(&reflected, &mut trace)? else {
-            return Ok(trace);
-        };
-        if yr < simplex[0].1 {
-            let expanded = along(-2.0);
-            let Some(ye) = eval(&expanded, &mut trace)? else {
-                return Ok(trace);
-            };
-            simplex[4] = if ye < yr {
-                (expanded, ye)
-            } else {
-                (reflected, yr)
-            };
-        } else if yr < simplex[3].1 {
-            simplex[4] = (reflected, yr);
-        } else {
-            let contracted = if yr < worst.1 {
-                along(-0.5)
-            } else {
-                along(0.5)
-            };
-            let Some(yc) = eval(&contracted, &mut trace)? else {
-                return Ok(trace);
-            };
-            if yc < worst.1.min(yr) {
-                simplex[4] = (contracted, yc);
-            } else {
-                let best = simplex[0].0;
-                for v in simplex.iter_mut().skip(1) {
-                    let u: [f64; 4] = std::array::from_fn(|i| best[i] + 0.5 * (v.0[i] - best[i]));
-                    let Some(y) = eval(&u, &mut trace)? else {
-                        return Ok(trace);
-                    };
-                    *v = (u, y);
-                }
+    let simplex: Vec<[f64; 4]> = (0..5)
+        .map(|k| {
+            let mut u = u0;
+            if k > 0 {
+                let i = k - 1;
+                u[i] += if u[i] > 0.97 { -0.03 } else { 0.03 };
             }
-        }
-    }
+            u
+        })
+        .collect();
+    nelder_mead(&mut |u| eval(u, &mut trace), &simplex, (0.0, 1.0), 0.0)?;
+    Ok(trace)
 }
 
 /// Random search: `evaluations` points uniformly in `bounds`, the first the uncalibrated
@@ -335,23 +262,31 @@ mod tests {
     }
 
     #[test]
-    fn egobox_reporting_its_own_interrupt_is_an_interrupt_not_a_result() {
-        let trace = Trace {
-            evaluations: vec![([1.0, 0.0, 0.0, 0.0], 0.5)],
+    fn a_gaussian_process_that_cannot_be_fitted_is_an_optimiser_error_with_no_trace() {
+        // Bounds of zero width: the scale axis of the unit cube is 0 / 0, so no correlation
+        // matrix factorises, whatever the jitter.
+        let bounds = ParameterBounds {
+            scale_min: 1.0,
+            scale_max: 1.0,
+            ..ParameterBounds::default()
         };
-        let status = |reason| Ok(Ok(TerminationStatus::Terminated(reason)));
-        assert_eq!(
-            search_outcome(trace.clone(), None, status(TerminationReason::Interrupt)),
-            Err(Error::Interrupted)
+        let mut calls = 0;
+        let mut counted = |x: &Parameters| -> Result<f64, Error> {
+            calls += 1;
+            bowl(x)
+        };
+        let settings = OptimiserSettings {
+            evaluations: 20,
+            polish_evaluations: 0,
+            initial_design: 8,
+            seed: 1,
+        };
+        let e = bayesian_optimise(&mut counted, &bounds, &settings).unwrap_err();
+        assert!(
+            matches!(&e, Error::Optimiser(m) if m.contains("Gaussian process cannot be fitted")),
+            "{e}"
         );
-        assert_eq!(
-            search_outcome(
-                trace.clone(),
-                None,
-                status(TerminationReason::MaxItersReached)
-            ),
-            Ok(trace)
-        );
+        assert_eq!(calls, 8, "the initial design, then no evaluation");
     }
 
     #[test]

@@ -1,13 +1,12 @@
 //! Where the libraries' log records go: errors on stderr, one line each,
-//! `[ERROR target] message` (the `log` crate's records: RustDDS, ros2-client, egobox, ...).
+//! `[ERROR target] message` (the `log` crate's records: RustDDS, ros2-client, ...).
 //!
 //! The station's own messages are printed by its commands; this is for what the libraries
-//! report. `pomdar` installs it first thing: without a logger their errors would be lost, and
-//! egobox would install its own on stdout the first time a calibration is fitted, mixing
-//! library records into the command's results. The level is fixed (no environment
-//! variable): errors only, because RustDDS warns in normal running (a reader proxy without
-//! locators before discovery completes, no multicast membership on loopback, datagrams
-//! larger than it likes), and ros2-client warns when `ROS_DISTRO` is unset.
+//! report. `pomdar` installs it first thing: without a logger their errors would be lost. The
+//! level is fixed (no environment variable): errors only, because RustDDS warns in normal
+//! running (a reader proxy without locators before discovery completes, no multicast
+//! membership on loopback, datagrams larger than it likes), and ros2-client warns when
+//! `ROS_DISTRO` is unset.
 //!
 //! One RustDDS record is left out: the benign `leave_multicast_group` error of a participant
 //! teardown, and only during one ([`crate::ros::teardown`] says why it is benign).

@@ -1,12 +1,10 @@
 //! Ctrl-C during `pomdar calibrate`: the process's one SIGINT handler, as a watch channel.
 //!
-//! egobox (the calibration's Bayesian optimiser) installs a `ctrlc` handler the first time it
-//! runs, and `ctrlc` allows one handler per process: installed after tokio's, it would replace
-//! tokio's (tokio's Ctrl-C would never fire again); with nothing else installed, it swallows
-//! SIGINT, so Ctrl-C would only cut the Bayesian search short and the fit would go on. So the
-//! shell installs the `ctrlc` handler itself before anything else: egobox's attempt is then
-//! refused (`MultipleHandlers`, which egobox accepts), and every Ctrl-C reaches
-//! [`watch_ctrl_c`]'s receivers. A signal handler registered later (tokio's) chains to it.
+//! The fit is synchronous and asks before every evaluation whether it was cancelled; with
+//! `--from` it runs with no async runtime at all, so tokio's Ctrl-C cannot be what it asks.
+//! The shell installs a `ctrlc` handler (one per process) before anything else instead, and
+//! every Ctrl-C reaches [`watch_ctrl_c`]'s receivers, in the console session as with
+//! `--from`. A signal handler registered later (tokio's) chains to it.
 
 use std::sync::OnceLock;
 

@@ -16,7 +16,7 @@
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
 //! | `progress_bar.rs` | the fit's progress on stderr |
-//! | `ctrl_c.rs` | the process's one Ctrl-C handler (installed before egobox's), as a watch channel |
+//! | `ctrl_c.rs` | the process's one Ctrl-C handler (installed first, works without an async runtime), as a watch channel |
 //! | `error.rs` | the one error type, [`CalibrateError`] |
 
 pub mod calibration_console;

@@ -148,8 +148,7 @@ fn is_interrupted(e: &anyhow::Error) -> bool {
 }
 
 /// The session or the fit, to its end or its error. The process's Ctrl-C handler is
-/// installed first (before egobox can install its own): from then on Ctrl-C is seen through
-/// `ctrl_c` only.
+/// installed first: from then on Ctrl-C is seen through `ctrl_c` only.
 fn calibrate_until_interrupted(args: CalibrateArgs) -> anyhow::Result<()> {
     if args.user.trim().is_empty() {
         bail!("--user must name the user");
