@@ -204,7 +204,7 @@ fn ctrl_c_in_the_bayesian_search_writes_no_profile_and_exits_130() {
     let settings = settings("bayesian.toml", 300, 20, 1000);
     let out = scratch().join("profiles").join("bayesian.toml");
     std::fs::remove_file(&out).ok();
-    // Past the initial design: in egobox's iterations.
+    // Past the initial design: in the Bayesian iterations.
     let fit = Fit::start(
         &out,
         &settings,

@@ -1,8 +1,8 @@
-//! A normal run ends quietly (issue 26): the commands an operator runs most, as the built
-//! binary on their own loopback-only DDS domains, exit with status 0 and print no ERROR or
-//! WARN line, on stdout or stderr, from the station or from the libraries' logging (RustDDS,
-//! ros2-client and egobox through the `log` crate: `pomdar`'s logger writes `[ERROR target]
-//! message` lines on stderr; egobox's own would have written them on stdout).
+//! A normal run ends quietly: the commands an operator runs most, as the built binary on
+//! their own loopback-only DDS domains, exit with status 0 and print no ERROR or WARN line, on
+//! stdout or stderr, from the station or from the libraries' logging (RustDDS and ros2-client
+//! through the `log` crate: `pomdar`'s logger writes `[ERROR target] message` lines on
+//! stderr).
 //!
 //! The shutdown is where these came from: DDS endpoints dropped after their participant
 //! (`Cannot remove Writer … Disconnected`), ros2-client's matched-count queries before a
