@@ -8,7 +8,7 @@
 
 use std::fs::{File, OpenOptions, TryLockError};
 use std::ops::RangeInclusive;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 /// Domain ids for tests: below [`ALL_IN_ONE_DOMAINS`] and away from 0, the lab's usual.
@@ -50,9 +50,13 @@ fn lease_dir() -> PathBuf {
 /// A domain id from `range` that no other lease holder on this machine has, held by this
 /// process until it exits. Each call leases a new id.
 pub fn lease_domain(range: RangeInclusive<u16>) -> Result<u16, LeaseError> {
-    let dir = lease_dir();
-    std::fs::create_dir_all(&dir).map_err(|source| LeaseError::Io {
-        path: dir.clone(),
+    lease_in(&lease_dir(), range)
+}
+
+/// [`lease_domain`] with the lock files in `dir`.
+fn lease_in(dir: &Path, range: RangeInclusive<u16>) -> Result<u16, LeaseError> {
+    std::fs::create_dir_all(dir).map_err(|source| LeaseError::Io {
+        path: dir.to_path_buf(),
         source,
     })?;
     let mut held = HELD
@@ -82,4 +86,36 @@ pub fn lease_domain(range: RangeInclusive<u16>) -> Result<u16, LeaseError> {
         first: *range.start(),
         last: *range.end(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("pomdar-lease-{name}-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        dir
+    }
+
+    #[test]
+    fn each_lease_is_a_new_id_until_the_range_is_spent() {
+        let dir = scratch("spent");
+        let first = lease_in(&dir, 7..=8).unwrap();
+        let second = lease_in(&dir, 7..=8).unwrap();
+        assert_eq!((first, second), (7, 8));
+        let e = lease_in(&dir, 7..=8).unwrap_err();
+        assert!(matches!(e, LeaseError::Exhausted { first: 7, last: 8 }), "{e}");
+        assert!(e.to_string().contains("7–8"), "{e}");
+    }
+
+    #[test]
+    fn an_id_locked_elsewhere_is_passed_over() {
+        let dir = scratch("elsewhere");
+        std::fs::create_dir_all(&dir).unwrap();
+        // Another holder: a lock on its own open file, as another process would have.
+        let other = File::create(dir.join("3.lock")).unwrap();
+        other.try_lock().unwrap();
+        assert_eq!(lease_in(&dir, 3..=4).unwrap(), 4);
+    }
 }
