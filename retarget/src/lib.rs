@@ -169,6 +169,7 @@ mod retarget_config;
 mod retargeter;
 mod synthetic_keypoints;
 mod urdf_import;
+mod urdf_reader;
 
 pub use calibration_transform::CalibrationTransform;
 pub use embodiment::{EMBODIMENTS_TOML, Embodiment, EmbodimentCatalog};

@@ -5,6 +5,7 @@
 
 pub mod baseline;
 pub mod calibrate;
+pub mod cli;
 pub mod common;
 pub mod demo;
 pub mod eval;

@@ -105,7 +105,10 @@ mod tests {
         let second = lease_in(&dir, 7..=8).unwrap();
         assert_eq!((first, second), (7, 8));
         let e = lease_in(&dir, 7..=8).unwrap_err();
-        assert!(matches!(e, LeaseError::Exhausted { first: 7, last: 8 }), "{e}");
+        assert!(
+            matches!(e, LeaseError::Exhausted { first: 7, last: 8 }),
+            "{e}"
+        );
         assert!(e.to_string().contains("7–8"), "{e}");
     }
 
