@@ -36,10 +36,8 @@
 use nalgebra::DVector;
 
 use crate::error::Error;
+pub(crate) use crate::gp_likelihood::UnitPoint;
 use crate::gp_likelihood::{Factorised, Observations, forward_substitution, matern52};
-
-/// A point of the unit cube.
-pub(crate) type UnitPoint = [f64; 4];
 
 /// Isotropic length scales a fresh fit starts from, and the first step (log length scale).
 const FRESH_STARTS: [f64; 3] = [0.15, 0.5, 2.0];

@@ -30,8 +30,10 @@ use std::convert::Infallible;
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::Error;
-use crate::gaussian_process::UnitPoint;
 use crate::nelder_mead::{nelder_mead, simplex_at};
+
+/// A point of the unit cube (the search space with each parameter divided by its range).
+pub(crate) type UnitPoint = [f64; 4];
 
 /// The jitters tried in turn.
 const JITTERS: [f64; 4] = [1e-10, 1e-8, 1e-6, 1e-4];
