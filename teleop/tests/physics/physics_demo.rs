@@ -11,12 +11,7 @@ use teleop::demo::{DemoOptions, DemoOutcome, run_demo};
 use teleop::ros::domain_lease::{TEST_DOMAINS, lease_domain};
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
-async fn physics_demo(
-    task: &str,
-    glove: SimGloveConfig,
-    duration_s: f64,
-    slot: u16,
-) -> DemoOutcome {
+async fn physics_demo(task: &str, glove: SimGloveConfig, duration_s: f64) -> DemoOutcome {
     let task = TaskCatalog::builtin().get(task).unwrap().clone();
     run_demo(DemoOptions {
         duration_s,
@@ -52,7 +47,7 @@ async fn the_simulated_hand_tracks_the_station_in_free_space() {
         period_s: MotionKind::TaskLike.default_period_s(),
         ..SimGloveConfig::default()
     };
-    let outcome = physics_demo("G4", glove, 6.0, 0).await;
+    let outcome = physics_demo("G4", glove, 6.0).await;
     let physics = outcome.physics.expect("physics outcome");
     assert!(
         physics.hand_targets > 200,

@@ -26,7 +26,7 @@ fn shipped(name: &str) -> PathBuf {
 }
 
 /// One recorded G4 trial with the glove playing `script`; its scored log.
-fn simulated_trial(root: &Path, script: &str, slot: u16) -> scoring::TrialScore {
+fn simulated_trial(root: &Path, script: &str) -> scoring::TrialScore {
     std::fs::create_dir_all(root).unwrap();
     // The console script the README's simulated trial uses.
     let console = shipped("one_trial.script");
@@ -75,10 +75,10 @@ fn simulated_trial(root: &Path, script: &str, slot: u16) -> scoring::TrialScore 
 fn a_scripted_grasp_of_g4_is_scored_one_by_the_physics_and_a_miss_zero() {
     let root = std::env::temp_dir().join(format!("pomdar-physics-trial-{}", std::process::id()));
     std::fs::remove_dir_all(&root).ok();
-    let grasp = simulated_trial(&root.join("grasp"), "grasp_place.toml", 0);
+    let grasp = simulated_trial(&root.join("grasp"), "grasp_place.toml");
     assert_eq!(grasp.correctness, 1.0, "{grasp:?}");
     assert!(grasp.score.is_some_and(|s| s > 0.8), "{grasp:?}");
-    let miss = simulated_trial(&root.join("miss"), "grasp_miss.toml", 1);
+    let miss = simulated_trial(&root.join("miss"), "grasp_miss.toml");
     assert_eq!(miss.correctness, 0.0, "{miss:?}");
     std::fs::remove_dir_all(&root).ok();
 }
