@@ -26,6 +26,15 @@ const MIN_DT_S: f64 = 1e-4;
 /// Time step of the first frame after engage, seconds (the glove's ~25 Hz).
 const FIRST_DT_S: f64 = 0.04;
 
+/// The time step the retargeter is given for a frame stamped `next_ns` after the frame it
+/// last solved, stamped `previous_ns` (the sender's stamps, or the receive times across a
+/// clock jump): their difference, within [`MIN_DT_S`, `MAX_DT_S`]. Frames stamped a
+/// microsecond apart are a microsecond apart to the joint-speed limit too.
+pub fn time_step_between(previous_ns: i64, next_ns: i64) -> f64 {
+    // The sender's stamps may lie anywhere in i64 (saturated; clamped anyway).
+    (next_ns.saturating_sub(previous_ns) as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
+}
+
 /// A keypoint frame as the station received it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct KeypointFrame {
@@ -281,15 +290,13 @@ impl HandControl {
     }
 
     fn time_step_s(&self, pending: &PendingFrame) -> f64 {
-        let step_ns = match self.last_solved {
-            None => return FIRST_DT_S,
+        match self.last_solved {
+            None => FIRST_DT_S,
             Some((_, received, jumps)) if pending.clock_jumps > jumps => {
-                pending.received_ns - received
+                time_step_between(received, pending.received_ns)
             }
-            // The sender's stamps may lie anywhere in i64 (saturated; clamped below anyway).
-            Some((source, _, _)) => pending.frame.source_ns.saturating_sub(source),
-        };
-        (step_ns as f64 * 1e-9).clamp(MIN_DT_S, MAX_DT_S)
+            Some((source, _, _)) => time_step_between(source, pending.frame.source_ns),
+        }
     }
 
     fn solve(&mut self, pending: &PendingFrame) -> Option<HandCommand> {

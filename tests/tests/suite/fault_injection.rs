@@ -16,6 +16,7 @@ use pomdar_tests::stamped_glove::StampedGlove;
 use pomdar_tests::station_harness::{Harness, Heard, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
+use station::hand_control::time_step_between;
 use station::{ControlMode, StationConfig};
 use teleop::ros::QosConfig;
 use teleop::station_node::ros_node::OperatorCommand;
@@ -399,13 +400,17 @@ fn burst_config(mode: ControlMode) -> StationConfig {
 }
 
 /// The command stamped `stamp` (its first occurrence) is what the retargeter computes for
-/// `frame` from the command before it (to 1e-6 rad; another frame differs by far more).
+/// `frame` from the command before it (to 1e-6 rad; another frame differs by far more), over
+/// the time step between their frames' stamps, as the station reckons it: when a tick falls
+/// inside the burst, two of its frames are driven a few microseconds apart, and the joint-speed
+/// limit binds over that step.
 fn assert_computed_from(heard: &Heard, config: &StationConfig, stamp: i64, frame: &[[f32; 3]]) {
     let k = heard
         .targets
         .iter()
         .position(|(_, m)| same_stamp(stamp_ns(m), stamp))
         .unwrap();
+    let dt_s = time_step_between(stamp_ns(&heard.targets[k - 1].1), stamp);
     let mut reference = Retargeter::new(
         HandModel::orca_v1_right(),
         config.retarget.clone(),
@@ -419,7 +424,7 @@ fn assert_computed_from(heard: &Heard, config: &StationConfig, stamp: i64, frame
         .iter()
         .map(|r| Point3::new(f64::from(r[0]), f64::from(r[1]), f64::from(r[2])))
         .collect();
-    let expected = reference.retarget(&points, 0.04).unwrap().q;
+    let expected = reference.retarget(&points, dt_s).unwrap().q;
     let worst = heard.targets[k]
         .1
         .position
