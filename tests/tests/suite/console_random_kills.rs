@@ -676,6 +676,9 @@ fn print_table(seen: &Seen) {
     );
 }
 
+// About a minute, one of the suite's longest: 20 kills at random moments of real trials (each
+// resumed and played on to the next kill), and the kill moments are the point: a shorter trial
+// would leave fewer phases of the console to be killed in.
 #[test]
 fn the_console_killed_at_random_moments_resumes_losing_no_finished_trial() {
     let started = Instant::now();

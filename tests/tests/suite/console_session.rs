@@ -359,6 +359,9 @@ fn assert_score_agrees(root: &Path, baseline: &Path) {
     assert_eq!(g["correctness"], 0.5);
 }
 
+// Under a minute alone, one of the suite's longest: two whole sessions in real time (V1:
+// practice, three trials, a redo; G2), each trial a few seconds of glove input as the console
+// runs it.
 #[test]
 fn a_scripted_session_logs_scores_and_reports_every_trial() {
     let root = scratch_dir("console-session");

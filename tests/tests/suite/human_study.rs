@@ -276,6 +276,9 @@ fn strategy_silhouette(root: &Path, study: &str) -> f64 {
     json["silhouette"].as_f64().unwrap()
 }
 
+// About a minute, one of the suite's longest: four studies of 9 real-time trials (two
+// participants, separated and same motions) run side by side; the strategy check needs 3
+// trials per task and participant, so none can be dropped.
 #[test]
 fn a_scripted_study_gives_the_baseline_the_scores_and_the_strategy_check() {
     let root = scratch_dir("human_study");
