@@ -1,5 +1,5 @@
 //! Commanded against measured joint angles over a trial: how closely the hand followed its
-//! commands (issue 22; `pomdar tracking`).
+//! commands (`pomdar tracking`).
 //!
 //! For one joint, with the commands `c_k` logged at times `s_k` and the measured angles `m_i`
 //! at times `t_i` (radians; both on the log's clock, nanoseconds):

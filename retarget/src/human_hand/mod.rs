@@ -5,7 +5,7 @@
 //! [`KeypointLayout`](crate::KeypointLayout), pinch poses found by a small numeric solve,
 //! scripted motions as functions of time, task scripts (a wrist path and hand poses as
 //! keyframes), and a simulated glove with deterministic jitter.
-//! The station's simulated glove (issue 4) publishes its frames; calibration (issue 6)
+//! The station's simulated glove publishes its frames; calibration
 //! generates its synthetic users with it (sizes 0.8–1.25×, a rotated glove frame, 2 mm noise).
 //!
 //! ## Frames and units

@@ -33,7 +33,7 @@ fn the_defaults_on_the_reference_recording() {
     println!("{q:#?}");
     assert_eq!(q.frames, 727);
     assert_eq!(q.limit_violation_frames, 0);
-    // Issue 12's targets on the shipped defaults.
+    // The retargeting quality targets on the shipped defaults.
     assert!(q.max_step_rad <= 0.3, "max step {} rad", q.max_step_rad);
     // Jerk: 0.028 rad without the smoothing and input filter, 0.0044 with them
     // (dex-retargeting: 0.019 unfiltered, 0.0026 with its output filter at 26.1 mm).
@@ -42,7 +42,7 @@ fn the_defaults_on_the_reference_recording() {
     let closed = q.pinches_closed_pct.unwrap();
     assert!(closed >= 90.0, "{closed} % of pinches closed");
     // Better than dex-retargeting's 26.1 mm (vector, filtered) and 24.9 mm (unfiltered); 23.7
-    // mm measured (issue 21's defaults, chosen on the evaluation set). The issue's 22 mm is not reached: the ORCA thumb cannot reach where the
+    // mm measured (today's defaults, chosen on the evaluation set). The 22 mm target is not reached: the ORCA thumb cannot reach where the
     // glove's thumb tip is (its abduction and PIP sit on their limits; 44 mm at best at the
     // mean thumb target) and the glove's index tip points past the ORCA index abduction limit
     // (36 mm). Without the smoothing the defaults measure 22.1 mm at 0.025 rad of jerk: the

@@ -13,7 +13,7 @@ use scoring::{
     render_terminal, render_trials_csv, score_trial,
 };
 
-/// Orca_full's per-task scores read off the paper's radar figure (issue 7).
+/// Orca_full's per-task scores read off the paper's radar figure.
 const ORCA_FULL: [(&str, f64); 18] = [
     ("V1", 0.74),
     ("V2", 0.54),
@@ -135,7 +135,7 @@ fn the_published_orca_full_values_give_the_papers_overall() {
         ("orca_full", Some(16), 18)
     );
     let overall = e.overall_attempted.unwrap();
-    // The mean of the 18 values is 0.7217; the issue's acceptance: 0.72 ± 0.01.
+    // The mean of the 18 values is 0.7217; the paper's figure: 0.72 ± 0.01.
     assert_close(overall, 0.7217, 1e-4, "overall");
     assert_close(overall, 0.72, 0.01, "overall (acceptance)");
     assert_close(e.overall_all.unwrap(), overall, 1e-12, "all 18 attempted");

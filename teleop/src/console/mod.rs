@@ -1,4 +1,4 @@
-//! The operator console: `pomdar trial` (timed trials, issue 8). The session logic, the
+//! The operator console: `pomdar trial` (timed trials). The session logic, the
 //! health, the manifest and the script are plain data and state machines; the terminal, the
 //! station and the files are handled by the command.
 

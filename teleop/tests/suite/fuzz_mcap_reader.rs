@@ -381,7 +381,7 @@ fn a_record_in_a_chunk_claiming_petabytes_is_damage_not_an_abort() {
     );
 }
 
-/// A decompression bomb: a 60-byte chunk declaring 1 GiB uncompressed (issue 25). The
+/// A decompression bomb: a 60-byte chunk declaring 1 GiB uncompressed. The
 /// declared size is what decompressing would allocate; the budget refuses it first, naming
 /// the limit, and recovery keeps nothing of the chunk.
 #[test]

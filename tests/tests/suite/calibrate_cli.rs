@@ -2,7 +2,7 @@
 //! session over loopback DDS to a profile, the same session fitted again from its recording,
 //! sessions with a bad pose refused without writing anything, and the station and resim
 //! refusing a bad profile (naming the file and the key) and accepting the good one; the
-//! session file decoded by the independent MCAP readers (interop, issue 9).
+//! session file decoded by the independent MCAP readers (interop).
 
 use std::io::{BufRead as _, BufReader};
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! Ctrl-C in the middle of a calibration fit (issue 26): the fit stops, no profile is written
+//! Ctrl-C in the middle of a calibration fit: the fit stops, no profile is written
 //! (an existing one is left as it was) and the exit status is 130. `pomdar calibrate --from`
 //! is interrupted once in the Bayesian search and once in the Nelder–Mead polish, the line
 //! console (`--simulate --plain`, loopback DDS) once in the fit after its session. The

@@ -46,7 +46,7 @@ const TASKS: [(&str, &str); 2] = [("V1", "progress"), ("G2", "progress 1")];
 const TRIAL_S: f64 = 3.5;
 /// The longest a run may take to reach its kill or its end.
 const RUN_TIMEOUT: Duration = Duration::from_secs(90);
-/// How much of the running trial a kill may lose (the bound), ms.
+/// How much of the running trial a kill may lose (the bound the console promises), ms.
 const MAX_LOSS_MS: f64 = 1000.0;
 
 fn unix_ns() -> i64 {

@@ -81,7 +81,7 @@ fn the_defaults_meet_the_smoothness_targets_on_the_reference_recording() {
     let json = eval_json(&input);
     assert_eq!(number(&json, "frames"), 727.0);
     assert_eq!(number(&json, "limit_violation_frames"), 0.0);
-    // Issue 12's targets; dex-retargeting 0.5.0: 0.019 rad unfiltered, 0.0026 rad with its
+    // The retargeting quality targets; dex-retargeting 0.5.0: 0.019 rad unfiltered, 0.0026 rad with its
     // output filter (α 0.2) at 26.1 mm and no pinch closed.
     let jerk = number(&json, "jerk_rad");
     assert!(jerk <= 0.005, "jerk {jerk} rad");
@@ -89,7 +89,7 @@ fn the_defaults_meet_the_smoothness_targets_on_the_reference_recording() {
     assert!(step <= 0.3, "max step {step} rad");
     let closed = number(&json, "pinches_closed_pct");
     assert!(closed >= 90.0, "{closed} % of pinches closed");
-    // Issue 12 asks for 22 mm; the defaults measure 23.5 mm (README "Retargeting quality").
+    // The target is 22 mm; the defaults measure 23.5 mm (README "Retargeting quality").
     let tip = number(&json, "tip_error_mean_mm");
     assert!(tip < 24.9, "tip error {tip} mm");
 }
@@ -316,7 +316,7 @@ fn an_evaluation_set_from_the_reference_recording() {
 }
 
 /// The live path (the station re-simulated, the command in force at each distinct frame) is
-/// what the retargeter alone gives, within issue 19's bounds: jerk within 10 %, fingertip error
+/// what the retargeter alone gives, within the bounds: jerk within 10 %, fingertip error
 /// within 0.5 mm, every distinct frame scored.
 fn check_live_path(json: &Value) {
     let live = &json["live_path"];

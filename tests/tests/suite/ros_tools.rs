@@ -1,4 +1,4 @@
-//! What the station offers the lab's ROS tools (issue 22), over real DDS on loopback from the
+//! What the station offers the lab's ROS tools, over real DDS on loopback from the
 //! production station node:
 //! - the joint names it publishes are the robot URDF's, and `/tf` + `/tf_static` composed from
 //!   the root equal the URDF's forward kinematics computed by an independent implementation
