@@ -84,7 +84,7 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "CALIBRATION.toml")]
     pub settings: Option<PathBuf>,
     /// ROS domain id of the session (live: default the config's, else ROS_DOMAIN_ID, else 0;
-    /// --simulate: default 150–229 from the process id, on loopback only).
+    /// --simulate: default one of 150–229 no other run on this machine holds, on loopback only).
     #[arg(long)]
     pub domain_id: Option<u16>,
     /// Live session: how long to wait for the glove's first keypoints, seconds.

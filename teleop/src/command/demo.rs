@@ -23,7 +23,7 @@ pub struct DemoArgs {
     /// Print only a JSON summary on stdout (no live status).
     #[arg(long)]
     pub json: bool,
-    /// ROS domain id for the demo (default: 150–229, from the process id).
+    /// ROS domain id for the demo (default: one of 150–229 that no other run on this machine holds).
     #[arg(long)]
     pub domain_id: Option<u16>,
     /// Station configuration (default: the ETH lab preset built in).

@@ -110,8 +110,8 @@ pub struct TrialArgs {
     #[command(flatten)]
     pub console: ConsoleArgs,
     /// Run a simulated glove, a mock hand and a mock Franka (only the glove for
-    /// `--embodiment human`) in this process, on loopback (domain 150–229 from the process
-    /// id unless --domain-id): a demo or a rehearsal.
+    /// `--embodiment human`) in this process, on loopback (a domain of 150–229 that no other run
+    /// on this machine holds, unless --domain-id): a demo or a rehearsal.
     #[arg(long)]
     pub simulate: bool,
     /// With --simulate: the simulated glove's motion (periodic, the wrist in place).
