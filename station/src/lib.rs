@@ -36,6 +36,7 @@ pub mod hand_control;
 pub mod hand_convention;
 #[cfg(test)]
 mod hand_convention_presets;
+pub mod input_gap;
 pub mod joint_names;
 pub mod network_config;
 pub mod output_stage;
@@ -55,6 +56,7 @@ pub mod watchdog;
 pub use config_error::ConfigError;
 pub use frame_gate::{GateConfig, Rejection, Verdict};
 pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
+pub use input_gap::InputGap;
 pub use network_config::{NetworkConfig, QosConfig, Reliability};
 pub use station::{ArmStatus, Station, StationStatus, Totals};
 pub use station_config::{

@@ -30,6 +30,7 @@ use crate::arm::{ArmError, Constraint};
 use crate::convert::pose_to_isometry;
 use crate::frame_gate::{FrameGate, Verdict};
 use crate::hand_control::{Counters, HandCommand, HandControl, KeypointFrame};
+use crate::input_gap::{GapMeter, InputGap};
 use crate::output_stage::{ArmInputs, ArmStep, OutputStage};
 use crate::rate_meter::RateMeter;
 use crate::station_config::{ControlConfig, ControlMode, StationConfig};
@@ -45,6 +46,9 @@ const RATE_WINDOW_S: f64 = 1.0;
 pub struct Totals {
     /// Hand commands sent (fresh, repeated and held).
     pub hand_commands: u64,
+    /// Hand commands repeated because the glove input went stale (held, not yet disengaged):
+    /// each is a control step the glove did not drive.
+    pub held_commands: u64,
     /// Arm targets sent.
     pub arm_targets: u64,
     /// Wrist poses refused (non-finite, non-unit quaternion).
@@ -59,6 +63,7 @@ pub struct Totals {
 #[derive(Debug, Clone)]
 struct Meters {
     input: RateMeter,
+    gaps: GapMeter,
     repeat: RateMeter,
     output: RateMeter,
 }
@@ -77,6 +82,8 @@ pub struct StationStatus {
     pub output_rate_hz: f64,
     /// Age of the newest new frame, milliseconds.
     pub input_age_ms: Option<f64>,
+    /// The longest gap between new frames so far, as received and as sent ([`InputGap`]).
+    pub longest_input_gap: Option<InputGap>,
     /// Frame and solver counters.
     pub counters: Counters,
     /// What was sent and refused.
@@ -147,6 +154,7 @@ impl Station {
             auto_engage_pending: config.control.auto_engage && drives_robot,
             meters: Meters {
                 input: RateMeter::new(RATE_WINDOW_S),
+                gaps: GapMeter::default(),
                 repeat: RateMeter::new(RATE_WINDOW_S),
                 output: RateMeter::new(RATE_WINDOW_S),
             },
@@ -206,6 +214,11 @@ impl Station {
         self.arm_inputs.blocked
     }
 
+    /// The longest gap between new frames so far, as received and as sent.
+    pub fn longest_input_gap(&self) -> Option<InputGap> {
+        self.meters.gaps.longest()
+    }
+
     /// Age of the newest new frame at `now_ns`.
     pub fn input_age_ns(&self, now_ns: i64) -> Option<i64> {
         self.hand.input_age_ns(now_ns)
@@ -237,6 +250,7 @@ impl Station {
             repeat_rate_hz: self.meters.repeat.rate_hz(now_ns),
             output_rate_hz: self.meters.output.rate_hz(now_ns),
             input_age_ms: self.hand.input_age_ns(now_ns).map(|a| a as f64 * 1e-6),
+            longest_input_gap: self.meters.gaps.longest(),
             counters: self.hand.counters().clone(),
             totals: self.totals.clone(),
             arm: ArmStatus {
@@ -266,6 +280,7 @@ impl Station {
         match verdict {
             Verdict::New => {
                 self.meters.input.record(now_ns);
+                self.meters.gaps.record(now_ns, source_ns);
                 if self.auto_engage_pending && self.hand.engage(now_ns) {
                     self.auto_engage_pending = false;
                 }
@@ -332,7 +347,11 @@ impl Station {
                 self.command_fresh(now_ns, outputs);
             }
             (DriveState::Held | DriveState::Disengaged, _) => {
-                self.send_hand(self.hand.held(), now_ns, outputs);
+                let held = self.hand.held();
+                if state == DriveState::Held && held.is_some() {
+                    self.totals.held_commands += 1;
+                }
+                self.send_hand(held, now_ns, outputs);
             }
         }
         self.step_arm(state, now_ns, outputs);

@@ -132,11 +132,15 @@ fn stale_input_holds_the_last_command_then_disengages() {
     s.step(frame(0.2, 0), 0);
     s.step(engage(), MS);
     let first = s.step(frame(0.3, 2), 2 * MS);
+    assert_eq!(s.totals().held_commands, 0);
     let held = s.step(tick(), 200 * MS);
     assert_eq!(s.state(), DriveState::Held);
     assert_eq!(q_of(&held), q_of(&first));
+    assert_eq!(s.totals().held_commands, 1);
     assert!(s.step(tick(), 1100 * MS).hand.is_some());
     assert_eq!(s.state(), DriveState::Disengaged);
+    // Repeats once disengaged are not counted as held.
+    assert_eq!(s.totals().held_commands, 1);
     // Fresh input alone does not resume.
     assert!(s.step(frame(0.5, 1200), 1200 * MS).hand.is_none());
     assert_eq!(q_of(&s.step(tick(), 1201 * MS)), q_of(&first));

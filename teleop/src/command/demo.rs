@@ -166,8 +166,20 @@ fn print_summary(summary: &DemoSummary, recorded: Option<&std::path::Path>, cont
         ms(summary.solver_ms_p99)
     );
     println!("  rejected frames    {}", summary.rejected_frames);
+    if let Some(gap) = &summary.longest_input_gap {
+        println!(
+            "  longest glove gap  {:.0} ms as received ({:.0} ms as sent)",
+            gap.received_ms, gap.sent_ms
+        );
+    }
     if let Some(path) = recorded {
         println!("  recorded           {}", path.display());
+        if summary.log_dropped > 0 {
+            println!(
+                "  not logged         {} messages (the disk fell behind)",
+                summary.log_dropped
+            );
+        }
     }
     println!(
         "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",

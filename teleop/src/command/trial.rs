@@ -37,7 +37,7 @@ use crate::sim::mock_robot::spawn_mock_robot;
 use crate::sim::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
 use crate::station_node::recorder::{RecordingOptions, config_digest};
 use crate::station_node::ros_node::{
-    OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
+    LatestInput, OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
 };
 use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
@@ -499,6 +499,8 @@ struct StationHandles {
     status_rx: watch::Receiver<Option<serde_json::Value>>,
     /// Trial log starts and ends, and messages for the operator.
     events_rx: mpsc::UnboundedReceiver<StationEvent>,
+    /// The newest glove frame's receive time, kept by the station at every frame.
+    latest_input: LatestInput,
     /// Stops the station and the simulation.
     shutdown_tx: watch::Sender<bool>,
     _shutdown_rx: watch::Receiver<bool>,
@@ -522,6 +524,7 @@ fn spawn_station(
     let (operator_tx, operator_rx) = mpsc::unbounded_channel();
     let (status_tx, status_rx) = watch::channel(None);
     let (events_tx, events_rx) = mpsc::unbounded_channel();
+    let latest_input = LatestInput::default();
     let station = tokio::spawn(run_station_observed(
         config.clone(),
         model.clone(),
@@ -532,6 +535,7 @@ fn spawn_station(
         StationHooks {
             status: Some(status_tx),
             events: Some(events_tx),
+            latest_input: Some(latest_input.clone()),
             tap,
             trial_log_flush_interval_ns: Some(TRIAL_LOG_FLUSH_INTERVAL_NS),
             ..StationHooks::default()
@@ -552,6 +556,7 @@ fn spawn_station(
         operator_tx,
         status_rx,
         events_rx,
+        latest_input,
         shutdown_tx,
         _shutdown_rx: shutdown_rx,
         simulated,
@@ -884,6 +889,7 @@ impl TrialConsole {
     /// the console shown.
     fn finish_turn(&mut self, mut turn: Turn) -> anyhow::Result<Next> {
         let now = self.clock.now_ns();
+        self.session.health.latest_input_ns = self.station.latest_input.get();
         self.play_script(&mut turn.actions);
         self.act(turn.actions, &mut turn.effects, now);
         let session = &mut self.session;

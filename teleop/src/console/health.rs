@@ -37,8 +37,13 @@ pub struct Health {
     pub state: String,
     /// New glove frames per second.
     pub glove_rate_hz: f64,
-    /// Age of the last new glove frame, ms.
+    /// Age of the last new glove frame when the status was made, ms.
     pub input_age_ms: Option<f64>,
+    /// The newest new glove frame's receive time (the station's clock, ns), kept current
+    /// between statuses when the station runs in this process (its `LatestInput` hook).
+    pub latest_input_ns: Option<i64>,
+    /// The longest gap between new glove frames so far: (as received, as sent), ms.
+    pub longest_gap_ms: Option<(f64, f64)>,
     /// Frame received → command published, ms (the last one).
     pub latency_ms: Option<f64>,
     /// Hand commands per second.
@@ -107,6 +112,9 @@ pub struct Faults {
     pub arm_refused: u64,
     /// Engage requests the arm refused (e.g. no valid wrist pose).
     pub arm_engage_failed: u64,
+    /// Messages left out of the trial logs because the disk fell behind (the recorder's
+    /// queue was full).
+    pub log_dropped: u64,
 }
 
 impl Faults {
@@ -124,6 +132,10 @@ impl Faults {
             arm_refused: total("/totals/arm_refused"),
             arm_engage_failed: status
                 .pointer("/totals/arm_engage_failed")
+                .and_then(Value::as_u64)
+                .unwrap_or(0),
+            log_dropped: status
+                .pointer("/node/log_dropped")
                 .and_then(Value::as_u64)
                 .unwrap_or(0),
         }
@@ -152,6 +164,13 @@ impl Health {
                 .to_string(),
             glove_rate_hz: status.get("input_rate_hz").and_then(number).unwrap_or(0.0),
             input_age_ms: status.get("input_age_ms").and_then(number),
+            latest_input_ns: None,
+            longest_gap_ms: status.get("longest_input_gap").and_then(|gap| {
+                Some((
+                    gap.get("received_ms").and_then(number)?,
+                    gap.get("sent_ms").and_then(number)?,
+                ))
+            }),
             latency_ms: status.get("processing_latency_ms").and_then(number),
             output_rate_hz: status.get("output_rate_hz").and_then(number).unwrap_or(0.0),
             rejected,
@@ -185,10 +204,27 @@ impl Health {
             && self.glove_rate_hz >= limits.min_glove_rate_hz
     }
 
-    /// Age of the glove input at `now_ns`: the status's age plus the input age it reported.
+    /// Age of the glove input at `now_ns`, ms: exact from the newest frame's time when the
+    /// station shares it, else the status's input age plus the status's own age (an upper
+    /// bound, up to one status period over, for a station reporting only through its status).
     pub fn input_age_at(&self, now_ns: i64) -> Option<f64> {
+        if let Some(latest) = self.latest_input_ns {
+            return Some((now_ns - latest).max(0) as f64 * 1e-6);
+        }
         let received = self.received_ns?;
         Some(self.input_age_ms? + (now_ns - received) as f64 * 1e-6)
+    }
+
+    /// Why the glove input is stale, with which side the longest gap so far was on.
+    fn stale_input(&self, age_ms: f64, limit_ms: f64) -> String {
+        let mut why =
+            format!("glove input is stale: last frame {age_ms:.0} ms ago (limit {limit_ms:.0} ms)");
+        if let Some((received, sent)) = self.longest_gap_ms {
+            why.push_str(&format!(
+                "; longest gap so far {received:.0} ms as received, {sent:.0} ms as sent"
+            ));
+        }
+        why
     }
 
     /// Why a trial may not start at `now_ns`, if it may not.
@@ -206,10 +242,7 @@ impl Health {
         match self.input_age_at(now_ns) {
             None => return Some("no glove input yet: is the glove streaming?".to_string()),
             Some(age) if age > limits.max_input_age_ms => {
-                return Some(format!(
-                    "glove input is stale: last frame {age:.0} ms ago (limit {:.0} ms)",
-                    limits.max_input_age_ms
-                ));
+                return Some(self.stale_input(age, limits.max_input_age_ms));
             }
             Some(_) => {}
         }
@@ -242,7 +275,7 @@ mod tests {
             "arm": {"engaged": true, "second_publisher": false},
             "listeners": {"hand": 1, "arm": 0},
             "totals": {"arm_refused": {"outside_workspace": 4}, "arm_engage_failed": 1},
-            "node": {"publish_failed": {"/a": 2, "/b": 1}, "input_errors": {"/ingress/mano": 5}},
+            "node": {"publish_failed": {"/a": 2, "/b": 1}, "input_errors": {"/ingress/mano": 5}, "log_dropped": 7},
         })
     }
 
@@ -260,7 +293,8 @@ mod tests {
                 publish_failed: 3,
                 samples_lost: 5,
                 arm_refused: 4,
-                arm_engage_failed: 1
+                arm_engage_failed: 1,
+                log_dropped: 7,
             }
         );
         assert!(!Faults::from_status(&json!({})).any());
@@ -316,6 +350,44 @@ mod tests {
             stale
                 .refuse_start(&limits, 0)
                 .is_some_and(|r| r.contains("stale"))
+        );
+    }
+
+    #[test]
+    fn the_input_age_between_statuses_is_exact_when_the_station_shares_its_newest_frame() {
+        let limits = StartLimits::default();
+        // A 5 Hz status made 8 ms after a frame of a 100 Hz glove, 199 ms ago: the status alone
+        // bounds the age at 207 ms, over the limit, though frames kept coming.
+        let mut health = Health::from_status(&status("engaged", 99.0, Some(8.0)), 0);
+        let now = 199 * MS;
+        assert!(health.input_age_at(now).unwrap() > limits.max_input_age_ms);
+        assert!(
+            health
+                .refuse_start(&limits, now)
+                .is_some_and(|r| r.contains("stale"))
+        );
+        // The station's newest frame, 6 ms ago.
+        health.latest_input_ns = Some(193 * MS);
+        assert!((health.input_age_at(now).unwrap() - 6.0).abs() < 1e-9);
+        assert_eq!(health.refuse_start(&limits, now), None);
+        // A glove that stopped: the exact age grows past the limit.
+        assert!(
+            health
+                .refuse_start(&limits, 400 * MS)
+                .is_some_and(|r| r.contains("last frame 207 ms ago"))
+        );
+    }
+
+    #[test]
+    fn a_stale_input_refusal_says_on_which_side_the_longest_gap_was() {
+        let mut document = status("disengaged", 99.0, Some(500.0));
+        document["longest_input_gap"] = json!({"received_ms": 512.4, "sent_ms": 10.1});
+        let health = Health::from_status(&document, 0);
+        assert_eq!(health.longest_gap_ms, Some((512.4, 10.1)));
+        let why = health.refuse_start(&StartLimits::default(), 0).unwrap();
+        assert!(
+            why.ends_with("longest gap so far 512 ms as received, 10 ms as sent"),
+            "{why}"
         );
     }
 

@@ -506,6 +506,7 @@ fn faults_text(faults: &Faults) -> String {
         (faults.samples_lost, "samples lost"),
         (faults.arm_refused, "arm targets refused"),
         (faults.arm_engage_failed, "arm engages refused"),
+        (faults.log_dropped, "messages not logged (disk too slow)"),
     ];
     let shown: Vec<String> = counts
         .iter()

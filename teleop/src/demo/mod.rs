@@ -26,8 +26,8 @@ use crate::station_node::tap::Tap;
 use crate::station_setup::SetupError;
 use robot::{DemoRobot, RobotReports};
 pub use robot::{PhysicsOutcome, PhysicsTask};
-use station::StationConfig;
 use station::arm::Constraint;
+use station::{InputGap, StationConfig};
 
 /// A demo that cannot start, or a node of it that failed.
 #[derive(Debug, thiserror::Error)]
@@ -127,6 +127,14 @@ pub struct DemoSummary {
     pub frames_new: u64,
     /// Frames the station recognised as repeats.
     pub frames_repeated: u64,
+    /// The longest gap between new glove frames at the station, as received and as sent
+    /// (`None` before two frames): a received gap under the watchdog's hold timeout means
+    /// nothing was held while the glove played.
+    pub longest_input_gap: Option<InputGap>,
+    /// Hand commands held (the glove input stale), including those after the glove stopped.
+    pub held_commands: u64,
+    /// Messages left out of the log because the disk fell behind (`--out`).
+    pub log_dropped: u64,
     /// What the physics measured (`--physics`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub physics: Option<PhysicsOutcome>,
@@ -404,6 +412,9 @@ fn demo_summary(
         frames_published: frames,
         frames_new: station.counters.frames_new,
         frames_repeated: station.counters.frames_repeated,
+        longest_input_gap: station.longest_input_gap,
+        held_commands: station.totals.held_commands,
+        log_dropped: station.faults.log_dropped,
         physics: None,
     }
 }

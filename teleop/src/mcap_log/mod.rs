@@ -62,6 +62,7 @@ pub mod qos_profile;
 mod record_scan;
 mod recover;
 mod ros_names;
+pub mod slow_disk;
 mod trial_reader;
 mod trial_writer;
 mod writer_options;

@@ -279,6 +279,7 @@ impl TrialWriter {
     /// [`sync_on_flush`](TrialWriterOptions::sync_on_flush)): a crash after this keeps every
     /// message written before it.
     pub fn flush(&mut self) -> Result<(), LogError> {
+        super::slow_disk::stall();
         self.mcap
             .flush()
             .map_err(|e| LogError::mcap(&self.part_path, "flushing", e))?;
@@ -329,6 +330,7 @@ impl TrialWriter {
             log_time_range_ns,
             ..
         } = self;
+        super::slow_disk::stall();
         mcap.finish()
             .map_err(|e| LogError::mcap(&part_path, "writing the summary", e))?;
         mcap.into_inner()

@@ -17,6 +17,13 @@ pub enum NodeError {
     /// A trial log could not be created or finished.
     #[error(transparent)]
     Log(#[from] LogError),
+    /// The thread that writes the trial logs could not be started.
+    #[error("cannot start the recorder thread: {source}")]
+    RecorderThread {
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
     /// A write to a running trial's log failed; the station keeps running.
     #[error("recording: {source} (the station keeps running; the log may be incomplete)")]
     Recording {

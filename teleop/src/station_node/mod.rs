@@ -4,6 +4,7 @@
 mod error;
 pub mod operator;
 pub mod recorder;
+mod recorder_thread;
 pub mod ros_node;
 mod ros_tools_node;
 pub mod station_log;

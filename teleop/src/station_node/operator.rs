@@ -1,6 +1,9 @@
 //! What the process that runs a station tells it (the operator's commands), and what the
 //! station tells that process back (trial logs, messages), besides its ROS topics.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicI64, Ordering};
+
 use tokio::sync::{mpsc, watch};
 
 use crate::station_node::recorder::RecordingOptions;
@@ -35,6 +38,8 @@ pub struct StationHooks {
     pub tap: Option<Tap>,
     /// The robot's URDF text, published on `/robot_description` (latched) when given.
     pub robot_description: Option<String>,
+    /// Set to the receive time of every new glove frame, for a console in this process.
+    pub latest_input: Option<LatestInput>,
     /// The trial logs started by [`OperatorCommand::StartTrial`] flush at least this often,
     /// ns of log time (`None`: the log writer's default, 1 s).
     pub trial_log_flush_interval_ns: Option<i64>,
@@ -88,5 +93,32 @@ impl StationHooks {
                 | StationEvent::ServiceRequest(_) => {}
             },
         }
+    }
+}
+
+/// The receive time of the station's newest new glove frame, on the station's clock, shared
+/// with a console in the same process. Exact at any moment, where the status's
+/// `input_age_ms` is as old as the status (up to one status period, 200 ms at 5 Hz): a
+/// console that added the time since the status to it would call a healthy glove stale just
+/// before each status.
+#[derive(Debug, Clone)]
+pub struct LatestInput(Arc<AtomicI64>);
+
+impl Default for LatestInput {
+    fn default() -> Self {
+        LatestInput(Arc::new(AtomicI64::new(i64::MIN)))
+    }
+}
+
+impl LatestInput {
+    /// A new frame was received at `received_ns`.
+    pub fn record(&self, received_ns: i64) {
+        self.0.store(received_ns, Ordering::Release);
+    }
+
+    /// The newest new frame's receive time; `None` before any.
+    pub fn get(&self) -> Option<i64> {
+        let ns = self.0.load(Ordering::Acquire);
+        (ns != i64::MIN).then_some(ns)
     }
 }

@@ -25,8 +25,8 @@ use serde::Serialize;
 use serde_json::json;
 use station::convert::KeypointMessage;
 use station::{
-    ControlInput, Counters, KeypointFormat, KeypointFrame, Station, StationConfig, StationInput,
-    StationOutputs, Totals,
+    ControlInput, Counters, InputGap, KeypointFormat, KeypointFrame, Station, StationConfig,
+    StationInput, StationOutputs, Totals, Verdict,
 };
 use tokio::sync::{mpsc, watch};
 
@@ -34,8 +34,9 @@ use crate::clock::StationClock;
 use crate::ros::{QosConfig, RosNode};
 use crate::samples::Samples;
 use crate::station_node::error::NodeError;
-pub use crate::station_node::operator::{OperatorCommand, StationEvent, StationHooks};
+pub use crate::station_node::operator::{LatestInput, OperatorCommand, StationEvent, StationHooks};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
+use crate::station_node::recorder_thread::{LogQueue, LogReport};
 use crate::station_node::ros_tools_node::{ServiceRequest, ToolEndpoints, ToolScene};
 
 mod tool_steps;
@@ -52,6 +53,8 @@ pub struct StationSummary {
     pub faults: NodeFaults,
     /// Whether a second publisher on the arm command topic was seen.
     pub second_publisher_seen: bool,
+    /// The longest gap between new glove frames, as received and as sent.
+    pub longest_input_gap: Option<InputGap>,
     /// Wall time of each step that retargeted a new frame, milliseconds.
     pub step_time: Samples,
     /// Mean palm-to-tip key-vector error of each solve, millimetres.
@@ -67,6 +70,8 @@ pub struct NodeFaults {
     pub publish_failed: BTreeMap<String, u64>,
     /// Samples the subscription could not deliver (undecodable or lost in DDS), by topic.
     pub input_errors: BTreeMap<String, u64>,
+    /// Log writes dropped because the recorder thread's queue was full (the disk stalled).
+    pub log_dropped: u64,
 }
 
 impl NodeFaults {
@@ -119,6 +124,7 @@ pub async fn run_station_observed(
         }
         None => None,
     };
+    let (log, mut log_reports) = LogQueue::spawn(recorder)?;
     let endpoints = Endpoints::open(&config, hooks.robot_description.is_some())?;
     let mut streams = endpoints.streams(&config);
     let mut node = StationNode {
@@ -127,7 +133,7 @@ pub async fn run_station_observed(
         last_points: Vec::new(),
         config: Arc::new(config),
         clock,
-        recorder,
+        log,
         hooks,
         faults: NodeFaults::default(),
         second_publisher_seen: false,
@@ -150,13 +156,14 @@ pub async fn run_station_observed(
             Some(item) = streams.hand_state.next() => node.on_hand_state(item),
             Some(item) = streams.ingress_status.next() => node.on_ingress_status(item),
             Some(request) = streams.services.next() => node.on_service(request, &endpoints).await,
+            Some(report) = log_reports.recv() => node.on_log_report(report),
             _ = streams.tick.tick() => {
                 node.drive(StationInput::Control(ControlInput::Tick), &endpoints).await;
             }
             _ = streams.status_tick.tick() => node.on_status_tick(&endpoints).await,
         }
     }
-    Ok(node.finish())
+    Ok(node.finish(log_reports).await)
 }
 
 /// The node's publishers and subscriptions, and the node last (fields drop in order: the
@@ -362,7 +369,8 @@ struct StationNode {
     /// Shared, so a step can borrow topic names while it records and counts.
     config: Arc<StationConfig>,
     clock: StationClock,
-    recorder: Option<StationRecorder>,
+    /// The trial log, written by its own thread.
+    log: LogQueue,
     hooks: StationHooks,
     faults: NodeFaults,
     second_publisher_seen: bool,
@@ -386,11 +394,7 @@ impl StationNode {
                 self.drive(StationInput::Control(ControlInput::Disengage), endpoints)
                     .await;
             }
-            OperatorCommand::TrialEvent(event) => {
-                if let Some(r) = self.recorder.as_mut() {
-                    r.event(now, &event);
-                }
-            }
+            OperatorCommand::TrialEvent(event) => self.log.event(now, event),
             OperatorCommand::StartTrial(options) => self.start_trial(&options, now),
             OperatorCommand::StopTrial => self.finish_trial(now),
         }
@@ -405,8 +409,10 @@ impl StationNode {
             return;
         };
         let source_ns = source_or(&info, now);
-        if let Some(r) = self.recorder.as_mut() {
-            r.keypoints(topic, now, Some(source_ns), &message);
+        if self.log.is_open() {
+            let (topic, message) = (topic.clone(), message.clone());
+            self.log
+                .write(move |r| r.keypoints(&topic, now, Some(source_ns), &message));
         }
         let frame = KeypointFrame {
             points: message.points(),
@@ -443,17 +449,15 @@ impl StationNode {
             NodeFaults::count(&mut self.faults.input_errors, topic);
             return None;
         };
-        if let Some(r) = self.recorder.as_mut() {
-            r.input(topic, now, Some(source_or(&info, now)), &message);
-        }
+        self.log_input(topic, now, Some(source_or(&info, now)), &message);
         Some((message.pose, now))
     }
 
     /// Record a control input and step the station with it.
     async fn drive(&mut self, input: StationInput, endpoints: &Endpoints) {
         let now = self.clock.now_ns();
-        if let (Some(r), StationInput::Control(control)) = (self.recorder.as_mut(), &input) {
-            r.control(now, *control);
+        if let StationInput::Control(control) = input {
+            self.log.write(move |r| r.control(now, control));
         }
         self.step_and_send(input, now, endpoints).await;
     }
@@ -462,6 +466,9 @@ impl StationNode {
     async fn step_and_send(&mut self, input: StationInput, now: i64, endpoints: &Endpoints) {
         let started = Instant::now();
         let outputs = self.station.step(input, now);
+        if let (Some(Verdict::New), Some(latest)) = (outputs.verdict, &self.hooks.latest_input) {
+            latest.record(now);
+        }
         if outputs.fresh_frame_received_ns.is_some() {
             self.step_time.push(started.elapsed().as_secs_f64() * 1e3);
             self.tip_error_mm
@@ -501,16 +508,14 @@ impl StationNode {
     }
 
     /// Record and publish `message`; whether it went out (a failure is counted).
-    async fn publish<M: msgs::RosMessage + Serialize>(
+    async fn publish<M: msgs::RosMessage + Serialize + Clone + Send + 'static>(
         &mut self,
         publisher: &Publisher<M>,
         topic: &str,
         now: i64,
         message: M,
     ) -> bool {
-        if let Some(r) = self.recorder.as_mut() {
-            r.output(topic, now, &message);
-        }
+        self.log_output(topic, now, &message);
         if let Some(tap) = &self.hooks.tap {
             tap.send(topic, &message, now, false);
         }
@@ -540,13 +545,12 @@ impl StationNode {
             tap.send(&self.config.output.status_topic, &message, now, false);
         }
         self.send_diagnostics(now, endpoints).await;
-        if let Some(r) = self.recorder.as_mut() {
-            r.output(&self.config.output.status_topic, now, &message);
-            r.tick(now);
-            if let Some(error) = r.take_error() {
-                self.hooks
-                    .send(StationEvent::Message(format!("error: {error}")));
-            }
+        if self.log.is_open() {
+            let (topic, status) = (self.config.output.status_topic.clone(), message.clone());
+            self.log.write(move |r| {
+                r.output(&topic, now, &status);
+                r.tick(now);
+            });
         }
         if endpoints.status.async_publish(message).await.is_err() {
             let config = Arc::clone(&self.config);
@@ -556,6 +560,7 @@ impl StationNode {
 
     /// The station's status with what only the node knows.
     fn status_document(&mut self, now: i64, endpoints: &Endpoints) -> serde_json::Value {
+        self.faults.log_dropped = self.log.dropped_total();
         let mut status = serde_json::to_value(self.station.status(now)).unwrap_or_default();
         if let Some(fields) = status.as_object_mut() {
             fields.insert("stamp_ns".into(), json!(now));
@@ -585,59 +590,99 @@ impl StationNode {
 
     fn start_trial(&mut self, options: &RecordingOptions, now: i64) {
         self.finish_trial(now);
-        let options = &with_source(options, self.keypoint_source.as_ref(), &self.config);
+        let options = with_source(options, self.keypoint_source.as_ref(), &self.config);
         let flush = self.hooks.trial_log_flush_interval_ns;
-        match StationRecorder::start_flushing(options, &self.config, now, flush) {
-            Ok(r) => {
-                self.recorder = Some(r);
-                self.record_latched(now);
-                self.hooks
-                    .send(StationEvent::TrialStarted(options.path.clone()));
-            }
-            Err(e) => self.hooks.send(StationEvent::TrialStartFailed {
-                path: options.path.clone(),
-                error: e.to_string(),
-            }),
-        }
+        self.log
+            .start(options, Arc::clone(&self.config), now, flush);
+        self.record_latched(now);
     }
 
-    /// Finish the current trial's log with the run's totals so far; a failure is reported,
-    /// never fatal.
+    /// Finish the current trial's log with the run's totals so far (on the recorder thread:
+    /// its outcome comes back as a [`LogReport`]).
     fn finish_trial(&mut self, now_ns: i64) {
-        let Some(mut recorder) = self.recorder.take() else {
+        if !self.log.is_open() {
             return;
-        };
+        }
         let totals = self.station.totals();
         let summary = json!({
             "frames_new": self.station.counters().frames_new,
             "hand_commands": totals.hand_commands,
             "arm_targets": totals.arm_targets,
+            "held_commands": totals.held_commands,
+            "log_dropped": self.log.dropped_in_log(),
         });
-        if let Some(error) = recorder.take_error() {
-            self.hooks
-                .send(StationEvent::Message(format!("error: {error}")));
-        }
-        let path = recorder.path().to_path_buf();
-        match recorder.finish(now_ns, summary) {
-            Ok(finished) => {
-                self.hooks
-                    .send(StationEvent::TrialFinished(finished.path.clone()));
-                self.recorded.push(finished.path);
-            }
-            Err(e) => self.hooks.send(StationEvent::TrialFinishFailed {
+        self.log.finish(now_ns, summary);
+    }
+
+    /// What the recorder thread did, for the operator.
+    fn on_log_report(&mut self, report: LogReport) {
+        let event = match report {
+            LogReport::Started(path) => StationEvent::TrialStarted(path),
+            LogReport::StartFailed { path, error } => StationEvent::TrialStartFailed {
                 path,
-                error: e.to_string(),
-            }),
+                error: error.to_string(),
+            },
+            LogReport::WriteFailed(error) => StationEvent::Message(format!("error: {error}")),
+            LogReport::Finished(finished) => {
+                self.recorded.push(finished.path.clone());
+                StationEvent::TrialFinished(finished.path)
+            }
+            LogReport::FinishFailed { path, error } => StationEvent::TrialFinishFailed {
+                path,
+                error: error.to_string(),
+            },
+        };
+        self.hooks.send(event);
+    }
+
+    /// Queue a copy of an input `message` on `topic` for the log.
+    fn log_input<M: msgs::RosMessage + Clone + Send + 'static>(
+        &mut self,
+        topic: &str,
+        now: i64,
+        source_ns: Option<i64>,
+        message: &M,
+    ) {
+        if self.log.is_open() {
+            let (topic, message) = (topic.to_string(), message.clone());
+            self.log
+                .write(move |r| r.input(&topic, now, source_ns, &message));
         }
     }
 
-    fn finish(mut self) -> StationSummary {
+    /// Queue a copy of an output `message` on `topic` for the log.
+    fn log_output<M: msgs::RosMessage + Clone + Send + 'static>(
+        &mut self,
+        topic: &str,
+        now: i64,
+        message: &M,
+    ) {
+        if self.log.is_open() {
+            let (topic, message) = (topic.to_string(), message.clone());
+            self.log.write(move |r| r.output(&topic, now, &message));
+        }
+    }
+
+    /// Finishes the open trial and waits for the recorder thread to write everything queued.
+    async fn finish(
+        mut self,
+        mut log_reports: mpsc::UnboundedReceiver<LogReport>,
+    ) -> StationSummary {
         self.finish_trial(self.clock.now_ns());
+        if let Some(thread) = self.log.close() {
+            // A panic in the thread has already been printed; its log stays a `.part`.
+            let _ = tokio::task::spawn_blocking(move || thread.join()).await;
+        }
+        while let Ok(report) = log_reports.try_recv() {
+            self.on_log_report(report);
+        }
+        self.faults.log_dropped = self.log.dropped_total();
         StationSummary {
             counters: self.station.counters().clone(),
             totals: self.station.totals().clone(),
             faults: self.faults,
             second_publisher_seen: self.second_publisher_seen,
+            longest_input_gap: self.station.longest_input_gap(),
             step_time: self.step_time,
             tip_error_mm: self.tip_error_mm,
             recorded: self.recorded,

@@ -202,9 +202,6 @@ impl Session {
             &domain.to_string(),
             "--countdown",
             "0.3",
-            // The start gate is not under test: a loaded CI machine's glove gaps pass it.
-            "--max-input-age",
-            "2000",
             "--min-glove-rate",
             "5",
             "--baseline",

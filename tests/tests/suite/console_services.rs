@@ -37,8 +37,6 @@ fn console_args(dir: &std::path::Path, domain: u16) -> Vec<String> {
         "0.3",
         "--interface",
         "127.0.0.1",
-        "--max-input-age",
-        "1000",
         "--domain-id",
     ];
     fixed

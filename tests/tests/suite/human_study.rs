@@ -68,11 +68,6 @@ fn study_args(root: &Path, out: &str, participant: &str, motions: &str) -> Vec<S
         motions,
         "--countdown",
         "0.5",
-        // A loaded 2-core CI machine once left the in-process simulated glove 200 ms without a
-        // frame right after a trial was saved, cancelling the next countdown (the default
-        // limit); the start gate itself is tested in `console::health`.
-        "--max-input-age",
-        "1000",
         "--plain",
         "--script",
         s(&script),

@@ -38,6 +38,7 @@ mod rokoko_ingress;
 mod ros_tools;
 mod score_cli;
 mod score_compare;
+mod slow_disk;
 mod station_cli;
 mod station_dds;
 mod study_interrupt;

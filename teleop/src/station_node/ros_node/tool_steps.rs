@@ -59,10 +59,13 @@ impl StationNode {
         }
     }
 
-    fn keep<M: msgs::RosMessage + Serialize>(&mut self, topic: &str, now: i64, message: &M) {
-        if let Some(r) = self.recorder.as_mut() {
-            r.output(topic, now, message);
-        }
+    fn keep<M: msgs::RosMessage + Serialize + Clone + Send + 'static>(
+        &mut self,
+        topic: &str,
+        now: i64,
+        message: &M,
+    ) {
+        self.log_output(topic, now, message);
         if let Some(tap) = &self.hooks.tap {
             tap.send(topic, message, now, true);
         }
@@ -113,9 +116,7 @@ impl StationNode {
             super::NodeFaults::count(&mut self.faults.input_errors, &topic);
             return;
         };
-        if let Some(r) = self.recorder.as_mut() {
-            r.input(&topic, now, Some(super::source_or(&info, now)), &message);
-        }
+        self.log_input(&topic, now, Some(super::source_or(&info, now)), &message);
         let command = self.station.command_in_force().map(|c| c.q.as_slice());
         self.scene.hand_state(&message, command, now);
     }
