@@ -5,14 +5,16 @@
 //!
 //! 1. glove at 100 Hz for 10 s: end-to-end latency, glove publish → joint target received,
 //!    p50/p99, and the process's CPU use;
-//! 2. glove at 1 kHz for 5 s: frames published vs frames the station received (drops).
+//! 2. glove at 1 kHz for 5 s: frames published vs frames the station received (drops);
+//! 3. glove at 100 Hz for 10 s, recording to a trial log and not, side by side (not, with,
+//!    not, with): the latency the log costs, as the ratio of the p99s (budget ≤ 1.2).
 //!
-//! Prints one JSON line per run.
+//! Prints one JSON line per run, and the recording ratio.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
 use station::{ControlMode, StationConfig};
-use teleop::demo::{DemoOptions, run_demo};
+use teleop::demo::{DemoOptions, DemoSummary, run_demo};
 use teleop::ros::default_domain_id;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
@@ -26,7 +28,8 @@ fn cpu_seconds() -> Option<f64> {
     Some((utime + stime) / 100.0) // USER_HZ is 100 on Linux
 }
 
-fn run(rate_hz: f64, duration_s: f64, domain: u16) {
+/// One demo run; its summary.
+fn demo(rate_hz: f64, duration_s: f64, domain: u16, out: Option<std::path::PathBuf>) -> DemoSummary {
     let mut station = StationConfig::default();
     station.control.mode = ControlMode::OnArrival;
     station.input.qos = teleop::ros::QosConfig::best_effort(1000);
@@ -39,20 +42,24 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
         .enable_all()
         .build()
         .unwrap();
-    let cpu_before = cpu_seconds();
-    let summary = runtime
+    runtime
         .block_on(run_demo(DemoOptions {
             duration_s,
             domain_id: domain,
             station,
             glove,
             live: false,
-            out: None,
+            out,
             tap: None,
             physics: None,
         }))
         .unwrap()
-        .summary;
+        .summary
+}
+
+fn run(rate_hz: f64, duration_s: f64, domain: u16) {
+    let cpu_before = cpu_seconds();
+    let summary = demo(rate_hz, duration_s, domain, None);
     let cpu = cpu_seconds()
         .zip(cpu_before)
         .map(|(a, b)| (a - b) / summary.duration_s * 100.0);
@@ -71,8 +78,40 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
     );
 }
 
+/// 100 Hz for 10 s, alternately without and with a trial log, twice each: the p99 of each
+/// run and the ratio of the worse recording p99 to the worse plain one.
+fn recording_cost(domain: u16) {
+    let dir = std::env::temp_dir().join(format!("pomdar-bench-recording-{}", std::process::id()));
+    let mut p99 = |out: Option<std::path::PathBuf>| {
+        let recording = out.is_some();
+        let summary = demo(100.0, 10.0, domain, out);
+        let p99 = summary.latency_ms_p99.unwrap_or(f64::NAN);
+        println!(
+            "{{\"bench\":\"station_latency_recording\",\"recording\":{recording},\"latency_ms_p50\":{:.3},\"latency_ms_p99\":{p99:.3},\"log_dropped\":{}}}",
+            summary.latency_ms_p50.unwrap_or(f64::NAN),
+            summary.log_dropped
+        );
+        p99
+    };
+    let mut plain = Vec::new();
+    let mut recorded = Vec::new();
+    for _ in 0..2 {
+        plain.push(p99(None));
+        recorded.push(p99(Some(dir.clone())));
+    }
+    let worst = |v: &[f64]| v.iter().copied().fold(f64::NAN, f64::max);
+    println!(
+        "{{\"bench\":\"station_latency_recording_ratio\",\"p99_plain_ms\":{:.3},\"p99_recording_ms\":{:.3},\"ratio\":{:.2},\"budget\":1.2}}",
+        worst(&plain),
+        worst(&recorded),
+        worst(&recorded) / worst(&plain)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 fn main() {
     let domain = default_domain_id();
     run(100.0, 10.0, domain);
     run(1000.0, 5.0, domain);
+    recording_cost(domain);
 }
