@@ -29,7 +29,12 @@ fn cpu_seconds() -> Option<f64> {
 }
 
 /// One demo run; its summary.
-fn demo(rate_hz: f64, duration_s: f64, domain: u16, out: Option<std::path::PathBuf>) -> DemoSummary {
+fn demo(
+    rate_hz: f64,
+    duration_s: f64,
+    domain: u16,
+    out: Option<std::path::PathBuf>,
+) -> DemoSummary {
     let mut station = StationConfig::default();
     station.control.mode = ControlMode::OnArrival;
     station.input.qos = teleop::ros::QosConfig::best_effort(1000);
@@ -82,7 +87,7 @@ fn run(rate_hz: f64, duration_s: f64, domain: u16) {
 /// run and the ratio of the worse recording p99 to the worse plain one.
 fn recording_cost(domain: u16) {
     let dir = std::env::temp_dir().join(format!("pomdar-bench-recording-{}", std::process::id()));
-    let mut p99 = |out: Option<std::path::PathBuf>| {
+    let p99 = |out: Option<std::path::PathBuf>| {
         let recording = out.is_some();
         let summary = demo(100.0, 10.0, domain, out);
         let p99 = summary.latency_ms_p99.unwrap_or(f64::NAN);

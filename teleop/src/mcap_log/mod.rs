@@ -53,6 +53,7 @@
 //!
 //! This module reads no clock: every time is a parameter.
 
+mod background_sync;
 pub mod decompression_budget;
 mod error;
 mod event_reader;

@@ -29,6 +29,7 @@ use std::path::{Path, PathBuf};
 use mcap::records::{MessageHeader, Metadata};
 use msgs::{RosMessage, StringMsg};
 
+use super::background_sync::BackgroundSync;
 use super::part_file::{
     FINAL_EXISTS_HINT, commit, create_exclusive, part_path_for, refuse_existing,
 };
@@ -79,6 +80,8 @@ pub struct TrialWriter {
     mcap: mcap::Writer<BufWriter<File>>,
     /// Second handle on the `.part` file, for `fsync`.
     file: File,
+    /// The syncer, with [`sync_in_background`](TrialWriterOptions::sync_in_background).
+    background_sync: Option<BackgroundSync>,
     part_path: PathBuf,
     final_path: PathBuf,
     options: TrialWriterOptions,
@@ -118,7 +121,18 @@ impl TrialWriter {
                     .map_err(|e| LogError::mcap(&part_path, "flushing the header", e))?;
                 Ok((mcap, sync_handle))
             });
-        let (mcap, file) = match opened {
+        let opened = opened.and_then(|(mcap, file)| {
+            let background_sync = match options.sync_on_flush && options.sync_in_background {
+                true => Some(
+                    file.try_clone()
+                        .and_then(BackgroundSync::spawn)
+                        .map_err(|e| LogError::io(&part_path, "start the syncer", e))?,
+                ),
+                false => None,
+            };
+            Ok((mcap, file, background_sync))
+        });
+        let (mcap, file, background_sync) = match opened {
             Ok(x) => x,
             Err(e) => {
                 // Our own empty file: leave nothing that looks like an interrupted recording.
@@ -129,6 +143,7 @@ impl TrialWriter {
         Ok(TrialWriter {
             mcap,
             file,
+            background_sync,
             part_path,
             final_path: final_path.to_path_buf(),
             options,
@@ -264,6 +279,18 @@ impl TrialWriter {
         name: &str,
         entries: BTreeMap<String, String>,
     ) -> Result<(), LogError> {
+        self.write_metadata_unflushed(name, entries)?;
+        self.flush()
+    }
+
+    /// Writes an MCAP Metadata record, to reach the disk with the next flush (a trial's
+    /// recorder writes its start event right after: one flush takes both to the OS at once,
+    /// so a kill during that flush's sync finds the start event in the `.part` too).
+    pub fn write_metadata_unflushed(
+        &mut self,
+        name: &str,
+        entries: BTreeMap<String, String>,
+    ) -> Result<(), LogError> {
         let record = Metadata {
             name: name.to_string(),
             metadata: entries,
@@ -272,7 +299,7 @@ impl TrialWriter {
             LogError::mcap(&self.part_path, format!("writing metadata {name:?}"), e)
         })?;
         self.unflushed = true;
-        self.flush()
+        Ok(())
     }
 
     /// Closes the open chunk and hands it to the OS (and the disk, with
@@ -283,7 +310,12 @@ impl TrialWriter {
         self.mcap
             .flush()
             .map_err(|e| LogError::mcap(&self.part_path, "flushing", e))?;
-        if self.options.sync_on_flush {
+        if let Some(syncer) = &self.background_sync {
+            syncer.request();
+            if let Some(e) = syncer.take_error() {
+                return Err(LogError::io(&self.part_path, "sync", e));
+            }
+        } else if self.options.sync_on_flush {
             self.file
                 .sync_data()
                 .map_err(|e| LogError::io(&self.part_path, "sync", e))?;
@@ -322,6 +354,7 @@ impl TrialWriter {
         let TrialWriter {
             mut mcap,
             file,
+            background_sync,
             part_path,
             final_path,
             options,
@@ -336,6 +369,9 @@ impl TrialWriter {
         mcap.into_inner()
             .into_inner()
             .map_err(|e| LogError::io(&part_path, "write", e.into_error()))?;
+        if let Some(e) = background_sync.and_then(BackgroundSync::stop) {
+            return Err(LogError::io(&part_path, "sync", e));
+        }
         file.sync_all()
             .map_err(|e| LogError::io(&part_path, "sync", e))?;
         drop(file);

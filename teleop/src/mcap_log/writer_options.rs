@@ -41,6 +41,11 @@ pub struct TrialWriterOptions {
     /// After each flush, also `fsync` the file, so a power cut (not only a crashed process)
     /// loses at most what came after the flush. Default `true`.
     pub sync_on_flush: bool,
+    /// With `sync_on_flush`: sync on a thread of the writer's own, so the writing thread goes
+    /// on handing messages to the OS while a sync takes its time (a killed process then loses
+    /// only what came after the last flush, however slow the disk). Default `false`: the
+    /// flush returns once synced. The station's trial logs sync in the background.
+    pub sync_in_background: bool,
     /// Replace an existing final file on [`finish`](super::TrialWriter::finish). Default
     /// `false`: the writer refuses, at creation and again at finish.
     pub overwrite: bool,
@@ -56,6 +61,7 @@ impl Default for TrialWriterOptions {
             chunk_size_bytes: 1024 * 1024,
             auto_flush_interval_ns: Some(1_000_000_000),
             sync_on_flush: true,
+            sync_in_background: false,
             overwrite: false,
             default_qos: OfferedQos::default(),
         }

@@ -77,7 +77,11 @@ impl StationRecorder {
         now_ns: i64,
         flush_interval_ns: Option<i64>,
     ) -> Result<StationRecorder, NodeError> {
-        let mut writer_options = TrialWriterOptions::default();
+        // Synced in the background: a slow sync never keeps the messages after it from the OS.
+        let mut writer_options = TrialWriterOptions {
+            sync_in_background: true,
+            ..TrialWriterOptions::default()
+        };
         if let Some(interval) = flush_interval_ns {
             writer_options.auto_flush_interval_ns = Some(interval);
         }
@@ -102,7 +106,8 @@ impl StationRecorder {
         metadata.insert("config_digest".into(), config_digest(config));
         metadata.insert("embodiment".into(), config.retarget.embodiment.clone());
         metadata.insert("layout".into(), config.retarget.layout.name().into());
-        writer.write_metadata("pomdar_trial", metadata)?;
+        // One flush for both: the first write to the OS holds the metadata and the start.
+        writer.write_metadata_unflushed("pomdar_trial", metadata)?;
         writer.write_event(now_ns, &json!({ "event": "start" }))?;
         Ok(StationRecorder {
             writer,
