@@ -29,7 +29,12 @@ fn cpu_seconds() -> Option<f64> {
 }
 
 /// One demo run; its summary.
-fn demo(rate_hz: f64, duration_s: f64, domain: u16, out: Option<std::path::PathBuf>) -> DemoSummary {
+fn demo(
+    rate_hz: f64,
+    duration_s: f64,
+    domain: u16,
+    out: Option<std::path::PathBuf>,
+) -> DemoSummary {
     let mut station = StationConfig::default();
     station.control.mode = ControlMode::OnArrival;
     station.input.qos = teleop::ros::QosConfig::best_effort(1000);
