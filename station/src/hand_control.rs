@@ -26,6 +26,12 @@ const MIN_DT_S: f64 = 1e-4;
 /// Time step of the first frame after engage, seconds (the glove's ~25 Hz).
 const FIRST_DT_S: f64 = 0.04;
 
+/// New frames in a row stamped no later than the new frame before them after which the
+/// sender's clock counts as frozen: time steps and the command ceiling then go by receive
+/// times until its stamps advance again. (Taken by their equal stamps, the frames would be
+/// [`MIN_DT_S`] apart, and the joint-speed limit would all but stop the hand.)
+pub const FROZEN_CLOCK_AFTER: u32 = 3;
+
 /// The time step the retargeter is given for a frame stamped `next_ns` after the frame it
 /// last solved, stamped `previous_ns` (the sender's stamps, or the receive times across a
 /// clock jump): their difference, within [`MIN_DT_S`, `MAX_DT_S`]. Frames stamped a
@@ -85,6 +91,9 @@ pub struct Counters {
     /// Frames whose sender's clock had jumped (back beyond the reorder window, or ahead beyond
     /// what the receive clock explains); they were accepted.
     pub source_clock_jumps: u64,
+    /// New frames timed by their receive times because the sender's stamps had stopped
+    /// advancing ([`FROZEN_CLOCK_AFTER`]).
+    pub frames_timed_by_receipt: u64,
     /// New frames replaced by a newer one before they were retargeted (above the command-rate
     /// ceiling, or between two ticks with `mode = "rate"`).
     pub frames_superseded: u64,
@@ -109,6 +118,8 @@ struct PendingFrame {
     /// frame, and the two frames' stamps cannot be compared (the jump may have come at this
     /// frame, or at a repeat or a superseded frame between the two).
     clock_jumps: u64,
+    /// The sender's clock was frozen when it was taken: its time step goes by receive times.
+    clock_frozen: bool,
 }
 
 /// The hand side of the station.
@@ -127,6 +138,8 @@ pub struct HandControl {
     /// (source, receive) times of the gate's reference (the last new frame), and the sender's
     /// clock jumps counted when it was taken.
     gate_reference: Option<(i64, i64, u64)>,
+    /// New frames in a row whose stamp did not advance past the new frame before them.
+    stalled_stamps: u32,
     counters: Counters,
 }
 
@@ -147,6 +160,7 @@ impl HandControl {
             last_solved: None,
             last_command: None,
             gate_reference: None,
+            stalled_stamps: 0,
             counters,
         }
     }
@@ -195,6 +209,7 @@ impl HandControl {
         let verdict = self.gate.judge_after(&frame.points, since_ns);
         match verdict {
             Verdict::New => {
+                self.count_stalled_stamp(&frame, stamp);
                 self.accept_stamp(&frame, stamp, received_ns);
                 self.gate_reference = Some((
                     frame.source_ns,
@@ -206,10 +221,15 @@ impl HandControl {
                 if self.pending.is_some() {
                     self.counters.frames_superseded += 1;
                 }
+                let clock_frozen = self.source_clock_frozen();
+                if clock_frozen {
+                    self.counters.frames_timed_by_receipt += 1;
+                }
                 self.pending = Some(PendingFrame {
                     frame,
                     received_ns,
                     clock_jumps: self.counters.source_clock_jumps,
+                    clock_frozen,
                 });
             }
             Verdict::Repeat => {
@@ -240,6 +260,31 @@ impl HandControl {
                 frame.source_ns.saturating_sub(source)
             },
         )
+    }
+
+    /// A new frame stamped no later than the new frame before it (a jump aside) extends the
+    /// run of stalled stamps; any other ends it.
+    fn count_stalled_stamp(&mut self, frame: &KeypointFrame, stamp: StampOrder) {
+        let stalled = stamp != StampOrder::ClockJump
+            && self
+                .gate_reference
+                .is_some_and(|(source, _, _)| frame.source_ns <= source);
+        self.stalled_stamps = if stalled {
+            self.stalled_stamps.saturating_add(1)
+        } else {
+            0
+        };
+    }
+
+    /// Whether the sender's stamps have stopped advancing ([`FROZEN_CLOCK_AFTER`] new frames
+    /// in a row): time steps and the command ceiling go by receive times.
+    pub fn source_clock_frozen(&self) -> bool {
+        self.stalled_stamps >= FROZEN_CLOCK_AFTER
+    }
+
+    /// Receive time of the last retargeted frame.
+    pub fn last_solved_received_ns(&self) -> Option<i64> {
+        self.last_solved.map(|(_, received, _)| received)
     }
 
     fn accept_stamp(&mut self, frame: &KeypointFrame, stamp: StampOrder, received_ns: i64) {
@@ -292,7 +337,7 @@ impl HandControl {
     fn time_step_s(&self, pending: &PendingFrame) -> f64 {
         match self.last_solved {
             None => FIRST_DT_S,
-            Some((_, received, jumps)) if pending.clock_jumps > jumps => {
+            Some((_, received, jumps)) if pending.clock_jumps > jumps || pending.clock_frozen => {
                 time_step_between(received, pending.received_ns)
             }
             Some((source, _, _)) => time_step_between(source, pending.frame.source_ns),

@@ -84,6 +84,9 @@ pub struct StationStatus {
     pub input_age_ms: Option<f64>,
     /// The longest gap between new frames so far, as received and as sent ([`InputGap`]).
     pub longest_input_gap: Option<InputGap>,
+    /// Whether the sender's stamps have stopped advancing: frames are timed by their receive
+    /// times until they advance again (`counters.frames_timed_by_receipt`).
+    pub source_clock_frozen: bool,
     /// Frame and solver counters.
     pub counters: Counters,
     /// What was sent and refused.
@@ -251,6 +254,7 @@ impl Station {
             output_rate_hz: self.meters.output.rate_hz(now_ns),
             input_age_ms: self.hand.input_age_ns(now_ns).map(|a| a as f64 * 1e-6),
             longest_input_gap: self.meters.gaps.longest(),
+            source_clock_frozen: self.hand.source_clock_frozen(),
             counters: self.hand.counters().clone(),
             totals: self.totals.clone(),
             arm: ArmStatus {
@@ -285,7 +289,7 @@ impl Station {
                     self.auto_engage_pending = false;
                 }
                 if self.control.mode == ControlMode::OnArrival
-                    && self.under_ceiling(source_ns)
+                    && self.under_ceiling(source_ns, now_ns)
                     && self.hand.update(now_ns) == DriveState::Engaged
                 {
                     self.command_fresh(now_ns, &mut outputs);
@@ -300,9 +304,16 @@ impl Station {
     /// Whether a frame stamped `source_ns` may be commanded now: at least
     /// `1 / max_command_rate_hz` after the last commanded frame by the senders' stamps (a
     /// backwards stamp, after a sender's clock jump, always may). Stamps are the sender's and
-    /// may lie anywhere in `i64`: the difference saturates.
-    fn under_ceiling(&self, source_ns: i64) -> bool {
+    /// may lie anywhere in `i64`: the difference saturates. While the sender's clock is frozen
+    /// the receive times count instead.
+    fn under_ceiling(&self, source_ns: i64, received_ns: i64) -> bool {
         let min_interval_ns = (1e9 / self.control.max_command_rate_hz) as i64;
+        if self.hand.source_clock_frozen() {
+            return self
+                .hand
+                .last_solved_received_ns()
+                .is_none_or(|last| received_ns.saturating_sub(last) >= min_interval_ns);
+        }
         self.hand.last_solved_source_ns().is_none_or(|last| {
             source_ns.saturating_sub(last) >= min_interval_ns || source_ns < last
         })

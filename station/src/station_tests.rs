@@ -420,3 +420,41 @@ fn after_a_jump_of_the_senders_clock_the_gate_times_its_jump_allowance_by_receiv
         "13 cm in 600 ms is no jump"
     );
 }
+
+#[test]
+fn a_sender_whose_stamps_stop_advancing_is_timed_by_receipt_and_the_hand_keeps_up() {
+    let mut config = StationConfig::default();
+    config.control.auto_engage = true;
+    // The same moving hand at 100 Hz, stamped properly and by a sender whose clock froze.
+    let mut timed = station(&config);
+    let mut frozen = station(&config);
+    let (mut q_timed, mut q_frozen) = (Vec::new(), Vec::new());
+    for k in 0..30 {
+        let index_mcp = 0.2 + 0.03 * k as f64;
+        let now = k * 10 * MS;
+        if let Some(hand) = timed.step(frame(index_mcp, k * 10), now).hand {
+            q_timed = hand.joint_state.position;
+        }
+        if let Some(hand) = frozen.step(frame(index_mcp, 0), now).hand {
+            q_frozen = hand.joint_state.position;
+        }
+    }
+    // Three new frames with a stamp that did not advance, then every one after them is timed
+    // by its receive time.
+    assert!(frozen.status(300 * MS).source_clock_frozen);
+    assert_eq!(frozen.counters().frames_timed_by_receipt, 27);
+    assert_eq!(timed.counters().frames_timed_by_receipt, 0);
+    let moved = q_timed
+        .iter()
+        .zip(&q_frozen)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        moved < 0.05,
+        "the frozen sender's hand lags by {moved} rad: {q_frozen:?} vs {q_timed:?}"
+    );
+    // The stamps advance again: timed by them again.
+    frozen.step(frame(1.2, 400), 310 * MS);
+    assert!(!frozen.status(310 * MS).source_clock_frozen);
+    assert_eq!(frozen.counters().frames_timed_by_receipt, 27);
+}

@@ -19,10 +19,16 @@ pub fn reference_file(name: &str) -> Option<PathBuf> {
     reference_file_in(&dir, name, under_ci())
 }
 
-/// Whether the tests run under CI (the `CI` environment variable is set, as `.ci/run` sets
-/// it): there a missing tool or reference file fails the test instead of skipping it.
+/// Whether the tests run under CI (`CI=true`, as `.ci/run` sets it, or `CI=1`): there a
+/// missing tool or reference file fails the test instead of skipping it.
 pub fn under_ci() -> bool {
-    std::env::var_os("CI").is_some()
+    ci_flag(std::env::var("CI").ok().as_deref())
+}
+
+/// Whether a `CI` value means CI: `true` or `1` (any case); unset, empty, `false`, `0` or
+/// anything else does not.
+pub fn ci_flag(value: Option<&str>) -> bool {
+    value.is_some_and(|v| v.trim() == "1" || v.trim().eq_ignore_ascii_case("true"))
 }
 
 /// `DIR/NAME` if it is a file; else `None` with a skip notice, or a panic naming the path
@@ -314,5 +320,22 @@ mod tests {
     #[test]
     fn a_directory_is_not_a_reference_file() {
         assert_eq!(reference_file_in(&workspace_root(), "tests", false), None);
+    }
+
+    #[test]
+    fn only_true_or_1_means_ci() {
+        for yes in ["true", "1", "TRUE", " True "] {
+            assert!(ci_flag(Some(yes)), "{yes:?}");
+        }
+        for no in [
+            None,
+            Some(""),
+            Some("false"),
+            Some("0"),
+            Some("no"),
+            Some("yes"),
+        ] {
+            assert!(!ci_flag(no), "{no:?}");
+        }
     }
 }

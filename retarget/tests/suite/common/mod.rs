@@ -9,11 +9,14 @@ use std::path::{Path, PathBuf};
 
 /// `../shared/reference/NAME` relative to the workspace root, or `None` (with a printed skip
 /// notice naming the path) when it is absent, as on a user's machine. Panics instead under CI
-/// (the `CI` environment variable, which `.ci/run` sets): there the file must exist and the
+/// (`CI=true`, which `.ci/run` sets, or `CI=1`): there the file must exist and the
 /// test must run.
 pub fn reference_file(test: &str, name: &str) -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/reference");
-    reference_file_in(&dir, name, test, std::env::var_os("CI").is_some())
+    // `CI=true` or `CI=1` is CI (as `pomdar_tests::interop::under_ci` reads it).
+    let ci =
+        std::env::var("CI").is_ok_and(|v| v.trim() == "1" || v.trim().eq_ignore_ascii_case("true"));
+    reference_file_in(&dir, name, test, ci)
 }
 
 /// `DIR/NAME` if it is a file; else `None` with a skip notice for `test`, or a panic naming
