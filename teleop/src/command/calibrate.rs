@@ -87,6 +87,9 @@ pub struct CalibrateArgs {
     /// --simulate: default one of 150–229 no other run on this machine holds, on loopback only).
     #[arg(long)]
     pub domain_id: Option<u16>,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
     /// Live session: how long to wait for the glove's first keypoints, seconds.
     #[arg(long, value_name = "S", default_value_t = 10.0)]
     pub glove_wait_s: f64,
@@ -129,6 +132,8 @@ fn session_path(out: &Path) -> PathBuf {
 /// shutdown) stopped the session or its fit, saying so on stderr (no profile is written then),
 /// 1 on an error.
 pub fn calibrate(args: CalibrateArgs) -> anyhow::Result<ExitCode> {
+    // The session drives the robot hand: crafted DATA_FRAG datagrams must not exhaust its memory.
+    args.guard.apply();
     match calibrate_until_interrupted(args) {
         Err(e) if is_interrupted(&e) => {
             eprintln!("{e}");

@@ -58,6 +58,27 @@ impl NodeArgs {
     }
 }
 
+/// The datagram guard of the commands that run the station or talk to the robot.
+#[derive(Debug, Clone, Default, Args)]
+pub struct GuardArgs {
+    /// Run without the RTPS datagram guard: by default every DDS socket of this process gets a
+    /// kernel filter that drops crafted DATA_FRAG datagrams (one can take gigabytes of memory,
+    /// docs/SECURITY.md), and start-up fails, naming the socket, if one cannot be guarded.
+    /// With this flag the process says once that it runs unguarded.
+    #[arg(long)]
+    pub no_datagram_guard: bool,
+}
+
+impl GuardArgs {
+    /// Require the guard for every participant this process builds, or decline it.
+    pub(crate) fn apply(&self) {
+        match self.no_datagram_guard {
+            true => crate::ros::participant_guard::decline(),
+            false => crate::ros::participant_guard::require(),
+        }
+    }
+}
+
 /// Run an async command on a two-worker runtime.
 pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::Result<T> {
     tokio::runtime::Builder::new_multi_thread()

@@ -50,10 +50,15 @@ pub struct HandCheckArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
 }
 
 /// `pomdar hand-check`.
 pub async fn hand_check(args: HandCheckArgs) -> anyhow::Result<()> {
+    // It drives the robot hand: crafted DATA_FRAG datagrams must not exhaust its memory.
+    args.guard.apply();
     let config = read_station_config(&args.config)?;
     let text = std::fs::read_to_string(&args.config)
         .with_context(|| format!("cannot read {}", args.config.display()))?;

@@ -21,6 +21,9 @@ pub struct RelayArgs {
     /// DDS settings (default: the configuration's [network]).
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
 }
 
 /// `pomdar relay`.
@@ -45,7 +48,7 @@ pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
     }
     // The relay is the robot's only source of commands: crafted DATA_FRAG datagrams must not
     // exhaust its memory (docs/SECURITY.md).
-    crate::ros::datagram_guard::enable();
+    args.guard.apply();
     let report = Mutex::new(RelayReport::default());
     let network = args.node.network(&config.network);
     run_relay(

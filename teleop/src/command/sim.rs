@@ -42,6 +42,9 @@ pub struct SimArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
 }
 
 /// `pomdar sim`.
@@ -69,6 +72,8 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     use crate::score::score_inputs::ScoringInputs;
     use crate::station_setup::load_station_config;
 
+    // The simulated robot is driven like the real one: guarded the same way.
+    args.guard.apply();
     let inputs = ScoringInputs::load(args.catalog.as_deref(), None, None)?;
     let task = inputs.catalog.get(&args.task).cloned().with_context(|| {
         format!(

@@ -33,6 +33,9 @@ pub struct StationArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
     /// The live view.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -44,7 +47,7 @@ pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     config.network = args.node.network(&config.network);
     config.control.auto_engage |= args.engage;
     // Crafted DATA_FRAG datagrams must not exhaust the station's memory (docs/SECURITY.md).
-    crate::ros::datagram_guard::enable();
+    args.guard.apply();
     let shutdown = ctrl_c_shutdown();
     let (_tx, rx) = mpsc::unbounded_channel::<OperatorCommand>();
     eprintln!(

@@ -67,6 +67,9 @@ pub struct StudyArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
 }
 
 impl StudyArgs {
@@ -99,6 +102,7 @@ impl StudyArgs {
             simulate_glove_jitter_mm: None,
             simulate_hand_scale: self.simulate_hand_scale,
             node: self.node.clone(),
+            guard: self.guard.clone(),
             // The human study drives no robot: nothing to view.
             view: crate::command::common::ViewArgs { view: None },
         }
@@ -146,6 +150,8 @@ fn check_plan(args: &StudyArgs) -> anyhow::Result<()> {
 /// `pomdar study`.
 pub async fn study(args: StudyArgs) -> anyhow::Result<ExitCode> {
     check_plan(&args)?;
+    // Its consoles run the station: crafted DATA_FRAG datagrams must not exhaust their memory.
+    args.guard.apply();
     let catalog = args.scoring.load()?.catalog;
     let count = args.tasks.len();
     for (index, task) in args.tasks.iter().enumerate() {

@@ -153,6 +153,9 @@ pub struct TrialArgs {
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
+    /// The RTPS datagram guard.
+    #[command(flatten)]
+    pub guard: super::common::GuardArgs,
     /// The live view.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -238,7 +241,7 @@ pub struct SessionEnd {
 pub async fn trial(args: TrialArgs) -> anyhow::Result<ExitCode> {
     // The console runs the station: crafted DATA_FRAG datagrams must not exhaust its memory
     // (docs/SECURITY.md).
-    crate::ros::datagram_guard::enable();
+    args.guard.apply();
     let end = run_session(&args, Vec::new()).await?;
     Ok(if end.interrupted {
         ExitCode::from(EXIT_INTERRUPTED)

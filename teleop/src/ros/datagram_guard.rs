@@ -22,11 +22,9 @@
 //! The station's own samples and the discovery data it receives are a few KiB at most, far
 //! below the limit.
 
-use std::collections::BTreeSet;
 use std::io;
-use std::sync::atomic::{AtomicBool, Ordering};
 
-use socket2::{SockFilter, SockRef, Type};
+use socket2::{SockFilter, SockRef};
 
 /// A DATA_FRAG declaring a sample of this many bytes or more is dropped (a power of two).
 pub const MAX_FRAGMENTED_SAMPLE_BYTES: u32 = 1 << 14;
@@ -136,72 +134,11 @@ pub fn attach(socket: SockRef<'_>) -> io::Result<()> {
     socket.attach_filter(&filter_program())
 }
 
-/// The UDP ports of participant `participant_id` on `domain` (RTPS 9.6.1.1 defaults, as
-/// RustDDS uses them): discovery and user multicast, discovery and user unicast.
-pub fn participant_ports(domain: u16, participant_id: u16) -> BTreeSet<u16> {
-    let base = 7400 + 250 * u32::from(domain);
-    let unicast = base + 10 + 2 * u32::from(participant_id);
-    [base, base + 1, unicast, unicast + 1]
-        .into_iter()
-        .filter_map(|port| u16::try_from(port).ok())
-        .collect()
-}
-
-/// Attach the filter to every UDP socket of this process bound to one of `ports`; returns how
-/// many. Called right after the participant is built: a datagram queued before that is not
-/// filtered.
-pub fn guard_sockets_on(ports: &BTreeSet<u16>) -> io::Result<usize> {
-    let pid = rustix::process::Pid::from_raw(std::process::id() as i32)
-        .ok_or_else(|| io::Error::other("no process id"))?;
-    let me = rustix::process::pidfd_open(pid, rustix::process::PidfdFlags::empty())?;
-    let mut guarded = 0;
-    for entry in std::fs::read_dir("/proc/self/fd")? {
-        let entry = entry?;
-        let Some(fd) = entry
-            .file_name()
-            .to_str()
-            .and_then(|n| n.parse::<i32>().ok())
-        else {
-            continue;
-        };
-        let is_socket = std::fs::read_link(entry.path())
-            .is_ok_and(|target| target.to_string_lossy().starts_with("socket:"));
-        if !is_socket {
-            continue;
-        }
-        // The descriptor may have been closed since the directory was read.
-        let Ok(socket) =
-            rustix::process::pidfd_getfd(&me, fd, rustix::process::PidfdGetfdFlags::empty())
-        else {
-            continue;
-        };
-        let socket = SockRef::from(&socket);
-        if !socket.r#type().is_ok_and(|t| t == Type::DGRAM) {
-            continue;
-        }
-        let port = socket
-            .local_addr()
-            .ok()
-            .and_then(|a| a.as_socket())
-            .map(|a| a.port());
-        if port.is_some_and(|p| ports.contains(&p)) {
-            attach(socket)?;
-            guarded += 1;
-        }
-    }
-    Ok(guarded)
-}
-
-static ENABLED: AtomicBool = AtomicBool::new(false);
-
-/// Guard every DDS participant this process creates from now on (`pomdar station` does).
-pub fn enable() {
-    ENABLED.store(true, Ordering::SeqCst);
-}
-
-/// Whether [`enable`] was called.
-pub fn enabled() -> bool {
-    ENABLED.load(Ordering::SeqCst)
+/// The unicast discovery port of participant `participant_id` on `domain` (RTPS 9.6.1.1
+/// defaults, as RustDDS binds it: a participant that cannot bind it takes the next id).
+pub fn unicast_discovery_port(domain: u16, participant_id: u16) -> u16 {
+    let port = 7400 + 250 * u32::from(domain) + 10 + 2 * u32::from(participant_id);
+    u16::try_from(port).unwrap_or(u16::MAX)
 }
 
 #[cfg(test)]

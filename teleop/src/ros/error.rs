@@ -55,6 +55,17 @@ pub enum RosError {
         #[source]
         source: DdsCreateError,
     },
+    /// The datagram guard is required and could not be attached to the participant's sockets
+    /// (the participant is dropped: nothing was started).
+    #[error(
+        "cannot guard the DDS participant on domain {domain} against crafted datagrams: {reason}; nothing was started (--no-datagram-guard runs without the guard, docs/SECURITY.md)"
+    )]
+    DatagramGuard {
+        /// The domain id.
+        domain: u16,
+        /// Which socket, and why.
+        reason: String,
+    },
     /// ros2-client could not create its context on the participant.
     #[error("cannot create the ROS 2 context: {source}")]
     Context {

@@ -7,6 +7,7 @@ pub mod domain_lease;
 mod endpoint;
 mod error;
 mod participant;
+pub mod participant_guard;
 pub mod probe_timing;
 mod qos;
 pub mod teardown;

@@ -17,7 +17,7 @@ use ros2_client::Context;
 use ros2_client::dds::rustdds::DomainParticipantBuilder;
 use station::NetworkConfig;
 
-use crate::ros::{RosError, datagram_guard, domain_lease};
+use crate::ros::{RosError, datagram_guard, domain_lease, participant_guard};
 
 /// Check that `address` can restrict DDS to an interface of this host: a unicast address
 /// one of its interfaces holds (a UDP socket binds to it).
@@ -65,16 +65,22 @@ impl NetworkContext for NetworkConfig {
         if !self.interfaces.is_empty() {
             builder = builder.with_only_networks(self.interfaces.iter().copied());
         }
+        let guard = participant_guard::required();
+        let before = match guard {
+            true => participant_guard::socket_inodes().map_err(|e| RosError::DatagramGuard {
+                domain,
+                reason: format!("cannot list this process's sockets: {e}"),
+            })?,
+            false => Default::default(),
+        };
         let participant = builder
             .build()
             .map_err(|source| RosError::Participant { domain, source })?;
-        if datagram_guard::enabled() {
-            let ports = datagram_guard::participant_ports(domain, participant.participant_id());
-            match datagram_guard::guard_sockets_on(&ports) {
-                Ok(n) if n > 0 => log::debug!("RTPS datagram guard on {n} sockets"),
-                Ok(_) => log::warn!("RTPS datagram guard: no socket on ports {ports:?}"),
-                Err(e) => log::warn!("RTPS datagram guard not attached: {e}"),
-            }
+        if guard {
+            let port = datagram_guard::unicast_discovery_port(domain, participant.participant_id());
+            let guarded = participant_guard::guard_new_sockets(&before, port)
+                .map_err(|reason| RosError::DatagramGuard { domain, reason })?;
+            log::debug!("RTPS datagram guard on {guarded} sockets");
         }
         Context::from_domain_participant(participant).map_err(|source| RosError::Context { source })
     }

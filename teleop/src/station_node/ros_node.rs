@@ -568,6 +568,10 @@ impl StationNode {
             fields.insert("last_step_ms".into(), json!(self.step_time.last()));
             fields.insert("listeners".into(), endpoints.listeners());
             fields.insert("node".into(), json!(self.faults));
+            fields.insert(
+                "datagram_guard".into(),
+                crate::ros::participant_guard::status(),
+            );
             fields.insert("hand_feedback".into(), self.scene.tracking_status(now));
         }
         status

@@ -367,6 +367,11 @@ fn unannounced_prefix() -> [u8; 12] {
 /// Whether the station publishes its status: one document on its status topic, heard by a
 /// fresh node, within 20 s.
 fn station_publishes_status() -> bool {
+    station_status().is_some()
+}
+
+/// The station's status document, heard by a fresh node within 20 s.
+fn station_status() -> Option<serde_json::Value> {
     let runtime = tokio::runtime::Runtime::new().unwrap();
     runtime.block_on(async {
         let mut node = RosNode::join(&loopback(DOMAIN), "/", "crafted_datagrams_check").unwrap();
@@ -378,13 +383,13 @@ fn station_publishes_status() -> bool {
         let heard = tokio::time::timeout(Duration::from_secs(20), async {
             while let Some(item) = stream.next().await {
                 if let Ok((message, _)) = item {
-                    return serde_json::from_str::<serde_json::Value>(&message.data).is_ok();
+                    return serde_json::from_str::<serde_json::Value>(&message.data).ok();
                 }
             }
-            false
+            None
         })
         .await;
-        heard.unwrap_or(false)
+        heard.ok().flatten()
     })
 }
 
@@ -434,7 +439,7 @@ fn crafted_data_frags_do_not_exhaust_the_station_memory() {
     let dir = scratch_dir("crafted-datagrams");
     // This process's own participants (discovery here, the status check after) are guarded
     // too: the multicast datagrams reach them as well.
-    teleop::ros::datagram_guard::enable();
+    teleop::ros::participant_guard::require();
     let mut station = start_station(&dir);
     let pid = station.0.id();
     let (target, learner) = learn_station();
@@ -442,6 +447,11 @@ fn crafted_data_frags_do_not_exhaust_the_station_memory() {
         println!("station reader {topic}: entity id {id:02x?}");
     }
     println!("station GUID prefix {:02x?}", target.prefix);
+    // The station says its sockets are guarded: at least its unicast discovery and user ones.
+    let guard = station_status().expect("the station's status")["datagram_guard"].clone();
+    println!("station datagram guard: {guard}");
+    assert_eq!(guard["mode"], "required", "{guard}");
+    assert!(guard["sockets"].as_u64().is_some_and(|n| n >= 2), "{guard}");
     let destinations = destinations(&target);
     println!("destinations: {destinations:?}");
     std::thread::sleep(Duration::from_secs(1));

@@ -13,6 +13,7 @@ mod console_screen;
 mod console_services;
 mod console_session;
 mod console_tampered_manifest;
+mod datagram_guard_startup;
 mod dds_crafted_datagrams;
 mod demo_pipeline;
 mod dependency_rule;
