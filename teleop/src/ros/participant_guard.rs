@@ -13,6 +13,13 @@
 //!
 //! Sockets are told apart by their inode, not their descriptor number: a descriptor closed
 //! and reused by another thread while the participant was built is still a new socket.
+//!
+//! A socket is given the filter once. Participants built at the same time each see the
+//! other's new sockets, and the participants of one domain share its multicast ports; the
+//! kernel charges a replacing filter to the socket's option memory before it frees the old
+//! one, and the two (about 30 KiB of instructions each) with the socket's multicast
+//! memberships can pass `net.core.optmem_max`: the attach fails with ENOMEM. So the scans run
+//! one at a time, and a socket already guarded counts as guarded.
 
 use std::collections::BTreeSet;
 use std::io;
@@ -33,8 +40,8 @@ const REQUIRED: u8 = 1;
 const DECLINED: u8 = 2;
 
 static MODE: AtomicU8 = AtomicU8::new(OFF);
-/// The inodes of every socket guarded so far (two participants built at once each see the
-/// other's new sockets: counted once).
+/// The inodes of every socket guarded so far; held for the whole of a scan, so scans run one
+/// at a time.
 static GUARDED: Mutex<BTreeSet<u64>> = Mutex::new(BTreeSet::new());
 
 /// Guard every DDS participant this process builds from now on; a participant that cannot be
@@ -94,8 +101,9 @@ fn socket_inode(target: &str) -> Option<u64> {
 }
 
 /// Attaches the filter to every datagram socket of this process not in `before` (the
-/// participant just built); its unicast discovery socket, on `discovery_port`, must be one.
-/// Returns how many were guarded; an error names the socket that could not be.
+/// participant just built) and not guarded yet; its unicast discovery socket, on
+/// `discovery_port`, must be among them. Returns how many it guarded now; an error names the
+/// socket that could not be.
 pub fn guard_new_sockets(before: &BTreeSet<u64>, discovery_port: u16) -> Result<usize, String> {
     let fail = std::env::var(GUARD_FAIL_ENV).is_ok_and(|v| v.trim() == "1");
     let pid = rustix::process::Pid::from_raw(std::process::id() as i32)
@@ -104,6 +112,7 @@ pub fn guard_new_sockets(before: &BTreeSet<u64>, discovery_port: u16) -> Result<
         .map_err(|e| format!("cannot open this process's pidfd: {e}"))?;
     let entries = std::fs::read_dir("/proc/self/fd")
         .map_err(|e| format!("cannot list /proc/self/fd: {e}"))?;
+    let mut already = GUARDED.lock().unwrap_or_else(PoisonError::into_inner);
     let (mut ports, mut guarded) = (BTreeSet::new(), BTreeSet::new());
     for entry in entries.flatten() {
         let Some(inode) = std::fs::read_link(entry.path())
@@ -131,12 +140,15 @@ pub fn guard_new_sockets(before: &BTreeSet<u64>, discovery_port: u16) -> Result<
             .ok()
             .and_then(|a| a.as_socket())
             .map_or(0, |a| a.port());
+        ports.insert(port);
+        if already.contains(&inode) {
+            continue;
+        }
         let attached = match fail {
             true => Err(io::Error::other(format!("{GUARD_FAIL_ENV} is set"))),
             false => attach(socket),
         };
-        attached.map_err(|e| format!("the UDP socket on port {port}: {e}"))?;
-        ports.insert(port);
+        attached.map_err(|e| attach_failure(port, &e))?;
         guarded.insert(inode);
     }
     if !ports.contains(&discovery_port) {
@@ -145,16 +157,34 @@ pub fn guard_new_sockets(before: &BTreeSet<u64>, discovery_port: u16) -> Result<
         ));
     }
     let count = guarded.len();
-    GUARDED
-        .lock()
-        .unwrap_or_else(PoisonError::into_inner)
-        .append(&mut guarded);
+    already.append(&mut guarded);
     Ok(count)
+}
+
+/// Why the socket on `port` could not be guarded, with the way out of a known cause.
+fn attach_failure(port: u16, error: &io::Error) -> String {
+    let hint = match error.raw_os_error() {
+        // ENOMEM: the filter is charged to the socket's option memory.
+        Some(12) => {
+            "; the filter needs more socket option memory than net.core.optmem_max allows (raise it: sysctl -w net.core.optmem_max=131072)"
+        }
+        _ => "",
+    };
+    format!("the UDP socket on port {port}: {error}{hint}")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_attach_out_of_option_memory_names_the_sysctl() {
+        let text = attach_failure(8150, &io::Error::from_raw_os_error(12));
+        assert!(text.starts_with("the UDP socket on port 8150: "), "{text}");
+        assert!(text.contains("net.core.optmem_max"), "{text}");
+        let other = attach_failure(7410, &io::Error::other("refused"));
+        assert_eq!(other, "the UDP socket on port 7410: refused");
+    }
 
     #[test]
     fn socket_inodes_are_read_from_the_link_target() {
