@@ -95,7 +95,8 @@ impl Checker {
         match outputs.verdict {
             Some(Verdict::New) => {
                 tally.count("verdict.new");
-                self.hand.new_frame(frame.source_ns, now_ns, jumps);
+                self.hand
+                    .new_frame(frame.source_ns, now_ns, (jumps, jumped));
             }
             Some(Verdict::Repeat) => tally.count("verdict.repeat"),
             Some(Verdict::Rejected(reason)) => tally.count(match reason.name() {

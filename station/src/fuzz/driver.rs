@@ -75,6 +75,10 @@ pub fn run(
     tally.add("station.frames_superseded", counters.frames_superseded);
     tally.add("station.source_clock_jumps", counters.source_clock_jumps);
     tally.add(
+        "station.frames_timed_by_receipt",
+        counters.frames_timed_by_receipt,
+    );
+    tally.add(
         "station.rejected.retargeter",
         counters.rejected.get("retargeter").copied().unwrap_or(0),
     );

@@ -6,7 +6,9 @@
 //!   min(Δt, max_rate_dt_s)` from the previous command (the retargeter's rate bound), with
 //!   `Δt` the station's time step: 40 ms after an engage from disengaged, else the source
 //!   stamps' gap (the receive times' when a jump of the sender's clock was counted between
-//!   the two frames' arrivals), clamped to [0.1 ms, 0.5 s];
+//!   the two frames' arrivals, or when the sender's clock had frozen: the frame ended a run of
+//!   [`FROZEN_CLOCK_AFTER`] or more new frames each stamped no later than the one before, no
+//!   jump among them), clamped to [0.1 ms, 0.5 s];
 //! - `hand_newest_frame`: a fresh command comes from the newest new frame, once;
 //! - `hand_held_is_last`: a repeated or held command is the last fresh one, unchanged;
 //! - `hand_held_after_disengage`: while disengaged only the held command goes out (stamped
@@ -18,6 +20,7 @@ use msgs::Time;
 use retarget::Limits;
 
 use super::tally::Tally;
+use crate::hand_control::FROZEN_CLOCK_AFTER;
 use crate::output_stage::HandMessages;
 use crate::station::Station;
 use crate::station_config::{ControlMode, StationConfig};
@@ -37,6 +40,8 @@ struct Pending {
     received_ns: i64,
     /// The station's count of the sender's clock jumps when the frame was taken.
     clock_jumps: u64,
+    /// The sender's clock had frozen when the frame was taken.
+    clock_frozen: bool,
 }
 
 /// The last fresh command.
@@ -58,6 +63,10 @@ pub struct HandTrack {
     rate_mode: bool,
     pending: Option<Pending>,
     last: Option<Fresh>,
+    /// The last new frame's source stamp, and the new frames in a row up to it whose stamp
+    /// did not advance (no jump of the sender's clock at them).
+    last_new_source_ns: Option<i64>,
+    stalled_stamps: u32,
     /// No frame retargeted since the last engage from disengaged.
     first_after_engage: bool,
     last_held_ns: i64,
@@ -77,18 +86,29 @@ impl HandTrack {
             rate_mode: config.control.mode == ControlMode::Rate,
             pending: None,
             last: None,
+            last_new_source_ns: None,
+            stalled_stamps: 0,
             first_after_engage: true,
             last_held_ns: i64::MIN,
         }
     }
 
     /// A new frame received at `received_ns`, stamped `source_ns`, taken when the station had
-    /// counted `clock_jumps` jumps of the sender's clock.
-    pub fn new_frame(&mut self, source_ns: i64, received_ns: i64, clock_jumps: u64) {
+    /// counted `clock_jumps` jumps of the sender's clock (`jumped`: one at this frame).
+    pub fn new_frame(
+        &mut self,
+        source_ns: i64,
+        received_ns: i64,
+        (clock_jumps, jumped): (u64, bool),
+    ) {
+        let stalled = !jumped && self.last_new_source_ns.is_some_and(|s| source_ns <= s);
+        self.stalled_stamps = if stalled { self.stalled_stamps + 1 } else { 0 };
+        self.last_new_source_ns = Some(source_ns);
         self.pending = Some(Pending {
             source_ns,
             received_ns,
             clock_jumps,
+            clock_frozen: self.stalled_stamps >= FROZEN_CLOCK_AFTER,
         });
     }
 
@@ -228,7 +248,7 @@ impl HandTrack {
         let step_ns = match &self.last {
             None => return FIRST_DT_S,
             Some(_) if self.first_after_engage => return FIRST_DT_S,
-            Some(l) if pending.clock_jumps > l.clock_jumps => {
+            Some(l) if pending.clock_jumps > l.clock_jumps || pending.clock_frozen => {
                 i128::from(pending.received_ns) - i128::from(l.received_ns)
             }
             Some(l) => i128::from(pending.source_ns) - i128::from(l.source_ns),
