@@ -32,6 +32,7 @@ pub mod sim;
 pub mod station_node;
 pub mod station_setup;
 pub mod study_logs;
+pub mod test_knob;
 pub mod tui;
 pub mod utc_date;
 pub mod view;

@@ -27,10 +27,7 @@ const MAX_PAUSE_MS: u64 = 10_000;
 /// The pause asked for by [`TEST_PAUSE_ENV`], if any (read once).
 fn pause() -> Option<Duration> {
     static PAUSE: OnceLock<Option<Duration>> = OnceLock::new();
-    *PAUSE.get_or_init(|| {
-        let ms: u64 = std::env::var(TEST_PAUSE_ENV).ok()?.trim().parse().ok()?;
-        (ms > 0).then(|| Duration::from_millis(ms.min(MAX_PAUSE_MS)))
-    })
+    *PAUSE.get_or_init(|| crate::test_knob::delay_from_env(TEST_PAUSE_ENV, MAX_PAUSE_MS))
 }
 
 /// With [`TEST_PAUSE_ENV`] set: says `test pause N ms: STEP` on stderr and sleeps N ms (on a

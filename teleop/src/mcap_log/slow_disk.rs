@@ -18,10 +18,7 @@ const MAX_DELAY_MS: u64 = 10_000;
 /// The delay asked for by [`SLOW_DISK_ENV`], if any (read once).
 fn delay() -> Option<Duration> {
     static DELAY: OnceLock<Option<Duration>> = OnceLock::new();
-    *DELAY.get_or_init(|| {
-        let ms: u64 = std::env::var(SLOW_DISK_ENV).ok()?.trim().parse().ok()?;
-        (ms > 0).then(|| Duration::from_millis(ms.min(MAX_DELAY_MS)))
-    })
+    *DELAY.get_or_init(|| crate::test_knob::delay_from_env(SLOW_DISK_ENV, MAX_DELAY_MS))
 }
 
 /// With [`SLOW_DISK_ENV`] set, sleeps its delay (on the calling thread); otherwise nothing.

@@ -5,9 +5,8 @@
 //! unguarded.
 
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
-use pomdar_tests::pomdar_binary::pomdar_binary;
+use pomdar_tests::pomdar_binary::{ctrl_c_after, pomdar_binary};
 use pomdar_tests::station_harness::test_domain;
 use teleop::ros::participant_guard::GUARD_FAIL_ENV;
 
@@ -44,25 +43,8 @@ fn a_guard_that_cannot_attach_stops_start_up_and_the_flag_runs_unguarded() {
     );
 
     // Declined: it runs (still up after 3 s), says so once, and stops cleanly on Ctrl-C.
-    let mut child = station(domain, true).spawn().unwrap();
-    std::thread::sleep(Duration::from_secs(3));
-    assert!(
-        child.try_wait().unwrap().is_none(),
-        "the unguarded station exited"
-    );
-    let pid = child.id().to_string();
-    assert!(
-        Command::new("kill")
-            .args(["-INT", &pid])
-            .status()
-            .unwrap()
-            .success()
-    );
-    let started = Instant::now();
-    while child.try_wait().unwrap().is_none() && started.elapsed() < Duration::from_secs(15) {
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    let output = child.wait_with_output().unwrap();
+    let (running, output) = ctrl_c_after(station(domain, true).spawn().unwrap(), 3.0);
+    assert!(running, "the unguarded station exited");
     let stderr = String::from_utf8_lossy(&output.stderr);
     println!("{stderr}");
     assert_eq!(output.status.code(), Some(0), "{stderr}");

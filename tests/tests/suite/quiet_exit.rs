@@ -9,9 +9,8 @@
 //! first match, and the multicast leave of a participant restricted to 127.0.0.1.
 
 use std::process::{Command, Output, Stdio};
-use std::time::Duration;
 
-use pomdar_tests::pomdar_binary::{pomdar_binary, run_pomdar};
+use pomdar_tests::pomdar_binary::{ctrl_c_after, pomdar_binary, run_pomdar};
 use pomdar_tests::station_harness::test_domain;
 use pomdar_tests::{path_arg, scratch_dir};
 
@@ -48,16 +47,7 @@ fn run_until_ctrl_c(args: &[&str], seconds: f64) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(Duration::from_secs_f64(seconds));
-    let pid = child.id().to_string();
-    assert!(
-        Command::new("kill")
-            .args(["-INT", &pid])
-            .status()
-            .unwrap()
-            .success()
-    );
-    let output = child.wait_with_output().unwrap();
+    let (_, output) = ctrl_c_after(child, seconds);
     println!(
         "$ pomdar {} (Ctrl-C after {seconds} s)\n--- stdout\n{}--- stderr\n{}",
         args.join(" "),
