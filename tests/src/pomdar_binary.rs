@@ -83,20 +83,23 @@ pub fn run_pomdar(args: &[&str]) -> std::process::Output {
     output
 }
 
-/// Let `child` run for `seconds`, then stop it with SIGINT (Ctrl-C) and collect its output;
-/// also whether it was still running when the signal was sent.
+/// Let `child` run for `seconds`, then stop it with SIGINT (Ctrl-C) and collect its output.
+/// Panics if it ended before the signal, or the signal could not be sent.
 #[allow(clippy::expect_used)] // a test helper: a panic is the failure report
-pub fn ctrl_c_after(mut child: std::process::Child, seconds: f64) -> (bool, std::process::Output) {
+pub fn ctrl_c_after(mut child: std::process::Child, seconds: f64) -> std::process::Output {
     std::thread::sleep(std::time::Duration::from_secs_f64(seconds));
-    let running = child.try_wait().expect("the child's state").is_none();
+    if let Some(status) = child.try_wait().expect("the child's state") {
+        let output = child.wait_with_output().expect("the child's output");
+        panic!(
+            "it ended ({status}) before the Ctrl-C after {seconds} s:\n{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
     let pid = child.id().to_string();
     let signalled = Command::new("kill")
         .args(["-INT", &pid])
         .status()
         .expect("kill runs");
-    assert!(signalled.success() || !running, "kill -INT {pid} failed");
-    (
-        running,
-        child.wait_with_output().expect("the child's output"),
-    )
+    assert!(signalled.success(), "kill -INT {pid} failed");
+    child.wait_with_output().expect("the child's output")
 }

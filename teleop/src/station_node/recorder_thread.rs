@@ -43,6 +43,8 @@ enum Job {
         config: Arc<StationConfig>,
         now_ns: i64,
         flush_interval_ns: Option<i64>,
+        /// Which start this is (the queue's count).
+        started: u64,
     },
     /// A message or a flush check: may be dropped when the queue is full.
     Write(Write),
@@ -64,6 +66,8 @@ pub enum LogReport {
     StartFailed {
         /// The log asked for.
         path: PathBuf,
+        /// Which start it was ([`LogQueue::start_failed`]).
+        started: u64,
         /// Why.
         error: NodeError,
     },
@@ -88,6 +92,8 @@ pub struct LogQueue {
     thread: Option<JoinHandle<()>>,
     /// Whether a log is open (writes are queued only then).
     open: bool,
+    /// Logs started so far: a failed start closes the log only if no later one began.
+    starts: u64,
     /// Writes dropped on a full queue: since the station started, and in the open log.
     dropped_total: u64,
     dropped_in_log: u64,
@@ -120,6 +126,7 @@ impl LogQueue {
             pending,
             thread: Some(thread),
             open: false,
+            starts: 0,
             dropped_total: 0,
             dropped_in_log: 0,
         };
@@ -155,13 +162,23 @@ impl LogQueue {
         flush_interval_ns: Option<i64>,
     ) {
         self.open = true;
+        self.starts += 1;
         self.dropped_in_log = 0;
         self.send(Job::Start {
             options,
             config,
             now_ns,
             flush_interval_ns,
+            started: self.starts,
         });
+    }
+
+    /// The thread could not create a log: stop queueing writes for it, unless another log
+    /// was started since (`started` is [`LogReport::StartFailed`]'s count).
+    pub fn start_failed(&mut self, started: u64) {
+        if started == self.starts {
+            self.open = false;
+        }
     }
 
     /// Queues a write to the open log (nothing when none is open); a full queue drops it and
@@ -240,7 +257,8 @@ impl RecorderWorker {
                 config,
                 now_ns,
                 flush_interval_ns,
-            } => self.start(&options, &config, now_ns, flush_interval_ns),
+                started,
+            } => self.start(&options, &config, (now_ns, flush_interval_ns), started),
             Job::Write(write) => {
                 self.apply(write);
                 self.pending.fetch_sub(1, Ordering::AcqRel);
@@ -263,8 +281,8 @@ impl RecorderWorker {
         &mut self,
         options: &RecordingOptions,
         config: &StationConfig,
-        now_ns: i64,
-        flush_interval_ns: Option<i64>,
+        (now_ns, flush_interval_ns): (i64, Option<i64>),
+        started: u64,
     ) {
         match StationRecorder::start_flushing(options, config, now_ns, flush_interval_ns) {
             Ok(recorder) => {
@@ -275,6 +293,7 @@ impl RecorderWorker {
                 self.recorder = None;
                 self.report(LogReport::StartFailed {
                     path: options.path.clone(),
+                    started,
                     error,
                 });
             }

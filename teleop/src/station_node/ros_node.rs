@@ -622,10 +622,17 @@ impl StationNode {
     fn on_log_report(&mut self, report: LogReport) {
         let event = match report {
             LogReport::Started(path) => StationEvent::TrialStarted(path),
-            LogReport::StartFailed { path, error } => StationEvent::TrialStartFailed {
+            LogReport::StartFailed {
                 path,
-                error: error.to_string(),
-            },
+                started,
+                error,
+            } => {
+                self.log.start_failed(started);
+                StationEvent::TrialStartFailed {
+                    path,
+                    error: error.to_string(),
+                }
+            }
             LogReport::WriteFailed(error) => StationEvent::Message(format!("error: {error}")),
             LogReport::Finished(finished) => {
                 self.recorded.push(finished.path.clone());

@@ -43,8 +43,7 @@ fn a_guard_that_cannot_attach_stops_start_up_and_the_flag_runs_unguarded() {
     );
 
     // Declined: it runs (still up after 3 s), says so once, and stops cleanly on Ctrl-C.
-    let (running, output) = ctrl_c_after(station(domain, true).spawn().unwrap(), 3.0);
-    assert!(running, "the unguarded station exited");
+    let output = ctrl_c_after(station(domain, true).spawn().unwrap(), 3.0);
     let stderr = String::from_utf8_lossy(&output.stderr);
     println!("{stderr}");
     assert_eq!(output.status.code(), Some(0), "{stderr}");

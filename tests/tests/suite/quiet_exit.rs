@@ -47,7 +47,7 @@ fn run_until_ctrl_c(args: &[&str], seconds: f64) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let (_, output) = ctrl_c_after(child, seconds);
+    let output = ctrl_c_after(child, seconds);
     println!(
         "$ pomdar {} (Ctrl-C after {seconds} s)\n--- stdout\n{}--- stderr\n{}",
         args.join(" "),
