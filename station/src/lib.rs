@@ -38,6 +38,7 @@ pub mod hand_convention;
 mod hand_convention_presets;
 pub mod input_gap;
 pub mod joint_names;
+pub mod link_clock;
 pub mod network_config;
 pub mod output_stage;
 pub mod policy_output;

@@ -12,6 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::config_error::ConfigError;
+use crate::network_config::QosConfig;
 
 /// `[robot_link]`: how commands reach the robot's computer.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -67,6 +68,32 @@ impl RobotLinkConfig {
     /// Whether commands go through `pomdar relay`.
     pub fn relayed(&self) -> bool {
         !self.relay_prefix.is_empty()
+    }
+
+    /// The topic `pomdar relay` publishes its status on for the station
+    /// ([`crate::link_clock::RelayStatus`]): `relay_prefix` + `/relay_status`; empty when not
+    /// relayed.
+    pub fn relay_status_topic(&self) -> String {
+        match self.relayed() {
+            true => format!("{}/relay_status", self.relay_prefix),
+            false => String::new(),
+        }
+    }
+
+    /// The topic and QoS a command for `robot_topic` goes out with, from the station or any
+    /// other tool that commands the robot (calibration, the hand check): best effort on the
+    /// relay topic when relayed, otherwise `output_qos` on the robot's own topic.
+    pub fn command_wire(&self, robot_topic: &str, output_qos: QosConfig) -> (String, QosConfig) {
+        (self.wire_topic(robot_topic), self.command_qos(output_qos))
+    }
+
+    /// The QoS of commands: best effort when relayed (nothing old kept or resent after a cut),
+    /// otherwise `output_qos`.
+    pub fn command_qos(&self, output_qos: QosConfig) -> QosConfig {
+        match self.relayed() {
+            true => QosConfig::best_effort(output_qos.depth),
+            false => output_qos,
+        }
     }
 
     /// The topic the station publishes `robot_topic` on: the relay topic when relayed.
@@ -224,6 +251,14 @@ mod tests {
         link.relay_prefix = "/pomdar/link".into();
         assert!(link.relayed());
         assert_eq!(link.wire_topic("/franka/cmd"), "/pomdar/link/franka/cmd");
+        assert_eq!(link.relay_status_topic(), "/pomdar/link/relay_status");
+        // Every tool commanding the robot goes through the relay, best effort, once relayed.
+        let reliable = QosConfig::reliable(50);
+        let (topic, qos) = link.command_wire("/pomdar/hand/joint_targets", reliable);
+        assert_eq!(topic, "/pomdar/link/pomdar/hand/joint_targets");
+        assert_eq!(qos, QosConfig::best_effort(50));
+        let direct = RobotLinkConfig::default().command_wire("/franka/cmd", reliable);
+        assert_eq!(direct, ("/franka/cmd".to_string(), reliable));
         link.validate().unwrap();
     }
 

@@ -10,3 +10,10 @@ pub fn delay_from_env(name: &str, max_ms: u64) -> Option<Duration> {
     let ms: u64 = std::env::var(name).ok()?.trim().parse().ok()?;
     (ms > 0).then(|| Duration::from_millis(ms.min(max_ms)))
 }
+
+/// A signed number of milliseconds in the environment variable `name`, clamped to
+/// `±max_abs_ms`, in nanoseconds; `None` when it is unset, empty, 0 or not a number.
+pub fn offset_ns_from_env(name: &str, max_abs_ms: i64) -> Option<i64> {
+    let ms: i64 = std::env::var(name).ok()?.trim().parse().ok()?;
+    (ms != 0).then(|| ms.clamp(-max_abs_ms, max_abs_ms) * 1_000_000)
+}

@@ -33,9 +33,19 @@ impl LineConsole {
     /// # Panics
     /// When the binary cannot be found or started (a test's failure report).
     pub fn start(args: &[String]) -> LineConsole {
+        LineConsole::start_with_env(args, &[])
+    }
+
+    /// Starts `pomdar ARGS` as [`LineConsole::start`] does, with `env` added to its
+    /// environment (a test knob).
+    ///
+    /// # Panics
+    /// When the binary cannot be found or started (a test's failure report).
+    pub fn start_with_env(args: &[String], env: &[(&str, &str)]) -> LineConsole {
         let binary = pomdar_binary().unwrap_or_else(|e| panic!("{e}"));
         let mut child = Command::new(binary)
             .args(args)
+            .envs(env.iter().copied())
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())

@@ -151,8 +151,10 @@ pub async fn run_session(
             .boxed(),
         (None, None) => futures::stream::pending().boxed(),
     };
-    let joint_pub =
-        node.publisher::<JointState>(&config.output.joint_targets_topic, config.output.qos)?;
+    // Through `pomdar relay` when the station's commands go through one, as the station's own.
+    let (joint_topic, joint_qos) =
+        (config.robot_link).command_wire(&config.output.joint_targets_topic, config.output.qos);
+    let joint_pub = node.publisher::<JointState>(&joint_topic, joint_qos)?;
 
     let writer = open_session_log(&options, model, timing)?;
     let mut run = SessionRun {

@@ -74,9 +74,13 @@ pub async fn hand_check(args: HandCheckArgs) -> anyhow::Result<()> {
     let table = config.policy_output.clone();
     let mut check = HandCheck::new(HandModel::orca_v1_right(), table.clone(), motion, 0.0)
         .with_context(|| format!("{}: policy_output", args.config.display()))?;
+    // Through `pomdar relay` when the station's commands go through one, as the station's own.
+    let (topic, qos) = config
+        .robot_link
+        .command_wire(&table.topic, config.output.qos);
     let output = CheckOutput {
-        topic: table.topic.clone(),
-        qos: config.output.qos,
+        topic,
+        qos,
         network: args.node.network(&config.network),
         rate_hz: args.rate_hz,
     };

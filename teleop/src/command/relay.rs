@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use clap::Args;
 
 use super::common::{NodeArgs, ctrl_c_shutdown};
-use crate::clock::StationClock;
+use crate::clock::WallClock;
 use crate::relay_node::{RelayReport, RelaySettings, run_relay};
 use crate::station_setup::read_station_config;
 
@@ -54,7 +54,7 @@ pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
     run_relay(
         &settings,
         &network,
-        StationClock::new(),
+        WallClock::from_env(),
         &report,
         ctrl_c_shutdown(),
     )
@@ -72,6 +72,11 @@ pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
                 ages.unstamped,
                 counts.input_errors,
                 counts.publish_failed
+            );
+        }
+        if let Some(offset) = report.clock_offset_ms {
+            eprintln!(
+                "relay: clock offset estimate at exit {offset:.1} ms (this computer's clock minus the station's)"
             );
         }
     }

@@ -5,6 +5,7 @@ mod error;
 pub mod operator;
 pub mod recorder;
 mod recorder_thread;
+mod relay_view;
 pub mod ros_node;
 mod ros_tools_node;
 pub mod station_log;

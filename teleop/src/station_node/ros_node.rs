@@ -37,6 +37,7 @@ use crate::station_node::error::NodeError;
 pub use crate::station_node::operator::{LatestInput, OperatorCommand, StationEvent, StationHooks};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 use crate::station_node::recorder_thread::{LogQueue, LogReport};
+use crate::station_node::relay_view::RelayView;
 use crate::station_node::ros_tools_node::{ServiceRequest, ToolEndpoints, ToolScene};
 
 mod tool_steps;
@@ -142,6 +143,7 @@ pub async fn run_station_observed(
         tip_error_mm: Samples::default(),
         recorded: Vec::new(),
         keypoint_source: None,
+        relay: RelayView::default(),
     };
     node.send_latched(&endpoints).await;
     loop {
@@ -181,6 +183,8 @@ struct Endpoints {
     feedback: Subscription<PoseStamped>,
     /// The ingress's status (for the keypoint source), when configured.
     ingress_status: Option<Subscription<StringMsg>>,
+    /// `pomdar relay`'s status, when the commands go through one.
+    relay_status: Option<Subscription<StringMsg>>,
     /// `/tf`, markers, diagnostics, the hand's state, the services.
     tools: ToolEndpoints,
     node: RosNode,
@@ -223,10 +227,7 @@ impl Endpoints {
         // Relayed (`[robot_link]`): best effort on the relay topics, `pomdar relay` on the
         // robot's computer republishes; nothing old is kept or resent after a cut.
         let link = &config.robot_link;
-        let command_qos = match link.relayed() {
-            true => QosConfig::best_effort(output_qos.depth),
-            false => output_qos,
-        };
+        let command_qos = link.command_qos(output_qos);
         let arm_topic = &config.output.arm_target_topic;
         let (arm, arm_monitor) = if arm_topic.is_empty() || !robot {
             (None, None)
@@ -262,6 +263,12 @@ impl Endpoints {
             ingress_status: match config.input.ingress_status_topic.as_str() {
                 "" => None,
                 topic => Some(node.subscription(topic, QosConfig::reliable(10))?),
+            },
+            relay_status: match link.relayed() && robot {
+                true => {
+                    Some(node.subscription(&link.relay_status_topic(), QosConfig::best_effort(10))?)
+                }
+                false => None,
             },
             tools: ToolEndpoints::open(&mut node, config, has_description)?,
             node,
@@ -301,12 +308,24 @@ impl Endpoints {
         }
     }
 
-    /// Matched readers of the commands (the station's own arm monitor is one of the arm's).
-    fn listeners(&self) -> serde_json::Value {
+    /// Matched readers of the commands (the station's own arm monitor is one of the arm's);
+    /// behind a relay, the robot's readers as the relay last reported them
+    /// ([`RelayView::listeners`]), and the `relay` object.
+    fn listeners(&self, config: &StationConfig, relay: &RelayView, now: i64) -> serde_json::Value {
         let node = &self.node;
+        let hand = self.joint.as_ref().map(|p| node.matched_subscriptions(p));
+        let arm = (self.arm.as_ref()).map(|p| node.matched_subscriptions(p).saturating_sub(1));
+        if self.relay_status.is_none() {
+            return json!({ "hand": hand, "arm": arm });
+        }
+        let output = &config.output;
+        let behind = |readers: Option<usize>, topic: &str| {
+            readers.and_then(|n| relay.listeners(n, topic, now))
+        };
         json!({
-            "hand": self.joint.as_ref().map(|p| node.matched_subscriptions(p)),
-            "arm": self.arm.as_ref().map(|p| node.matched_subscriptions(p).saturating_sub(1)),
+            "hand": behind(hand, &output.joint_targets_topic),
+            "arm": behind(arm, &output.arm_target_topic),
+            "relay": relay.document(hand.or(arm), now),
         })
     }
 
@@ -380,6 +399,8 @@ struct StationNode {
     recorded: Vec<std::path::PathBuf>,
     /// The keypoint source the ingress last named (kind, device).
     keypoint_source: Option<(String, String)>,
+    /// What the relay (when commands go through one) last said.
+    relay: RelayView,
 }
 
 impl StationNode {
@@ -566,7 +587,11 @@ impl StationNode {
             fields.insert("stamp_ns".into(), json!(now));
             fields.insert("processing_latency_ms".into(), json!(self.last_latency_ms));
             fields.insert("last_step_ms".into(), json!(self.step_time.last()));
-            fields.insert("listeners".into(), endpoints.listeners());
+            if let Some(subscription) = &endpoints.relay_status {
+                self.relay.poll(subscription, now);
+            }
+            let listeners = endpoints.listeners(&self.config, &self.relay, now);
+            fields.insert("listeners".into(), listeners);
             fields.insert("node".into(), json!(self.faults));
             fields.insert(
                 "datagram_guard".into(),

@@ -32,6 +32,7 @@ mod multi_host_dds;
 mod multi_host_robot_link;
 mod quiet_exit;
 mod record_resim;
+mod relay_clocks_and_robot;
 mod relay_node;
 mod replay_station;
 mod resim;

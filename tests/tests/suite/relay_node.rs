@@ -10,7 +10,7 @@ use msgs::JointState;
 use pomdar_tests::stamped_glove::StampedWriter;
 use pomdar_tests::station_harness::{loopback, test_domain};
 use station::StationConfig;
-use teleop::clock::StationClock;
+use teleop::clock::{StationClock, WallClock};
 use teleop::relay_node::{RelayReport, RelaySettings, run_relay};
 use teleop::ros::{QosConfig, RosNode};
 use tokio::sync::watch;
@@ -38,7 +38,7 @@ async fn the_relay_forwards_fresh_commands_and_drops_old_and_future_ones() {
     let relay = {
         let (network, report) = (network.clone(), Arc::clone(&report));
         tokio::spawn(async move {
-            run_relay(&settings, &network, StationClock::new(), &report, shutdown).await
+            run_relay(&settings, &network, WallClock::system(), &report, shutdown).await
         })
     };
     let mut robot = RosNode::join(&network, "/", "robot_driver").unwrap();

@@ -3,24 +3,29 @@
 //! nothing is resent) onto the robot's own topics (with `output.qos`, the reliability the
 //! robot's drivers ask for, over this computer's loopback), each command older than
 //! `[robot_link] max_age_ms` on arrival dropped ([`station::robot_link`]).
+//!
+//! The ages are judged on this computer's wall clock as it is at each arrival
+//! ([`WallClock`]), and the smallest age per window estimates how far the two clocks are
+//! apart ([`station::link_clock`]): the relay says so when it eats into the limit. Twice a
+//! second it publishes [`RelayStatus`] for the station: the robot side's readers and that
+//! offset.
+
+mod legs;
+mod status;
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
-use futures::StreamExt as _;
-use msgs::{Float32MultiArray, JointState, PoseStamped, RosMessage};
-use ros2_client::{Publisher, Subscription};
+use msgs::{Float32MultiArray, JointState, PoseStamped};
 use serde::Serialize;
 use station::StationConfig;
-use station::robot_link::{AgeCounts, AgeVerdict, CommandAgeGate};
+use station::link_clock::ClockOffsetMonitor;
+use station::robot_link::AgeCounts;
 use tokio::sync::watch;
 
-use crate::clock::StationClock;
-use crate::ingress::log_limit::LogLimiter;
+use crate::clock::WallClock;
 use crate::ros::{NetworkConfig, QosConfig, RosError, RosNode};
-
-/// How often at most the relay says it dropped commands, nanoseconds.
-const WARNING_PERIOD_NS: i64 = 5_000_000_000;
+use legs::{LegContext, open_leg, relay_leg};
 
 /// One relayed topic: from the station's relay topic to the robot's.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -80,13 +85,18 @@ pub struct TopicRelayReport {
     pub input_errors: u64,
     /// Forwarded commands the robot-side writer refused.
     pub publish_failed: u64,
+    /// The robot side's readers of this topic (its drivers), at the last status.
+    pub robot_listeners: u64,
 }
 
 /// What the relay did, by the robot's topic.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct RelayReport {
     /// Per robot topic.
     pub topics: BTreeMap<String, TopicRelayReport>,
+    /// The last estimate of the clock offset (this computer's clock minus the station's),
+    /// milliseconds.
+    pub clock_offset_ms: Option<f64>,
 }
 
 /// The relay's fixed settings.
@@ -100,6 +110,8 @@ pub struct RelaySettings {
     pub robot_qos: QosConfig,
     /// Older commands are dropped, milliseconds.
     pub max_age_ms: u64,
+    /// Where the relay's status goes (best effort), for the station.
+    pub status_topic: String,
 }
 
 impl RelaySettings {
@@ -110,35 +122,17 @@ impl RelaySettings {
             link_qos: QosConfig::best_effort(config.output.qos.depth),
             robot_qos: config.output.qos,
             max_age_ms: config.robot_link.max_age_ms,
+            status_topic: config.robot_link.relay_status_topic(),
         })
     }
 }
 
-/// One topic's subscription and publisher.
-struct Leg<M: RosMessage + 'static> {
-    route: RelayRoute,
-    subscription: Subscription<M>,
-    publisher: Publisher<M>,
-}
-
-fn open_leg<M: RosMessage + 'static>(
-    node: &mut RosNode,
-    route: Option<&RelayRoute>,
-    settings: &RelaySettings,
-) -> Result<Option<Leg<M>>, RosError> {
-    let Some(route) = route else { return Ok(None) };
-    Ok(Some(Leg {
-        route: route.clone(),
-        subscription: node.subscription(&route.from, settings.link_qos)?,
-        publisher: node.publisher(&route.to, settings.robot_qos)?,
-    }))
-}
-
-/// Relay until `shutdown`; `report` is updated live.
+/// Relay until `shutdown`; `report` is updated live. `clock` is this computer's wall clock (a
+/// test shifts it to stand for another computer's).
 pub async fn run_relay(
     settings: &RelaySettings,
     network: &NetworkConfig,
-    clock: StationClock,
+    clock: WallClock,
     report: &Mutex<RelayReport>,
     shutdown: watch::Receiver<bool>,
 ) -> Result<(), RosError> {
@@ -147,99 +141,25 @@ pub async fn run_relay(
     let joint = open_leg::<JointState>(&mut node, routes.joint_targets.as_ref(), settings)?;
     let policy = open_leg::<Float32MultiArray>(&mut node, routes.policy_output.as_ref(), settings)?;
     let arm = open_leg::<PoseStamped>(&mut node, routes.arm_target.as_ref(), settings)?;
+    let status = node.publisher(&settings.status_topic, QosConfig::best_effort(10))?;
     let context = LegContext {
         max_age_ms: settings.max_age_ms,
-        clock: &clock,
+        clock,
         report,
+        offset: Mutex::new(ClockOffsetMonitor::new(settings.max_age_ms)),
+    };
+    let listeners = status::RobotListeners {
+        node: &node,
+        joint: joint.as_ref(),
+        policy: policy.as_ref(),
+        arm: arm.as_ref(),
     };
     tokio::join!(
         relay_leg(joint.as_ref(), &context, shutdown.clone()),
         relay_leg(policy.as_ref(), &context, shutdown.clone()),
-        relay_leg(arm.as_ref(), &context, shutdown),
+        relay_leg(arm.as_ref(), &context, shutdown.clone()),
+        status::publish_status(&status, &listeners, &context, shutdown),
     );
-    drop((joint, policy, arm));
+    drop((joint, policy, arm, status));
     Ok(())
-}
-
-/// What every leg shares.
-struct LegContext<'a> {
-    max_age_ms: u64,
-    clock: &'a StationClock,
-    report: &'a Mutex<RelayReport>,
-}
-
-/// Drops since the last warning, said at most once per [`WARNING_PERIOD_NS`].
-struct DropWarning {
-    limiter: LogLimiter,
-    counts_at_last: AgeCounts,
-}
-
-impl DropWarning {
-    fn maybe_say(&mut self, topic: &str, counts: &AgeCounts, max_age_ms: u64, now_ns: i64) {
-        if self.limiter.allow("dropped", now_ns).is_none() {
-            return;
-        }
-        let old = counts.too_old - self.counts_at_last.too_old;
-        let ahead = counts.from_the_future - self.counts_at_last.from_the_future;
-        let unstamped = counts.unstamped - self.counts_at_last.unstamped;
-        let mut parts = Vec::new();
-        if old > 0 {
-            parts.push(format!(
-                "{old} older than {max_age_ms} ms (the oldest dropped so far {:.0} ms)",
-                counts.oldest_dropped_ns as f64 * 1e-6
-            ));
-        }
-        if ahead > 0 {
-            parts.push(format!(
-                "{ahead} sent more than {max_age_ms} ms ahead of this computer's clock (keep the station's and this computer's clocks in step, e.g. chrony)"
-            ));
-        }
-        if unstamped > 0 {
-            parts.push(format!("{unstamped} without a send time"));
-        }
-        eprintln!("relay: {topic}: dropped {}", parts.join(", "));
-        self.counts_at_last = counts.clone();
-    }
-}
-
-async fn relay_leg<M: RosMessage + 'static>(
-    leg: Option<&Leg<M>>,
-    context: &LegContext<'_>,
-    mut shutdown: watch::Receiver<bool>,
-) {
-    let Some(leg) = leg else { return };
-    let topic = leg.route.to.as_str();
-    let mut gate = CommandAgeGate::new(context.max_age_ms);
-    let mut warning = DropWarning {
-        limiter: LogLimiter::new(WARNING_PERIOD_NS),
-        counts_at_last: AgeCounts::default(),
-    };
-    let mut stream = Box::pin(leg.subscription.async_stream());
-    loop {
-        let received = tokio::select! {
-            _ = shutdown.changed() => if *shutdown.borrow() { break } else { continue },
-            next = stream.next() => match next { Some(received) => received, None => break },
-        };
-        let now = context.clock.now_ns();
-        let (verdict, failed) = match received {
-            Ok((message, info)) => {
-                let sent = info.source_timestamp().map(|t| t.to_nanos());
-                let verdict = gate.judge(sent, now);
-                let failed =
-                    verdict.forwards() && leg.publisher.async_publish(message).await.is_err();
-                (Some(verdict), failed)
-            }
-            Err(_) => (None, false),
-        };
-        let Ok(mut report) = context.report.lock() else {
-            break;
-        };
-        let entry = report.topics.entry(topic.to_string()).or_default();
-        entry.ages = gate.counts().clone();
-        entry.input_errors += u64::from(verdict.is_none());
-        entry.publish_failed += u64::from(failed);
-        if verdict.is_some_and(|v| !matches!(v, AgeVerdict::Forward)) {
-            warning.maybe_say(topic, gate.counts(), context.max_age_ms, now);
-        }
-    }
 }
