@@ -1,13 +1,14 @@
 //! The `pomdar` binary for tests that run it as the operator does. It lives in the `teleop`
 //! package, so Cargo does not build it for this crate's tests: the helper builds it (a no-op
-//! when it is up to date) with the same profile and target directory as the running test, so
-//! a test never runs a stale binary.
+//! when it is up to date) into the target directory of the running test, so a test never runs
+//! a stale binary.
 //!
-//! The build selects what `cargo test --workspace` selects (every member's bins and tests), so
-//! Cargo resolves the same features and, under that command, finds the binary it has just
-//! built fresh. A narrower `-p teleop --bin pomdar` resolves features without the members'
-//! dev-dependencies (tonic's `server`, for the Vision Pro benchmark's in-process headset), and
-//! so built hyper, tonic and teleop a second time, about 1.5 min of every test run.
+//! The build is `cargo test --workspace --no-run` itself, with the running test's profile: the
+//! same selection, features and profiles (the test profile for the test targets, the dev
+//! profile for the libraries and binaries) as the README's test command, so under that command
+//! Cargo finds everything fresh. A narrower `-p teleop --bin pomdar` resolved other features
+//! (hyper, tonic and teleop built a second time, about 1.5 min of every test run), and a
+//! `cargo build --profile dev --tests` built every test target again in the dev profile.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -25,22 +26,21 @@ fn build() -> Result<PathBuf, String> {
     let target_dir = profile_dir
         .parent()
         .ok_or_else(|| format!("unexpected profile directory {}", profile_dir.display()))?;
-    let profile = match profile_dir.file_name().and_then(|n| n.to_str()) {
-        Some("debug") => "dev".to_string(),
-        Some(name) => name.to_string(),
-        None => return Err(format!("no profile in {}", profile_dir.display())),
-    };
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let output = Command::new(cargo)
-        .args([
-            "build",
-            "--quiet",
-            "--workspace",
-            "--bins",
-            "--tests",
-            "--profile",
-        ])
-        .arg(&profile)
+    let mut command = Command::new(cargo);
+    command.args(["test", "--no-run", "--quiet", "--workspace"]);
+    match profile_dir.file_name().and_then(|n| n.to_str()) {
+        // `cargo test`'s own profiles.
+        Some("debug") => {}
+        Some("release") => {
+            command.arg("--release");
+        }
+        Some(name) => {
+            command.args(["--profile", name]);
+        }
+        None => return Err(format!("no profile in {}", profile_dir.display())),
+    }
+    let output = command
         .arg("--target-dir")
         .arg(target_dir)
         .current_dir(crate::workspace_root())

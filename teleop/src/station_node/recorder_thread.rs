@@ -13,7 +13,8 @@
 //! them.
 //!
 //! What a crash loses: the messages still in the queue (at most [`LogQueue::CAPACITY`], about
-//! 4 s at the station's usual 500 messages/s, and none while the disk keeps up), plus those
+//! 4 s at the station's usual 500 messages/s, and while the disk keeps up only the last
+//! [`DRAIN_PERIOD`], 5 ms, the thread has not taken yet), plus those
 //! the thread wrote after the log's last flush (at most one flush interval, 1 s of log time,
 //! or the console's shorter interval). A trial event is flushed as soon as the thread reaches
 //! it.
@@ -29,6 +30,13 @@ use tokio::sync::mpsc as async_mpsc;
 use crate::mcap_log::FinishedTrial;
 use crate::station_node::error::NodeError;
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
+
+/// How often the recorder thread takes what was queued: a write reaches the log at most this
+/// late (and a crash loses at most this much more than the queue and the last flush).
+const DRAIN_PERIOD: std::time::Duration = std::time::Duration::from_millis(5);
+
+/// The recorder thread's nice value: below the control loop and DDS.
+const RECORDER_NICE: i32 = 10;
 
 /// A write to apply to the open log.
 type Write = Box<dyn FnOnce(&mut StationRecorder) + Send>;
@@ -243,9 +251,23 @@ struct RecorderWorker {
 }
 
 impl RecorderWorker {
+    /// Take the queued jobs every [`DRAIN_PERIOD`] until the loop's end of the queue is gone.
+    /// The thread polls rather than blocking on the queue: a send to a receiver blocked in
+    /// `recv` wakes it with a system call in the sender, which was the control loop, once per
+    /// message. At a lower priority than the rest of the station (nice +10, Linux keeps it per
+    /// thread), so on a busy machine the loop and DDS run first.
     fn run(mut self, inbox: &std::sync::mpsc::Receiver<Job>) {
-        while let Ok(job) = inbox.recv() {
-            self.take(job);
+        // Best effort: a thread that cannot lower its priority records all the same.
+        let _ = rustix::process::setpriority_process(None, RECORDER_NICE);
+        loop {
+            loop {
+                match inbox.try_recv() {
+                    Ok(job) => self.take(job),
+                    Err(std::sync::mpsc::TryRecvError::Empty) => break,
+                    Err(std::sync::mpsc::TryRecvError::Disconnected) => return,
+                }
+            }
+            std::thread::sleep(DRAIN_PERIOD);
         }
     }
 
