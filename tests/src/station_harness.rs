@@ -38,6 +38,32 @@ pub fn loopback(domain: u16) -> NetworkConfig {
     }
 }
 
+/// A node named `name` on loopback `domain`, as a lab's own tool runs one: on a runtime of its
+/// own with `workers` threads, so a test thread that blocks between calls (on a console's
+/// output) never stalls the node's spinner, and with it discovery. Drop the node's endpoints,
+/// then the node, then the runtime.
+///
+/// # Panics
+/// When the runtime or the node cannot be built (a test's failure report).
+pub fn lab_tool_node(
+    domain: u16,
+    name: &str,
+    workers: usize,
+) -> (tokio::runtime::Runtime, RosNode) {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(workers)
+        .enable_all()
+        .build()
+        .unwrap_or_else(|e| panic!("runtime: {e}"));
+    let context = loopback(domain)
+        .context()
+        .unwrap_or_else(|e| panic!("DDS context: {e}"));
+    let node = runtime
+        .block_on(async { RosNode::new(&context, "/", name) })
+        .unwrap_or_else(|e| panic!("node {name}: {e}"));
+    (runtime, node)
+}
+
 /// A station configuration whose joint targets do not depend on when frames arrive: every
 /// frame is retargeted, the joint-speed limit never binds, the input filter (whose history is
 /// the frames the station took, fewer when a burst is coalesced) and the smoothing's release

@@ -35,9 +35,6 @@ use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 /// late (and a crash loses at most this much more than the queue and the last flush).
 const DRAIN_PERIOD: std::time::Duration = std::time::Duration::from_millis(5);
 
-/// The recorder thread's nice value: below the control loop and DDS.
-const RECORDER_NICE: i32 = 10;
-
 /// A write to apply to the open log.
 type Write = Box<dyn FnOnce(&mut StationRecorder) + Send>;
 
@@ -254,11 +251,9 @@ impl RecorderWorker {
     /// Take the queued jobs every [`DRAIN_PERIOD`] until the loop's end of the queue is gone.
     /// The thread polls rather than blocking on the queue: a send to a receiver blocked in
     /// `recv` wakes it with a system call in the sender, which was the control loop, once per
-    /// message. At a lower priority than the rest of the station (nice +10, Linux keeps it per
-    /// thread), so on a busy machine the loop and DDS run first.
+    /// message. (It keeps the station's priority: at nice +10, a simulated trial whose physics
+    /// kept both cores busy starved it, and its queue could fill and drop messages.)
     fn run(mut self, inbox: &std::sync::mpsc::Receiver<Job>) {
-        // Best effort: a thread that cannot lower its priority records all the same.
-        let _ = rustix::process::setpriority_process(None, RECORDER_NICE);
         loop {
             loop {
                 match inbox.try_recv() {

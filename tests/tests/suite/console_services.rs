@@ -14,11 +14,10 @@
 use std::time::Duration;
 
 use pomdar_tests::line_console::LineConsole;
-use pomdar_tests::station_harness::{loopback, test_domain};
+use pomdar_tests::station_harness::{lab_tool_node, test_domain};
 use pomdar_tests::{scratch_dir, session_trial_statuses};
 use ros2_client::ServiceMapping;
 use station::StationConfig;
-use teleop::ros::NetworkContext as _;
 use teleop::ros::{RosNode, TriggerRequest};
 
 /// The console's arguments (the start gate's defaults).
@@ -111,15 +110,7 @@ fn services_engage_start_and_stop_a_trial_as_the_operators_keys_do() {
     let domain = test_domain();
     let console = LineConsole::start(&console_args(&root, domain));
     console.wait_for("WAITING FOR ENGAGE", 60.0);
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
-    let context = loopback(domain).context().unwrap();
-    let mut node = runtime
-        .block_on(async { RosNode::new(&context, "/", "pomdar_lab_tool") })
-        .unwrap();
+    let (runtime, mut node) = lab_tool_node(domain, "pomdar_lab_tool", 2);
     let services = StationConfig::default().ros_tools.services;
 
     let engaged = runtime.block_on(call(&mut node, &services.engage, &console, "READY"));

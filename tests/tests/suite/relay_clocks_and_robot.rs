@@ -15,10 +15,9 @@ use futures::StreamExt as _;
 use msgs::StringMsg;
 use pomdar_tests::line_console::LineConsole;
 use pomdar_tests::scratch_dir;
-use pomdar_tests::station_harness::{loopback, test_domain};
+use pomdar_tests::station_harness::{lab_tool_node, test_domain};
 use serde_json::Value;
 use station::StationConfig;
-use teleop::ros::NetworkContext as _;
 use teleop::ros::{QosConfig, RosNode};
 
 const OFFSET_MS: i64 = 80;
@@ -51,15 +50,7 @@ struct StatusWatch {
 
 impl StatusWatch {
     fn open(domain: u16) -> StatusWatch {
-        let runtime = tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(1)
-            .enable_all()
-            .build()
-            .unwrap();
-        let context = loopback(domain).context().unwrap();
-        let mut node = runtime
-            .block_on(async { RosNode::new(&context, "/", "status_watch") })
-            .unwrap();
+        let (runtime, mut node) = lab_tool_node(domain, "status_watch", 1);
         let topic = StationConfig::default().output.status_topic;
         let subscription = node
             .subscription::<StringMsg>(&topic, QosConfig::reliable(10))
