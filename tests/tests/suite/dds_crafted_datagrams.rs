@@ -46,7 +46,7 @@ struct Station(Child);
 struct Subject {
     name: &'static str,
     args: Vec<String>,
-    ready_topics: Vec<&'static str>,
+    ready_topics: Vec<String>,
     status_topic: String,
     ctrl_c_code: i32,
 }
@@ -57,7 +57,7 @@ impl Subject {
         Subject {
             name: "station",
             args: vec!["station".into(), "--config".into(), path(&config)],
-            ready_topics: vec!["/ingress/mano", "/ingress/wrist"],
+            ready_topics: vec!["/ingress/mano".into(), "/ingress/wrist".into()],
             status_topic: station::StationConfig::default().output.status_topic,
             ctrl_c_code: 0,
         }
@@ -72,7 +72,7 @@ impl Subject {
         Subject {
             name,
             args,
-            ready_topics: vec![leak(config.input.keypoints_topic)],
+            ready_topics: vec![config.input.keypoints_topic],
             status_topic: config.output.status_topic,
             // An interrupted session.
             ctrl_c_code: 130,
@@ -88,7 +88,7 @@ impl Subject {
         Subject {
             name: "relay",
             args: vec!["relay".into(), "--config".into(), path(&config)],
-            ready_topics: vec![leak(link.relay_prefix.clone())],
+            ready_topics: vec![link.relay_prefix.clone()],
             status_topic: link.relay_status_topic(),
             ctrl_c_code: 0,
         }
@@ -97,11 +97,6 @@ impl Subject {
 
 fn path(p: &Path) -> String {
     p.display().to_string()
-}
-
-/// A topic name for the life of the test process.
-fn leak(topic: String) -> &'static str {
-    Box::leak(topic.into_boxed_str())
 }
 
 impl Drop for Station {
@@ -199,7 +194,11 @@ fn learn(subject: &Subject, domain: u16) -> (Target, ros2_client::Context) {
             .filter(|r| r.reader_proxy.remote_reader_guid.to_bytes()[..12] != own_prefix[..])
             .collect();
         let ready = subject.ready_topics.iter().all(|topic| {
-            (readers.iter()).any(|r| r.subscription_topic_data.topic_name.contains(topic))
+            (readers.iter()).any(|r| {
+                r.subscription_topic_data
+                    .topic_name
+                    .contains(topic.as_str())
+            })
         });
         if readers.len() != seen.0 {
             seen = (readers.len(), Instant::now());
