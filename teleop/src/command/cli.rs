@@ -189,9 +189,12 @@ enum Command {
     /// it and nothing old is resent when it returns. The relay republishes each command on the
     /// robot's topic with the configuration's output.qos (reliable for the lab's drivers), on
     /// this computer, and drops any command older than `[robot_link] max_age_ms` (100 ms) on
-    /// arrival: the station's and this computer's clocks must be kept in step (chrony). Drops
-    /// are reported every 5 s at most; a summary on Ctrl-C. docs/DEPLOYMENT.md, "When a link
-    /// fails".
+    /// arrival: the station's and this computer's clocks must be kept in step (chrony). It
+    /// estimates the offset between the two clocks from the smallest command ages and warns,
+    /// naming it, once it takes a quarter of that limit. Drops and refused publishes are
+    /// reported every 5 s at most; a summary on Ctrl-C. Twice a second it publishes its status
+    /// on `<relay_prefix>/relay_status` (the robot's drivers listening, the offset), which the
+    /// station reads. docs/DEPLOYMENT.md, "When a link fails".
     ///
     /// Example:
     ///   pomdar relay --config launch_configs/station/deploy_station.toml --interface 10.251.0.3
