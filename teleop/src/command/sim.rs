@@ -39,6 +39,14 @@ pub struct SimArgs {
     /// length plus 2 s).
     #[arg(long, value_name = "SECONDS")]
     pub duration: Option<f64>,
+    /// With --lockstep: the glove's keypoint noise, standard deviation in mm, 0–50 (default
+    /// 0.5: the noise of a hand at rest, as a simulated trial's glove has, so the script's still
+    /// phases are not taken for a stalled glove).
+    #[arg(long, value_name = "MM")]
+    pub glove_jitter_mm: Option<f64>,
+    /// With --lockstep: the seed of the glove's noise.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -98,7 +106,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     };
     let loaded = load_task(&task, &model, source, arm_start)?;
     if let Some(script) = &args.lockstep {
-        return lockstep(&station, &model, loaded, script, args.duration);
+        return lockstep(&station, &model, loaded, script, &args);
     }
     let config = PhysicsRobotConfig::for_station(&station, &loaded, arm_start);
     let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
@@ -178,7 +186,7 @@ fn lockstep(
     model: &retarget::HandModel,
     loaded: crate::physics::setup::SimulatedTask,
     script: &std::path::Path,
-    duration: Option<f64>,
+    args: &SimArgs,
 ) -> anyhow::Result<()> {
     use crate::physics::lockstep::run_lockstep;
     use crate::sim::glove_script_file::load_glove_script;
@@ -186,11 +194,12 @@ fn lockstep(
     let task = loaded.task.clone();
     let glove_config = SimGloveConfig {
         script: Some(load_glove_script(script)?),
-        jitter_m: 0.0,
+        jitter_m: super::demo::glove_jitter_m(args.glove_jitter_mm, true)?,
+        seed: args.seed,
         layout: station.retarget.layout,
         ..SimGloveConfig::default()
     };
-    let duration_s = duration.unwrap_or_else(|| {
+    let duration_s = args.duration.unwrap_or_else(|| {
         glove_config
             .script
             .as_ref()

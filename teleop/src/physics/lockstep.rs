@@ -10,7 +10,7 @@
 use retarget::HandModel;
 use retarget::human_hand::SimGlove;
 use station::convert::isometry_to_pose;
-use station::{ControlInput, KeypointFrame, Station, StationConfig, StationInput};
+use station::{ControlInput, KeypointFrame, StationConfig, StationInput};
 
 use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
@@ -56,8 +56,9 @@ pub fn run_lockstep(
     let robot = PhysicsRobotConfig::for_station(config, &loaded, arm_start);
     let mut station_config = config.clone();
     station_config.control.auto_engage = true;
-    let mut station =
-        Station::new(&station_config, model.clone(), None).map_err(|e| PhysicsError::Progress {
+    // Built as every live path builds it: with the configured calibration profile.
+    let (mut station, _) = crate::station_setup::build_station(&station_config, model.clone())
+        .map_err(|e| PhysicsError::Progress {
             message: format!("station: {e}"),
         })?;
     let mut sim = SimState::new(loaded.engine, &robot)?;
