@@ -44,9 +44,14 @@ pub struct SimArgs {
     /// phases are not taken for a stalled glove).
     #[arg(long, value_name = "MM")]
     pub glove_jitter_mm: Option<f64>,
-    /// With --lockstep: the seed of the glove's noise.
+    /// With --lockstep: the seed of the glove's noise (of the first run with --runs).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// With --lockstep: play the script this many times, 1–1000, with the seeds --seed,
+    /// --seed + 1, …, and print one line per run, the success rate (correctness 1) and the
+    /// spread of the successful runs' completion times.
+    #[arg(long, default_value_t = 1)]
+    pub runs: u64,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -104,10 +109,11 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         Some(path) => SceneSource::LabFile(path),
         None => SceneSource::Project,
     };
-    let loaded = load_task(&task, &model, source, arm_start)?;
     if let Some(script) = &args.lockstep {
-        return lockstep(&station, &model, loaded, script, &args);
+        let load = || load_task(&task, &model, source, arm_start);
+        return lockstep(&station, &model, &load, script, &args);
     }
+    let loaded = load_task(&task, &model, source, arm_start)?;
     let config = PhysicsRobotConfig::for_station(&station, &loaded, arm_start);
     let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
     let (_control, control_rx) = tokio::sync::mpsc::channel(4);
@@ -179,33 +185,77 @@ fn timed_shutdown(seconds: f64) -> tokio::sync::watch::Receiver<bool> {
     rx
 }
 
-/// `--lockstep`: the script through the station core into the scene, in simulated time.
+/// One lock-step run: the task, what happened, and its correctness.
+#[cfg(feature = "physics")]
+struct LockstepRun {
+    task: scoring::TaskSpec,
+    outcome: crate::physics::lockstep::LockstepOutcome,
+    correctness: f64,
+}
+
+/// `--lockstep`: the script through the station core into the scene, in simulated time, once
+/// or `--runs` times over consecutive seeds.
 #[cfg(feature = "physics")]
 fn lockstep(
     station: &station::StationConfig,
     model: &retarget::HandModel,
-    loaded: crate::physics::setup::SimulatedTask,
+    load: &dyn Fn() -> Result<
+        crate::physics::setup::SimulatedTask,
+        crate::physics::error::PhysicsError,
+    >,
     script: &std::path::Path,
     args: &SimArgs,
 ) -> anyhow::Result<()> {
-    use crate::physics::lockstep::run_lockstep;
     use crate::sim::glove_script_file::load_glove_script;
+    if !(1..=1000).contains(&args.runs) {
+        anyhow::bail!("--runs {} must be in [1, 1000]", args.runs);
+    }
+    let script = load_glove_script(script)?;
+    let jitter_m = super::demo::glove_jitter_m(args.glove_jitter_mm, true)?;
+    let mut completions = Vec::new();
+    for seed in (0..args.runs).map(|k| args.seed.wrapping_add(k)) {
+        let run = lockstep_run(station, model, load()?, &script, (jitter_m, seed), args)?;
+        if args.runs == 1 {
+            print_run(&run);
+            return Ok(());
+        }
+        let completion = (run.correctness >= 1.0)
+            .then(|| run.outcome.events.last().map(|e| e.sim_time_s))
+            .flatten();
+        println!(
+            "seed {seed}: correctness {:.3}, progress {} {}{}",
+            run.correctness,
+            run.outcome.progress,
+            run.task.correctness.progress_unit(),
+            completion.map_or(String::new(), |t| format!(", done at {t:.2} s"))
+        );
+        completions.push(completion);
+    }
+    print_spread(&completions, args, jitter_m);
+    Ok(())
+}
+
+/// The script played once at `seed` with `jitter_m` of glove noise, scored.
+#[cfg(feature = "physics")]
+fn lockstep_run(
+    station: &station::StationConfig,
+    model: &retarget::HandModel,
+    loaded: crate::physics::setup::SimulatedTask,
+    script: &retarget::human_hand::GloveScript,
+    (jitter_m, seed): (f64, u64),
+    args: &SimArgs,
+) -> anyhow::Result<LockstepRun> {
+    use crate::physics::lockstep::run_lockstep;
     use crate::sim::sim_glove_node::SimGloveConfig;
     let task = loaded.task.clone();
     let glove_config = SimGloveConfig {
-        script: Some(load_glove_script(script)?),
-        jitter_m: super::demo::glove_jitter_m(args.glove_jitter_mm, true)?,
-        seed: args.seed,
+        script: Some(script.clone()),
+        jitter_m,
+        seed,
         layout: station.retarget.layout,
         ..SimGloveConfig::default()
     };
-    let duration_s = args.duration.unwrap_or_else(|| {
-        glove_config
-            .script
-            .as_ref()
-            .map_or(10.0, |s| s.duration_s())
-            + 2.0
-    });
+    let duration_s = args.duration.unwrap_or(script.duration_s() + 2.0);
     let glove = glove_config.glove()?;
     let mut config = station.clone();
     config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
@@ -217,13 +267,6 @@ fn lockstep(
         glove_config.rate_hz,
         duration_s,
     )?;
-    for event in &outcome.events {
-        let value = event.value.map_or(String::new(), |v| format!(" {v}"));
-        println!(
-            "{:>7.2} s  {}{value} {}",
-            event.sim_time_s, event.event, event.unit
-        );
-    }
     let marks: Vec<(i64, scoring::Mark)> = outcome
         .events
         .iter()
@@ -235,17 +278,57 @@ fn lockstep(
         })
         .collect();
     let correctness = scoring::correctness(&task.correctness, &marks, None)
-        .map_err(|e| anyhow::anyhow!("the physics' marks do not score: {e}"))?;
+        .map_err(|e| anyhow::anyhow!("the physics' marks do not score: {e}"))?
+        .value;
+    Ok(LockstepRun {
+        task,
+        outcome,
+        correctness,
+    })
+}
+
+/// A single run: its events and a summary line.
+#[cfg(feature = "physics")]
+fn print_run(run: &LockstepRun) {
+    let (task, outcome) = (&run.task, &run.outcome);
+    for event in &outcome.events {
+        let value = event.value.map_or(String::new(), |v| format!(" {v}"));
+        println!(
+            "{:>7.2} s  {}{value} {}",
+            event.sim_time_s, event.event, event.unit
+        );
+    }
     println!(
         "{} ({}): progress {} {}, correctness {:.3} over {:.1} simulated s ({} hand commands, {} arm targets)",
         task.id,
         task.name,
         outcome.progress,
         task.correctness.progress_unit(),
-        correctness.value,
+        run.correctness,
         outcome.sim_time_s,
         outcome.hand_commands,
         outcome.arm_targets
     );
-    Ok(())
+}
+
+/// Several runs: how many scored correctness 1, and when the successful ones were done.
+#[cfg(feature = "physics")]
+fn print_spread(completions: &[Option<f64>], args: &SimArgs, jitter_m: f64) {
+    let mut done: Vec<f64> = completions.iter().flatten().copied().collect();
+    done.sort_by(f64::total_cmp);
+    let spread = match (done.first(), done.last()) {
+        (Some(min), Some(max)) => format!(
+            "; done at {min:.2} / {:.2} / {max:.2} s (min / median / max)",
+            done[done.len() / 2]
+        ),
+        _ => String::new(),
+    };
+    println!(
+        "correctness 1 in {} of {} runs (seeds {}–{}, glove noise {:.1} mm){spread}",
+        done.len(),
+        completions.len(),
+        args.seed,
+        args.seed.wrapping_add(args.runs - 1),
+        jitter_m * 1e3
+    );
 }
