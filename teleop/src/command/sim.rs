@@ -42,15 +42,15 @@ pub struct SimArgs {
     /// With --lockstep: the glove's keypoint noise, standard deviation in mm, 0–50 (default
     /// 0.5: the noise of a hand at rest, as a simulated trial's glove has, so the script's still
     /// phases are not taken for a stalled glove).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, requires = "lockstep", value_name = "MM")]
     pub glove_jitter_mm: Option<f64>,
     /// With --lockstep: the seed of the glove's noise (of the first run with --runs).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, requires = "lockstep", default_value_t = 1)]
     pub seed: u64,
     /// With --lockstep: play the script this many times, 1–1000, with the seeds --seed,
     /// --seed + 1, …, and print one line per run, the success rate (correctness 1) and the
     /// spread of the successful runs' completion times.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, requires = "lockstep", default_value_t = 1)]
     pub runs: u64,
     /// DDS settings.
     #[command(flatten)]
@@ -212,13 +212,21 @@ fn lockstep(
     }
     let script = load_glove_script(script)?;
     let jitter_m = super::demo::glove_jitter_m(args.glove_jitter_mm, true)?;
+    if args.runs == 1 {
+        let run = lockstep_run(
+            station,
+            model,
+            load()?,
+            &script,
+            (jitter_m, args.seed),
+            args,
+        )?;
+        print_run(&run);
+        return Ok(());
+    }
     let mut completions = Vec::new();
     for seed in (0..args.runs).map(|k| args.seed.wrapping_add(k)) {
         let run = lockstep_run(station, model, load()?, &script, (jitter_m, seed), args)?;
-        if args.runs == 1 {
-            print_run(&run);
-            return Ok(());
-        }
         let completion = (run.correctness >= 1.0)
             .then(|| run.outcome.events.last().map(|e| e.sim_time_s))
             .flatten();
@@ -267,19 +275,8 @@ fn lockstep_run(
         glove_config.rate_hz,
         duration_s,
     )?;
-    let marks: Vec<(i64, scoring::Mark)> = outcome
-        .events
-        .iter()
-        .map(|e| {
-            (
-                (e.sim_time_s * 1e9) as i64,
-                crate::demo::robot::progress_mark(e),
-            )
-        })
-        .collect();
-    let correctness = scoring::correctness(&task.correctness, &marks, None)
-        .map_err(|e| anyhow::anyhow!("the physics' marks do not score: {e}"))?
-        .value;
+    let correctness = crate::demo::robot::physics_correctness(&task, &outcome.events)
+        .map_err(|e| anyhow::anyhow!("the physics' marks do not score: {e}"))?;
     Ok(LockstepRun {
         task,
         outcome,

@@ -165,14 +165,7 @@ fn physics_reports(
     r: &crate::physics::robot_node::PhysicsRobotReport,
     task: &TaskSpec,
 ) -> RobotReports {
-    let marks: Vec<(i64, Mark)> = r
-        .events
-        .iter()
-        .map(|e| ((e.sim_time_s * 1e9) as i64, progress_mark(e)))
-        .collect();
-    let correctness = scoring::correctness(&task.correctness, &marks, None)
-        .ok()
-        .map(|c| c.value);
+    let correctness = physics_correctness(task, &r.events).ok();
     let physics = PhysicsOutcome {
         task: task.id.clone(),
         progress: r.progress_total,
@@ -199,6 +192,16 @@ fn physics_reports(
         },
         physics: Some(physics),
     }
+}
+
+/// The correctness of `task` from the physics' progress events, each made the mark the
+/// operator's key would make at its simulated time.
+pub fn physics_correctness(task: &TaskSpec, events: &[ProgressMessage]) -> Result<f64, String> {
+    let marks: Vec<(i64, Mark)> = events
+        .iter()
+        .map(|e| ((e.sim_time_s * 1e9) as i64, progress_mark(e)))
+        .collect();
+    scoring::correctness(&task.correctness, &marks, None).map(|c| c.value)
 }
 
 /// The mark a progress event makes in a trial (as the operator's key would).

@@ -99,17 +99,16 @@ fn the_scripts_in_lock_step_give_the_same_levels() {
             "{script}: {stdout}{}",
             String::from_utf8_lossy(&output.stderr)
         );
-        // Event lines: "   4.94 s  progress 0.5 level".
+        // Event lines, "   4.94 s  progress 0.5 level" (a drop: "   6.10 s  drop level"):
+        // the value of every event that has one.
         let levels: Vec<f64> = stdout
             .lines()
-            .filter_map(|l| {
-                l.split_once(" s  progress ")?
-                    .1
-                    .split(' ')
-                    .next()?
-                    .parse()
-                    .ok()
-            })
+            .filter_map(
+                |l| match l.split_once(" s  ")?.1.split(' ').collect::<Vec<_>>()[..] {
+                    [_, value, _] => value.parse().ok(),
+                    _ => None,
+                },
+            )
             .collect();
         assert_eq!(levels, expected, "{script}: {stdout}");
         let summary = stdout.lines().last().unwrap_or_default();
