@@ -11,6 +11,10 @@
 //! the receive clock across a jump of the sender's clock): a glove that drops a frame, or a
 //! frame rejected for a moment, does not make every later frame look like a jump, which held
 //! the last command for 168 of 647 frames of a recording with 10 % of its frames dropped.
+//! Last, a frame where one point leapt alone, at least `outlier_jump_m` off what the points
+//! beside it on its digit predict ([`crate::outlier_check`]), is held back for one frame
+//! (`outlier`): a tracker's one-frame outlier never reaches the retargeter, and
+//! real motion that looks like one is accepted with the next frame, one frame late.
 //! Before these, frames stamped by their sender before the newest accepted one are
 //! turned away as late ([`source_order`](crate::source_order); the hand control applies it).
 
@@ -39,6 +43,10 @@ pub struct GateConfig {
     /// is late (rejected, `out_of_order`); older still means the sender's clock jumped back
     /// (followed). Milliseconds; less than `watchdog.disengage_timeout_ms`.
     pub reorder_window_ms: u64,
+    /// A point whose motion relative to the wrist is this far off what the points beside it
+    /// on its digit predict, in `jump_interval_ms` (scaled like `max_jump_m`), is a tracker's
+    /// outlier: its frame is held back one frame. Metres; 0 turns the check off.
+    pub outlier_jump_m: f64,
 }
 
 impl Default for GateConfig {
@@ -49,6 +57,7 @@ impl Default for GateConfig {
             max_jump_m: 0.12,
             jump_interval_ms: 50,
             reorder_window_ms: 250,
+            outlier_jump_m: 0.02,
         }
     }
 }
@@ -78,6 +87,13 @@ impl GateConfig {
                 "in 1..=1000",
             ));
         }
+        if !(0.0..=1.0).contains(&self.outlier_jump_m) {
+            return Err(ConfigError::out_of_range(
+                "gate.outlier_jump_m",
+                self.outlier_jump_m,
+                "in [0, 1] (0: off)",
+            ));
+        }
         if !(1..=10_000).contains(&self.reorder_window_ms) {
             return Err(ConfigError::out_of_range(
                 "gate.reorder_window_ms",
@@ -105,6 +121,8 @@ pub enum Rejection {
     Retargeter,
     /// Stamped by its sender before the newest accepted frame (late, reordered).
     OutOfOrder,
+    /// One point leapt alone (a tracker's outlier), held back one frame.
+    Outlier,
 }
 
 impl Rejection {
@@ -117,17 +135,19 @@ impl Rejection {
             Rejection::Jump => "jump",
             Rejection::Retargeter => "retargeter",
             Rejection::OutOfOrder => "out_of_order",
+            Rejection::Outlier => "outlier",
         }
     }
 
     /// All reasons, for counters.
-    pub const ALL: [Rejection; 6] = [
+    pub const ALL: [Rejection; 7] = [
         Rejection::WrongSize,
         Rejection::NonFinite,
         Rejection::BoneLength,
         Rejection::Jump,
         Rejection::Retargeter,
         Rejection::OutOfOrder,
+        Rejection::Outlier,
     ];
 }
 
@@ -142,12 +162,13 @@ pub enum Verdict {
     Rejected(Rejection),
 }
 
-/// The gate's memory: the last accepted frame.
+/// The gate's memory: the last accepted frame, and the frame held back as an outlier.
 #[derive(Debug, Clone)]
 pub struct FrameGate {
     layout: KeypointLayout,
     config: GateConfig,
     last: Option<Vec<Point3<f64>>>,
+    held: Option<Vec<Point3<f64>>>,
 }
 
 /// Most intervals of `max_jump_m` a frame is allowed (a stall longer than this is judged as
@@ -161,6 +182,7 @@ impl FrameGate {
             layout,
             config,
             last: None,
+            held: None,
         }
     }
 
@@ -172,6 +194,7 @@ impl FrameGate {
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).
     pub fn reset(&mut self) {
         self.last = None;
+        self.held = None;
     }
 
     /// Judge `points` as one interval after the last accepted frame; a `New` frame becomes
@@ -184,11 +207,33 @@ impl FrameGate {
     /// interval): the jump allowance grows with that time. A `New` frame becomes the reference
     /// for the next.
     pub fn judge_after(&mut self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> Verdict {
-        let verdict = self.check(points, self.jump_allowance_m(since_last_ns));
-        if verdict == Verdict::New {
-            self.last = Some(points.to_vec());
+        if self.held.as_deref() == Some(points) {
+            // The held frame again (the ingress republishes every frame): still held.
+            return Verdict::Repeat;
         }
+        let verdict = self.check(points, self.jump_allowance_m(since_last_ns));
+        if verdict != Verdict::New {
+            return verdict;
+        }
+        // One frame held at most: the frame after a held one is accepted whatever it shows.
+        if self.held.is_none() && self.leapt_alone(points, since_last_ns) {
+            self.held = Some(points.to_vec());
+            return Verdict::Rejected(Rejection::Outlier);
+        }
+        self.held = None;
+        self.last = Some(points.to_vec());
         verdict
+    }
+
+    /// Whether one point of `points` leapt alone since the last accepted frame.
+    fn leapt_alone(&self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> bool {
+        let Some(last) = &self.last else { return false };
+        if self.config.outlier_jump_m <= 0.0 {
+            return false;
+        }
+        let scale = self.jump_allowance_m(since_last_ns) / self.config.max_jump_m;
+        let min_jump_m = self.config.outlier_jump_m * scale;
+        crate::outlier_check::isolated_leap(self.layout, points, last, min_jump_m).is_some()
     }
 
     /// The jump allowed for a frame taken `since_last_ns` after the last accepted one, metres.
@@ -294,7 +339,12 @@ mod tests {
     #[test]
     fn the_jump_allowance_grows_with_the_time_since_the_last_accepted_frame() {
         const MS: i64 = 1_000_000;
-        let mut gate = FrameGate::new(KeypointLayout::Lab22, GateConfig::default());
+        // The jump check alone: one point moved is also a leap for the outlier check.
+        let config = GateConfig {
+            outlier_jump_m: 0.0,
+            ..GateConfig::default()
+        };
+        let mut gate = FrameGate::new(KeypointLayout::Lab22, config);
         let frame = hand();
         let moved = |dz: f64| {
             let mut f = frame.clone();
@@ -316,5 +366,53 @@ mod tests {
         assert!((allowance(None) - 0.12).abs() < 1e-12);
         assert!((allowance(Some(100 * MS)) - 0.24).abs() < 1e-12);
         assert!((allowance(Some(10_000 * MS)) - 1.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_point_leaping_alone_is_held_back_one_frame() {
+        let layout = KeypointLayout::Lab22;
+        let mut gate = FrameGate::new(layout, GateConfig::default());
+        let frame = hand();
+        let tip = layout.tip(Finger::Index);
+        let leapt = |f: &[Point3<f64>]| {
+            let mut f = f.to_vec();
+            f[tip] += Vector3::new(0.0, 0.04, 0.0);
+            f
+        };
+        assert_eq!(gate.judge(&frame), Verdict::New);
+        // One frame with the index tip 4 cm away, then back: the outlier is held back, its
+        // republished copy is a repeat, and the frame after it is new.
+        let outlier = leapt(&frame);
+        assert_eq!(gate.judge(&outlier), Verdict::Rejected(Rejection::Outlier));
+        assert_eq!(gate.judge(&outlier), Verdict::Repeat);
+        let mut back = frame.clone();
+        back[0] += Vector3::new(0.001, 0.0, 0.0);
+        assert_eq!(gate.judge(&back), Verdict::New);
+        // A leap the next frame confirms is accepted with that frame, one frame late.
+        let first = leapt(&back);
+        assert_eq!(gate.judge(&first), Verdict::Rejected(Rejection::Outlier));
+        let mut confirmed = first.clone();
+        confirmed[0] += Vector3::new(0.001, 0.0, 0.0);
+        assert_eq!(gate.judge(&confirmed), Verdict::New);
+        // Off: the same leap is accepted at once.
+        let off = GateConfig {
+            outlier_jump_m: 0.0,
+            ..GateConfig::default()
+        };
+        let mut gate = FrameGate::new(layout, off);
+        assert_eq!(gate.judge(&frame), Verdict::New);
+        assert_eq!(gate.judge(&leapt(&frame)), Verdict::New);
+    }
+
+    #[test]
+    fn an_outlier_jump_out_of_range_is_named() {
+        for jump in [-0.01, 1.5, f64::NAN] {
+            let config = GateConfig {
+                outlier_jump_m: jump,
+                ..GateConfig::default()
+            };
+            let error = config.validate().unwrap_err().to_string();
+            assert!(error.contains("gate.outlier_jump_m"), "{error}");
+        }
     }
 }

@@ -40,6 +40,7 @@ pub mod input_gap;
 pub mod joint_names;
 pub mod link_clock;
 pub mod network_config;
+pub mod outlier_check;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;

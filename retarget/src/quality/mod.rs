@@ -34,7 +34,10 @@
 //!   when every frame was pushed with its time, else `None`;
 //! - **pinches**: frames where the human thumb tip is within [`PINCH_HUMAN_M`] of another
 //!   fingertip (unscaled; the nearest one counts); the robot's thumb-tip to that fingertip
-//!   distance, and the number and share of those frames where it is under [`PINCH_CLOSED_M`];
+//!   distance, and the number and share of those frames where it is under [`PINCH_CLOSED_M`].
+//!   Also under the second definition, sustained pinches only (runs of at least
+//!   [`SUSTAINED_PINCH_MIN_FRAMES`] frames and [`SUSTAINED_PINCH_MIN_S`], which leaves out a
+//!   tracker's one-frame outlier), and per finger pair ([`PinchPair`], `pinch_runs`);
 //! - **jerk**: mean over joints and frames of `|q_t − 3q_{t−1} + 3q_{t−2} − q_{t−3}|`, radians;
 //!   **max step**: largest `|q_t − q_{t−1}|` of any joint;
 //! - **limit violations**: frames with a joint outside the model's limits by more than
@@ -46,11 +49,15 @@
 //! caller reads files and measures time.
 
 mod flexion;
+mod pinch_runs;
 mod reachability;
 mod report;
 mod scale_free;
 
 pub use flexion::{CORRELATION_MIN_FRAMES, FLEXION_MIN_STD_M, LAG_MAX_FRAMES};
+pub use pinch_runs::{
+    PinchPair, PinchRun, SUSTAINED_PINCH_MIN_FRAMES, SUSTAINED_PINCH_MIN_S, sustained_pinch_runs,
+};
 pub use reachability::{
     DigitReach, REACH_GRID_MAX_CONFIGURATIONS, Reachability, grid, grid_steps, nearest_distance,
 };
@@ -82,15 +89,25 @@ struct FrameSample {
     human_tips: [Vector3<f64>; 5],
     /// Robot fingertips in the robot palm frame, metres; `None` when the command is not finite.
     robot_tips: Option<[Vector3<f64>; 5]>,
-    /// The pinching digit and the robot thumb-tip to its tip distance (metres), when the human
-    /// pinches; the distance is `None` when the command is not finite.
-    pinch: Option<(Finger, Option<f64>)>,
+    /// The human's pinch, when the human pinches.
+    pinch: Option<HumanPinch>,
     /// The command.
     q: Vec<f64>,
     /// Whether the command is outside the limits or not finite.
     violation: bool,
     /// The frame's time, seconds, when pushed with one.
     t_s: Option<f64>,
+}
+
+/// A frame's human pinch.
+#[derive(Debug, Clone, Copy)]
+struct HumanPinch {
+    /// The finger the thumb pinches.
+    finger: Finger,
+    /// The human thumb-tip to fingertip distance, metres.
+    human_m: f64,
+    /// The robot's, metres; `None` when the command is not finite.
+    robot_m: Option<f64>,
 }
 
 /// Collects (human keypoints, robot command) pairs and computes the quality metrics.
@@ -196,9 +213,10 @@ impl QualityRecorder {
             .map(|f| (f, (keypoints[layout.tip(f)] - thumb).norm()))
             .filter(|(_, d)| *d < PINCH_HUMAN_M)
             .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(f, _)| {
-                let gap = robot_tips.map(|tips| (tips[f.index()] - tips[0]).norm());
-                (f, gap)
+            .map(|(finger, human_m)| HumanPinch {
+                finger,
+                human_m,
+                robot_m: robot_tips.map(|tips| (tips[finger.index()] - tips[0]).norm()),
             });
         self.samples.push(FrameSample {
             human_tips,
@@ -217,6 +235,8 @@ impl QualityRecorder {
     }
 }
 
+#[cfg(test)]
+mod pinch_runs_tests;
 #[cfg(test)]
 mod scale_free_tests;
 #[cfg(test)]

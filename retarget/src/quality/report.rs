@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::pinch_runs::{PinchPair, pinch_pairs, sustained_mask};
 use super::scale_free::{OwnScale, own_scale};
 use super::{FrameSample, PINCH_CLOSED_M, flexion};
 use crate::finger::Finger;
@@ -26,6 +27,19 @@ pub struct QualityReport {
     /// Pinch frames where that distance is under 15 mm.
     #[serde(default)]
     pub pinch_closed_frames: usize,
+    /// Frames of sustained human pinches (runs of at least 2 frames and 40 ms,
+    /// `quality::pinch_runs`); a tracker's one-frame outlier is not one.
+    #[serde(default)]
+    pub sustained_pinch_frames: usize,
+    /// Of those, frames where the robot's distance is under 15 mm.
+    #[serde(default)]
+    pub sustained_pinch_closed_frames: usize,
+    /// Their share, percent.
+    #[serde(default)]
+    pub sustained_pinches_closed_pct: Option<f64>,
+    /// Per finger pair (thumb–index, –middle, –ring, –little), under both definitions.
+    #[serde(default)]
+    pub pinch_pairs: Vec<PinchPair>,
     /// Mean of `‖r − s_i·h‖` over digits and frames, each digit `i` with its own least-squares
     /// scale `s_i` ([`DigitQuality::tip_own_scale`]), millimetres; `None` without a finite
     /// command.
@@ -86,7 +100,7 @@ pub struct DigitQuality {
 }
 
 /// `p`-quantile (0..=1) by nearest rank of unsorted values; `None` when empty.
-fn percentile(values: &[f64], p: f64) -> Option<f64> {
+pub(super) fn percentile(values: &[f64], p: f64) -> Option<f64> {
     if values.is_empty() {
         return None;
     }
@@ -96,7 +110,7 @@ fn percentile(values: &[f64], p: f64) -> Option<f64> {
     Some(sorted[rank.clamp(1, sorted.len()) - 1])
 }
 
-fn mean(values: &[f64]) -> Option<f64> {
+pub(super) fn mean(values: &[f64]) -> Option<f64> {
     (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
 }
 
@@ -128,8 +142,8 @@ struct PinchStats {
     closed_pct: Option<f64>,
 }
 
-fn pinch_stats<'a>(gaps: impl Iterator<Item = &'a Option<f64>>) -> PinchStats {
-    let gaps: Vec<Option<f64>> = gaps.copied().collect();
+fn pinch_stats(gaps: impl Iterator<Item = Option<f64>>) -> PinchStats {
+    let gaps: Vec<Option<f64>> = gaps.collect();
     let closed = gaps
         .iter()
         .filter(|g| g.is_some_and(|g| g < PINCH_CLOSED_M))
@@ -183,9 +197,9 @@ fn digit_quality(
     let pinches = pinch_stats(
         samples
             .iter()
-            .filter_map(|s| s.pinch.as_ref())
-            .filter(|p| p.0 == finger)
-            .map(|p| &p.1),
+            .filter_map(|s| s.pinch)
+            .filter(|p| p.finger == finger)
+            .map(|p| p.robot_m),
     );
     let (jerks, steps) = motion(samples, |j| dof_digit[j] == Some(finger));
     DigitQuality {
@@ -229,10 +243,14 @@ pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> 
     let own = Finger::ALL.map(|f| own_scale(samples, f));
     let own_errors: Vec<f64> = own.iter().flat_map(|o| &o.errors_mm).copied().collect();
     let flexion = flexion::compute(samples);
-    let pinches = pinch_stats(
+    let pinches = pinch_stats(samples.iter().filter_map(|s| s.pinch.map(|p| p.robot_m)));
+    let sustained = sustained_mask(samples);
+    let held = pinch_stats(
         samples
             .iter()
-            .filter_map(|s| s.pinch.as_ref().map(|p| &p.1)),
+            .zip(&sustained)
+            .filter(|(_, k)| **k)
+            .filter_map(|(s, _)| s.pinch.map(|p| p.robot_m)),
     );
     let (jerks, steps) = motion(samples, |_| true);
     let mut per_digit: Vec<DigitQuality> = Finger::ALL
@@ -255,6 +273,10 @@ pub(super) fn compute(samples: &[FrameSample], dof_digit: &[Option<Finger>]) -> 
         pinch_gap_mean_mm: mean(&pinches.gaps).map(|g| g * 1e3),
         pinches_closed_pct: pinches.closed_pct,
         pinch_closed_frames: pinches.closed,
+        sustained_pinch_frames: held.frames,
+        sustained_pinch_closed_frames: held.closed,
+        sustained_pinches_closed_pct: held.closed_pct,
+        pinch_pairs: pinch_pairs(samples, &sustained),
         tip_error_own_scale_mean_mm: mean(&own_errors),
         tip_error_own_scale_p95_mm: percentile(&own_errors, 0.95),
         flexion_correlation_mean: flexion.mean,
@@ -284,7 +306,7 @@ mod tests {
     #[test]
     fn pinch_stats_count_closed_frames_and_keep_unmeasured_ones_open() {
         let gaps = [Some(0.01), Some(0.02), None, Some(0.0149)];
-        let stats = pinch_stats(gaps.iter());
+        let stats = pinch_stats(gaps.iter().copied());
         assert_eq!((stats.frames, stats.closed), (4, 2));
         assert_eq!(stats.closed_pct, Some(50.0));
         assert_eq!(stats.gaps, [0.01, 0.02, 0.0149]);

@@ -10,6 +10,7 @@ use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
 use super::common::mcap_files_under;
 use crate::eval::external::{evaluate_commands, external_table};
+use crate::eval::outlier_study::outlier_study;
 use crate::eval::profile_scales::{profile_scales, profile_scales_table};
 use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{EvalOptions, evaluate, table};
@@ -58,6 +59,21 @@ pub struct EvalArgs {
     /// each digit's own scale) and jerk per scale; e.g. 1.0,0.9,0.8. No live path.
     #[arg(long, value_name = "SCALES", value_delimiter = ',', conflicts_with_all = ["commands", "reach"])]
     pub profile_scales: Vec<f64>,
+    /// Instead of the full report: a camera tracker's one-frame outliers injected into each
+    /// recording (one point of a digit leaping 3-6 cm for one frame, 20 times, drawn from
+    /// --outlier-seed) and the station re-simulated with the frame gate's outlier check and
+    /// without it: the largest joint change toward the outliers, the extra frames before the
+    /// robot closes each sustained pinch, and the clean frames the check held back.
+    #[arg(long, conflicts_with_all = ["commands", "reach", "profile_scales"])]
+    pub outlier_study: bool,
+    /// Seed of the outliers of --outlier-study.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        requires = "outlier_study"
+    )]
+    pub outlier_seed: u64,
 }
 
 /// `pomdar eval`.
@@ -68,6 +84,9 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     }
     if !args.profile_scales.is_empty() {
         return eval_profile_scales(&args, &config);
+    }
+    if args.outlier_study {
+        return eval_outlier_study(&args, &config);
     }
     let options = EvalOptions {
         reach_max_configurations: args.reach.then_some(args.reach_grid),
@@ -105,6 +124,43 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&set)?);
     } else if !single {
         print!("{}", summary_table(&set));
+    }
+    Ok(())
+}
+
+/// `pomdar eval --outlier-study`: per recording, what one-frame outliers do with the outlier
+/// check and without it.
+fn eval_outlier_study(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
+    let files = mcap_files_under(&args.inputs)?.files;
+    let mut outputs = Vec::new();
+    for path in &files {
+        let reader = TrialReader::open(path)?;
+        let study = outlier_study(
+            &reader,
+            config,
+            &HandModel::orca_v1_right(),
+            args.outlier_seed,
+        )
+        .map_err(|e| in_file(path, &e))?;
+        if !args.json {
+            println!(
+                "{}: {} one-frame outliers, {} held back; largest joint move toward them {:.3} rad \
+                 with the outlier check, {:.3} rad without; {} sustained pinches compared, closed \
+                 at most {} frame(s) later with the check; {} clean frame(s) held back",
+                path.display(),
+                study.outliers,
+                study.outlier_frames_held,
+                study.toward_outliers_rad,
+                study.toward_outliers_unchecked_rad,
+                study.pinches_compared,
+                study.closure_delay_max_frames,
+                study.clean_frames_held,
+            );
+        }
+        outputs.push(serde_json::json!({ "input": path.display().to_string(), "study": study }));
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&outputs)?);
     }
     Ok(())
 }

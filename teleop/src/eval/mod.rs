@@ -24,6 +24,7 @@ mod error;
 pub mod eval_set;
 pub mod external;
 pub mod live_path;
+pub mod outlier_study;
 pub mod profile_scales;
 pub mod reach;
 pub mod summary;
@@ -295,7 +296,48 @@ pub fn quality_lines(q: &QualityReport) -> String {
         opt(q.pinch_gap_mean_mm, 1),
         q.limit_violation_frames,
     );
+    out += &pinch_pair_lines(q);
     out + &scale_free_lines(q)
+}
+
+/// The pinches per finger pair under both definitions: any frame under 2 cm, and sustained
+/// (at least 2 frames and 40 ms); the robot's distance over the sustained frames beside the
+/// human's.
+fn pinch_pair_lines(q: &QualityReport) -> String {
+    let share = |closed: usize, frames: usize| {
+        if frames == 0 {
+            "-".to_string()
+        } else {
+            format!("{:.0} %", 100.0 * closed as f64 / frames as f64)
+        }
+    };
+    let mut out = format!(
+        "\n  pinches per pair: any frame under 2 cm, and sustained ({} frames and {:.0} ms or more)\n  {:<14} {:>7} {:>7} {:>10} {:>7} {:>15} {:>13} {:>14}\n",
+        retarget::quality::SUSTAINED_PINCH_MIN_FRAMES,
+        retarget::quality::SUSTAINED_PINCH_MIN_S * 1e3,
+        "",
+        "frames",
+        "closed",
+        "sustained",
+        "closed",
+        "robot mean mm",
+        "robot p95 mm",
+        "human mean mm"
+    );
+    for p in &q.pinch_pairs {
+        out += &format!(
+            "  {:<14} {:>7} {:>7} {:>10} {:>7} {:>15} {:>13} {:>14}\n",
+            format!("thumb–{}", p.finger),
+            p.frames,
+            share(p.closed_frames, p.frames),
+            p.sustained_frames,
+            share(p.sustained_closed_frames, p.sustained_frames),
+            opt(p.robot_gap_mean_mm, 1),
+            opt(p.robot_gap_p95_mm, 1),
+            opt(p.human_gap_mean_mm, 1),
+        );
+    }
+    out
 }
 
 /// The metrics that do not reward a smaller hand: per digit, the tip error after the digit's
@@ -332,7 +374,8 @@ fn live_path_lines(o: &EvalOutput) -> String {
     let (alone, live) = (&o.quality, &o.live_path.quality);
     format!(
         "\n  live path (the station re-simulated, command in force at each distinct frame):\n  \
-         tip mean {:.1} mm ({:+.2} mm), jerk {:.4} rad ({:+.1} %), max step {:.3} rad, pinches closed {}, \
+         tip mean {:.1} mm ({:+.2} mm), jerk {:.4} rad ({:+.1} %), max step {:.3} rad, pinches closed {} \
+         (sustained {}), \
          {} frames before engage, {} not measured; station step p50 {} µs, p99 {} µs\n",
         live.tip_error_mean_mm,
         live.tip_error_mean_mm - alone.tip_error_mean_mm,
@@ -340,6 +383,8 @@ fn live_path_lines(o: &EvalOutput) -> String {
         100.0 * (live.jerk_rad / alone.jerk_rad - 1.0),
         live.max_step_rad,
         live.pinches_closed_pct
+            .map_or("-".into(), |v| format!("{v:.0} %")),
+        live.sustained_pinches_closed_pct
             .map_or("-".into(), |v| format!("{v:.0} %")),
         o.live_path.frames_without_command,
         o.live_path.frames_not_measured,

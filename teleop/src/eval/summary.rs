@@ -38,6 +38,13 @@ pub struct Headline {
     pub pinch_frames: usize,
     /// Share of them the robot closes, percent.
     pub pinches_closed_pct: Option<f64>,
+    /// Frames of sustained human pinches (at least 2 frames and 40 ms; a tracker's one-frame
+    /// outlier is not one).
+    pub sustained_pinch_frames: usize,
+    /// Share of them the robot closes, percent.
+    pub sustained_pinches_closed_pct: Option<f64>,
+    /// The same for the thumb–index pinches alone, percent.
+    pub index_pinches_closed_pct: Option<f64>,
     /// Frames outside the joint limits or not finite.
     pub limit_violation_frames: usize,
     /// Fingertip error after each digit's own scale, mean, millimetres.
@@ -56,12 +63,22 @@ impl Headline {
             max_step_rad: q.max_step_rad,
             pinch_frames: q.pinch_frames,
             pinches_closed_pct: q.pinches_closed_pct,
+            sustained_pinch_frames: q.sustained_pinch_frames,
+            sustained_pinches_closed_pct: q.sustained_pinches_closed_pct,
+            index_pinches_closed_pct: index_closed_pct(q),
             limit_violation_frames: q.limit_violation_frames,
             tip_error_own_scale_mean_mm: q.tip_error_own_scale_mean_mm,
             flexion_correlation_mean: q.flexion_correlation_mean,
             lag_s: q.flexion_lag_s,
         }
     }
+}
+
+/// The share of the sustained thumb–index pinch frames the robot closes, percent.
+fn index_closed_pct(q: &QualityReport) -> Option<f64> {
+    let index = q.pinch_pairs.iter().find(|p| p.finger == "index")?;
+    (index.sustained_frames > 0)
+        .then(|| 100.0 * index.sustained_closed_frames as f64 / index.sustained_frames as f64)
 }
 
 /// What `pomdar eval --json` prints for several recordings.
@@ -106,12 +123,15 @@ fn pct(value: Option<f64>) -> String {
 fn row(out: &mut String, width: usize, name: &str, frames: &str, h: &Headline) {
     let _ = writeln!(
         out,
-        "  {name:<width$} {frames:>6} {:>9.1} {:>9.4} {:>9.3} {:>7} {:>7} {:>6} {:>9} {:>7} {:>7}",
+        "  {name:<width$} {frames:>6} {:>9.1} {:>9.4} {:>9.3} {:>7} {:>7} {:>7} {:>7} {:>7} {:>6} {:>9} {:>7} {:>7}",
         h.tip_error_mean_mm,
         h.jerk_rad,
         h.max_step_rad,
         h.pinch_frames,
         pct(h.pinches_closed_pct),
+        h.sustained_pinch_frames,
+        pct(h.sustained_pinches_closed_pct),
+        pct(h.index_pinches_closed_pct),
         h.limit_violation_frames,
         opt(h.tip_error_own_scale_mean_mm, 1),
         opt(h.flexion_correlation_mean, 3),
@@ -139,7 +159,7 @@ pub fn summary_table(set: &SetOutput) -> String {
     ] {
         let _ = writeln!(
             out,
-            "\n  {title}\n  {:<width$} {:>6} {:>9} {:>9} {:>9} {:>7} {:>7} {:>6} {:>9} {:>7} {:>7}",
+            "\n  {title}\n  {:<width$} {:>6} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>6} {:>9} {:>7} {:>7}",
             "recording",
             "frames",
             "tip mm",
@@ -147,6 +167,9 @@ pub fn summary_table(set: &SetOutput) -> String {
             "step rad",
             "pinch",
             "closed",
+            "held",
+            "closed",
+            "index",
             "limits",
             "own mm",
             "flex r",
@@ -175,6 +198,9 @@ fn worst<'a>(rows: impl Iterator<Item = &'a Headline>) -> Headline {
         max_step_rad: 0.0,
         pinch_frames: 0,
         pinches_closed_pct: None,
+        sustained_pinch_frames: 0,
+        sustained_pinches_closed_pct: None,
+        index_pinches_closed_pct: None,
         limit_violation_frames: 0,
         tip_error_own_scale_mean_mm: None,
         flexion_correlation_mean: None,
@@ -185,8 +211,19 @@ fn worst<'a>(rows: impl Iterator<Item = &'a Headline>) -> Headline {
         w.jerk_rad = w.jerk_rad.max(h.jerk_rad);
         w.max_step_rad = w.max_step_rad.max(h.max_step_rad);
         w.pinch_frames += h.pinch_frames;
+        w.sustained_pinch_frames += h.sustained_pinch_frames;
         w.limit_violation_frames += h.limit_violation_frames;
         w.pinches_closed_pct = worse(w.pinches_closed_pct, h.pinches_closed_pct, f64::min);
+        w.sustained_pinches_closed_pct = worse(
+            w.sustained_pinches_closed_pct,
+            h.sustained_pinches_closed_pct,
+            f64::min,
+        );
+        w.index_pinches_closed_pct = worse(
+            w.index_pinches_closed_pct,
+            h.index_pinches_closed_pct,
+            f64::min,
+        );
         w.tip_error_own_scale_mean_mm = worse(
             w.tip_error_own_scale_mean_mm,
             h.tip_error_own_scale_mean_mm,

@@ -10,9 +10,10 @@
 //! | `noise` | Gaussian noise per coordinate, and frames dropped at random | a noisier glove, lost packets |
 //! | `rate` | frames re-sampled (linear between the recorded ones) | a glove at another rate |
 //! | `drop_forearm` | the lab's 22 points without the forearm | the lab's 21-point layout |
+//! | `outliers` | one point of a digit leaping 3–6 cm for one frame, at spread frames | a camera tracker misplacing a point (`pomdar eval --outlier-study` only: the human keypoints it scores against would carry the outliers) |
 
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
-use retarget::KeypointLayout;
+use retarget::{Finger, KeypointLayout};
 
 /// One distinct keypoint frame and its capture time.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,6 +50,19 @@ pub enum Variant {
     Rate(f64),
     /// The lab's 21-point layout from its 22 points.
     DropForearm,
+    /// A tracker's one-frame outliers: at `count` frames spread over the recording, one point
+    /// of a digit (drawn from `seed`) moved `min_m`–`max_m` in a random direction for that
+    /// frame alone.
+    Outliers {
+        /// Outlier frames.
+        count: usize,
+        /// Shortest leap, metres.
+        min_m: f64,
+        /// Longest leap, metres.
+        max_m: f64,
+        /// Seed of the draws.
+        seed: u64,
+    },
 }
 
 impl Variant {
@@ -62,6 +76,7 @@ impl Variant {
             }
             Variant::Rate(hz) => format!("rate{hz:.0}hz"),
             Variant::DropForearm => "21pt".into(),
+            Variant::Outliers { count, .. } => format!("outliers{count}"),
         }
     }
 
@@ -112,6 +127,12 @@ impl Variant {
                     .collect(),
                 None => frames.to_vec(),
             },
+            Variant::Outliers {
+                count,
+                min_m,
+                max_m,
+                seed,
+            } => with_outliers(frames, layout, count, (min_m, max_m), seed),
         }
     }
 }
@@ -154,6 +175,33 @@ fn noisy(frames: &[TimedFrame], sigma_m: f64, drop: f64, seed: u64) -> Vec<Timed
             t_ns: f.t_ns,
             points: f.points.iter().map(|p| p + jitter()).collect(),
         });
+    }
+    out
+}
+
+/// `frames` with `count` one-frame outliers, one per stretch of `frames.len() / count` frames
+/// (the first and last two frames of each stretch left alone, so no two are adjacent).
+fn with_outliers(
+    frames: &[TimedFrame],
+    layout: KeypointLayout,
+    count: usize,
+    (min_m, max_m): (f64, f64),
+    seed: u64,
+) -> Vec<TimedFrame> {
+    let mut rng = SplitMix(seed);
+    let mut out = frames.to_vec();
+    let stretch = frames.len() / count.max(1);
+    if stretch < 5 {
+        return out;
+    }
+    let digit_points: Vec<usize> = Finger::ALL.iter().flat_map(|f| layout.chain(*f)).collect();
+    let draw = |rng: &mut SplitMix, n: usize| ((rng.uniform() * n as f64) as usize).min(n - 1);
+    for k in 0..count {
+        let at = k * stretch + 2 + draw(&mut rng, stretch - 4);
+        let point = digit_points[draw(&mut rng, digit_points.len())];
+        let direction = Vector3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
+        let leap = min_m + (max_m - min_m) * rng.uniform();
+        out[at].points[point] += direction * leap;
     }
     out
 }

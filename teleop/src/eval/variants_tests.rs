@@ -50,9 +50,7 @@ fn scale_and_rotation_keep_the_hand_in_its_palm_frame() {
         }
         assert_eq!(s.points[layout.wrist()], o.points[layout.wrist()]);
         assert!(
-            (r.points[layout.tip(retarget::Finger::Index)]
-                - o.points[layout.tip(retarget::Finger::Index)])
-            .norm()
+            (r.points[layout.tip(Finger::Index)] - o.points[layout.tip(Finger::Index)]).norm()
                 > 0.01
         );
     }
@@ -126,4 +124,40 @@ fn dropping_the_forearm_gives_the_21_point_layout() {
     assert_eq!(dropped[0].points[..], original[0].points[1..]);
     assert_eq!(standard_variants(KeypointLayout::Lab22, 1).len(), 6);
     assert_eq!(standard_variants(KeypointLayout::MediaPipe21, 1).len(), 5);
+}
+
+#[test]
+fn outliers_move_one_digit_point_of_separate_frames_by_the_leap() {
+    let original = frames();
+    let v = Variant::Outliers {
+        count: 5,
+        min_m: 0.03,
+        max_m: 0.06,
+        seed: 7,
+    };
+    assert_eq!(v.label(), "outliers5");
+    let layout = KeypointLayout::Lab22;
+    let out = v.apply(&original, layout);
+    assert_eq!(out.len(), original.len());
+    let changed: Vec<usize> = (0..out.len())
+        .filter(|&k| out[k].points != original[k].points)
+        .collect();
+    assert_eq!(changed.len(), 5, "{changed:?}");
+    assert!(changed.windows(2).all(|w| w[1] - w[0] > 1), "{changed:?}");
+    for &k in &changed {
+        let moved: Vec<(usize, f64)> = (0..out[k].points.len())
+            .map(|i| (i, (out[k].points[i] - original[k].points[i]).norm()))
+            .filter(|(_, d)| *d > 0.0)
+            .collect();
+        assert_eq!(moved.len(), 1, "frame {k}: {moved:?}");
+        let (point, leap) = moved[0];
+        assert!((0.03..=0.06).contains(&leap), "frame {k}: {leap} m");
+        assert_ne!(point, layout.wrist());
+        assert_eq!(out[k].t_ns, original[k].t_ns);
+    }
+    assert_eq!(
+        v.apply(&original, layout),
+        out,
+        "the same seed, the same outliers"
+    );
 }
