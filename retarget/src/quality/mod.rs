@@ -53,6 +53,7 @@ mod pinch_runs;
 mod reachability;
 mod report;
 mod scale_free;
+mod stats;
 
 pub use flexion::{CORRELATION_MIN_FRAMES, FLEXION_MIN_STD_M, LAG_MAX_FRAMES};
 pub use pinch_runs::{

@@ -18,6 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::stats::{mean, percentile};
 use super::{FrameSample, PINCH_CLOSED_M};
 use crate::finger::Finger;
 
@@ -147,8 +148,8 @@ fn pinch_pair(samples: &[FrameSample], sustained: &[bool], finger: Finger) -> Pi
         closed_frames: with_finger().filter(|(p, _)| closed(p.robot_m)).count(),
         sustained_frames: held.len(),
         sustained_closed_frames: held.iter().filter(|p| closed(p.robot_m)).count(),
-        robot_gap_mean_mm: super::report::mean(&robot_mm),
-        robot_gap_p95_mm: super::report::percentile(&robot_mm, 0.95),
-        human_gap_mean_mm: super::report::mean(&human_mm),
+        robot_gap_mean_mm: mean(&robot_mm),
+        robot_gap_p95_mm: percentile(&robot_mm, 0.95),
+        human_gap_mean_mm: mean(&human_mm),
     }
 }

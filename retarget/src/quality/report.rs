@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::pinch_runs::{PinchPair, pinch_pairs, sustained_mask};
 use super::scale_free::{OwnScale, own_scale};
+use super::stats::{mean, percentile};
 use super::{FrameSample, PINCH_CLOSED_M, flexion};
 use crate::finger::Finger;
 
@@ -97,21 +98,6 @@ pub struct DigitQuality {
     pub jerk_rad: Option<f64>,
     /// Largest per-frame change of this digit's joints, radians.
     pub max_step_rad: Option<f64>,
-}
-
-/// `p`-quantile (0..=1) by nearest rank of unsorted values; `None` when empty.
-pub(super) fn percentile(values: &[f64], p: f64) -> Option<f64> {
-    if values.is_empty() {
-        return None;
-    }
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let rank = (p * sorted.len() as f64).ceil() as usize;
-    Some(sorted[rank.clamp(1, sorted.len()) - 1])
-}
-
-pub(super) fn mean(values: &[f64]) -> Option<f64> {
-    (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
 }
 
 /// Jerk terms and steps of the degrees of freedom selected by `keep`.

@@ -4,8 +4,8 @@
 //! The recording's distinct frames get [`Variant::Outliers`] (one point of a digit leaping
 //! 3–6 cm for one frame, 20 times; every republished copy of such a frame carries it, as a
 //! tracker's would). The station is re-simulated as the live path drives it four times:
-//! clean and with outliers, each with the outlier check and with it off
-//! (`gate.outlier_jump_m = 0`). Reported:
+//! clean and with outliers, each with the outlier check (the configuration's
+//! `gate.outlier_jump_m`, or 2 cm where it is off) and without it. Reported:
 //! - **toward the outliers**: how far the command in force with outliers went beyond the clean
 //!   run's path on the side each outlier pulls each joint (the side the unchecked command
 //!   moved to), at an outlier frame and the two after it: per joint, the distance beyond the
@@ -31,6 +31,8 @@ use crate::station_setup::build_station;
 /// Outliers injected, and their size (metres).
 const OUTLIERS: usize = 20;
 const LEAP_M: (f64, f64) = (0.03, 0.06);
+/// The check's setting when the configuration has it off, metres.
+const STUDY_JUMP_M: f64 = 0.02;
 /// Frames after an outlier frame still compared.
 const AFTER_FRAMES: usize = 2;
 
@@ -152,9 +154,12 @@ fn commands_in_force(
     checked: bool,
 ) -> Result<(Commands, usize), EvalError> {
     let mut log = log.clone();
-    if !checked {
-        log.config.gate.outlier_jump_m = 0.0;
-    }
+    let gate = &mut log.config.gate;
+    gate.outlier_jump_m = match (checked, gate.outlier_jump_m) {
+        (false, _) => 0.0,
+        (true, off) if off <= 0.0 => STUDY_JUMP_M,
+        (true, on) => on,
+    };
     let (mut station, _) = build_station(&log.config, model.clone())?;
     let mut commands: Commands = Vec::new();
     let mut previous: Option<Vec<nalgebra::Point3<f64>>> = None;
