@@ -11,9 +11,9 @@
 //! the receive clock across a jump of the sender's clock): a glove that drops a frame, or a
 //! frame rejected for a moment, does not make every later frame look like a jump, which held
 //! the last command for 168 of 647 frames of a recording with 10 % of its frames dropped.
-//! Last, a frame where one point leapt alone, at least `outlier_jump_m` off what the points
-//! beside it on its digit predict ([`crate::outlier_check`]), is held back for one frame
-//! (`outlier`): a tracker's one-frame outlier never reaches the retargeter, and
+//! Last, where `outlier_jump_m` is set (off by default), a frame where one point leapt alone,
+//! at least that far off what the points beside it on its digit predict
+//! ([`crate::outlier_check`]), is held back for one frame (`outlier`): a tracker's one-frame outlier never reaches the retargeter, and
 //! real motion that looks like one is accepted with the next frame, one frame late.
 //! Before these, frames stamped by their sender before the newest accepted one are
 //! turned away as late ([`source_order`](crate::source_order); the hand control applies it).
@@ -341,12 +341,7 @@ mod tests {
     #[test]
     fn the_jump_allowance_grows_with_the_time_since_the_last_accepted_frame() {
         const MS: i64 = 1_000_000;
-        // The jump check alone: one point moved is also a leap for the outlier check.
-        let config = GateConfig {
-            outlier_jump_m: 0.0,
-            ..GateConfig::default()
-        };
-        let mut gate = FrameGate::new(KeypointLayout::Lab22, config);
+        let mut gate = FrameGate::new(KeypointLayout::Lab22, GateConfig::default());
         let frame = hand();
         let moved = |dz: f64| {
             let mut f = frame.clone();

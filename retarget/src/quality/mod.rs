@@ -100,6 +100,17 @@ struct FrameSample {
     t_s: Option<f64>,
 }
 
+/// The finger the human's thumb pinches in `keypoints` (the nearest fingertip within
+/// [`PINCH_HUMAN_M`] of the thumb tip) and that distance in metres, if any.
+pub fn human_pinch(layout: KeypointLayout, keypoints: &[Point3<f64>]) -> Option<(Finger, f64)> {
+    let thumb = keypoints[layout.tip(Finger::Thumb)];
+    Finger::OPPOSING
+        .into_iter()
+        .map(|f| (f, (keypoints[layout.tip(f)] - thumb).norm()))
+        .filter(|(_, d)| *d < PINCH_HUMAN_M)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
 /// A frame's human pinch.
 #[derive(Debug, Clone, Copy)]
 struct HumanPinch {
@@ -208,17 +219,11 @@ impl QualityRecorder {
         } else {
             None
         };
-        let thumb = keypoints[layout.tip(Finger::Thumb)];
-        let pinch = Finger::OPPOSING
-            .into_iter()
-            .map(|f| (f, (keypoints[layout.tip(f)] - thumb).norm()))
-            .filter(|(_, d)| *d < PINCH_HUMAN_M)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(finger, human_m)| HumanPinch {
-                finger,
-                human_m,
-                robot_m: robot_tips.map(|tips| (tips[finger.index()] - tips[0]).norm()),
-            });
+        let pinch = human_pinch(layout, keypoints).map(|(finger, human_m)| HumanPinch {
+            finger,
+            human_m,
+            robot_m: robot_tips.map(|tips| (tips[finger.index()] - tips[0]).norm()),
+        });
         self.samples.push(FrameSample {
             human_tips,
             robot_tips,

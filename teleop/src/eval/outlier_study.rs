@@ -17,7 +17,7 @@
 //! - how many frames the check held back on the clean recording (its false alarms on real
 //!   motion).
 
-use retarget::quality::{PINCH_CLOSED_M, PINCH_HUMAN_M, sustained_pinch_runs};
+use retarget::quality::{PINCH_CLOSED_M, human_pinch, sustained_pinch_runs};
 use retarget::{Finger, HandModel, KeypointLayout};
 use serde::Serialize;
 use station::{StationConfig, StationInput};
@@ -236,7 +236,10 @@ fn closure_delays(
     checked: &[Option<Vec<f64>>],
     unchecked: &[Option<Vec<f64>>],
 ) -> Result<Vec<i64>, EvalError> {
-    let fingers: Vec<Option<Finger>> = frames.iter().map(|f| human_pinch(layout, f)).collect();
+    let fingers: Vec<Option<Finger>> = frames
+        .iter()
+        .map(|f| human_pinch(layout, &f.points).map(|(finger, _)| finger))
+        .collect();
     let times: Vec<f64> = frames.iter().map(|f| f.t_ns as f64 * 1e-9).collect();
     let mut delays = Vec::new();
     for run in sustained_pinch_runs(&fingers, Some(&times)) {
@@ -256,17 +259,6 @@ fn closure_delays(
         }
     }
     Ok(delays)
-}
-
-/// The finger the human's thumb pinches in `frame` (the nearest under 2 cm), if any.
-fn human_pinch(layout: KeypointLayout, frame: &TimedFrame) -> Option<Finger> {
-    let thumb = frame.points[layout.tip(Finger::Thumb)];
-    Finger::OPPOSING
-        .into_iter()
-        .map(|f| (f, (frame.points[layout.tip(f)] - thumb).norm()))
-        .filter(|(_, d)| *d < PINCH_HUMAN_M)
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(f, _)| f)
 }
 
 /// The robot's thumb-tip to `finger`-tip distance for command `q`, metres.
