@@ -170,6 +170,8 @@ pub struct FrameGate {
     layout: KeypointLayout,
     config: GateConfig,
     last: Option<Vec<Point3<f64>>>,
+    /// The accepted frame before `last`.
+    before_last: Option<Vec<Point3<f64>>>,
     held: Option<Vec<Point3<f64>>>,
 }
 
@@ -184,6 +186,7 @@ impl FrameGate {
             layout,
             config,
             last: None,
+            before_last: None,
             held: None,
         }
     }
@@ -196,6 +199,7 @@ impl FrameGate {
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).
     pub fn reset(&mut self) {
         self.last = None;
+        self.before_last = None;
         self.held = None;
     }
 
@@ -223,11 +227,13 @@ impl FrameGate {
             return Verdict::Rejected(Rejection::Outlier);
         }
         self.held = None;
-        self.last = Some(points.to_vec());
+        self.before_last = self.last.replace(points.to_vec());
         verdict
     }
 
-    /// Whether one point of `points` leapt alone since the last accepted frame.
+    /// Whether one point of `points` leapt alone since the last accepted frame, and not back
+    /// to where it was the frame before (the return from an outlier the check let through is
+    /// not one: holding it would keep the outlier's command a frame longer).
     fn leapt_alone(&self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> bool {
         let Some(last) = &self.last else { return false };
         if self.config.outlier_jump_m <= 0.0 {
@@ -235,7 +241,10 @@ impl FrameGate {
         }
         let scale = self.jump_allowance_m(since_last_ns) / self.config.max_jump_m;
         let min_jump_m = self.config.outlier_jump_m * scale;
-        crate::outlier_check::isolated_leap(self.layout, points, last, min_jump_m).is_some()
+        let leapt = |from: &[Point3<f64>]| {
+            crate::outlier_check::isolated_leap(self.layout, points, from, min_jump_m).is_some()
+        };
+        leapt(last) && self.before_last.as_deref().is_none_or(leapt)
     }
 
     /// The jump allowed for a frame taken `since_last_ns` after the last accepted one, metres.
@@ -415,5 +424,26 @@ mod tests {
             let error = config.validate().unwrap_err().to_string();
             assert!(error.contains("gate.outlier_jump_m"), "{error}");
         }
+    }
+
+    #[test]
+    fn the_return_from_an_outlier_let_through_is_not_held() {
+        let layout = KeypointLayout::Lab22;
+        // The check at 5 cm lets a 4 cm leap through; the point's return is a 4 cm leap from
+        // the accepted outlier, but back to where it was the frame before: accepted at once.
+        let on = GateConfig {
+            outlier_jump_m: 0.05,
+            ..GateConfig::default()
+        };
+        let mut gate = FrameGate::new(layout, on);
+        let frame = hand();
+        let mut outlier = frame.clone();
+        outlier[layout.tip(Finger::Index)] += Vector3::new(0.0, 0.04, 0.0);
+        assert_eq!(gate.judge(&frame), Verdict::New);
+        assert_eq!(gate.judge(&outlier), Verdict::New);
+        let mut back = frame.clone();
+        back[0] += Vector3::new(0.001, 0.0, 0.0);
+        gate.config.outlier_jump_m = 0.02;
+        assert_eq!(gate.judge(&back), Verdict::New);
     }
 }

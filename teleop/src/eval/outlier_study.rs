@@ -57,7 +57,7 @@ pub struct OutlierStudy {
     pub closure_delay_max_frames: i64,
     /// Frames of the clean recording the check held back.
     pub clean_frames_held: usize,
-    /// Frames of the recording with outliers the check held back, beyond those of the clean one.
+    /// Outlier frames the check held back.
     pub outlier_frames_held: usize,
 }
 
@@ -107,8 +107,11 @@ pub fn outlier_study(
         ),
         pinches_compared: pinches.len(),
         closure_delay_max_frames: pinches.into_iter().max().unwrap_or(0),
-        clean_frames_held: clean_held,
-        outlier_frames_held: injected_held.saturating_sub(clean_held),
+        clean_frames_held: clean_held.len(),
+        outlier_frames_held: outlier_at
+            .iter()
+            .filter(|k| injected_held.contains(k))
+            .count(),
     })
 }
 
@@ -147,12 +150,12 @@ fn with_frames(log: &LogInputs, frames: &[TimedFrame], replaced: &[TimedFrame]) 
 }
 
 /// The command in force when each distinct frame has been taken (None before the first), and
-/// how many frames the outlier check held back, with the check on or off.
+/// the distinct frames the outlier check held back, with the check on or off.
 fn commands_in_force(
     log: &LogInputs,
     model: &HandModel,
     checked: bool,
-) -> Result<(Commands, usize), EvalError> {
+) -> Result<(Commands, Vec<usize>), EvalError> {
     let mut log = log.clone();
     let gate = &mut log.config.gate;
     gate.outlier_jump_m = match (checked, gate.outlier_jump_m) {
@@ -162,13 +165,20 @@ fn commands_in_force(
     };
     let (mut station, _) = build_station(&log.config, model.clone())?;
     let mut commands: Commands = Vec::new();
+    let mut held = Vec::new();
     let mut previous: Option<Vec<nalgebra::Point3<f64>>> = None;
+    let mut outliers = 0;
     drive_station(&mut station, log, |timed, _, station| {
         let command = station.command_in_force().map(|c| c.q.clone());
         match &timed.input {
             StationInput::Keypoints(frame) if previous.as_ref() != Some(&frame.points) => {
                 previous = Some(frame.points.clone());
                 commands.push(command);
+                let now = station_outliers(station);
+                if now > outliers {
+                    held.push(commands.len() - 1);
+                }
+                outliers = now;
             }
             // A later step (a tick, a republished copy) updates the frame's command in force.
             _ => {
@@ -178,20 +188,18 @@ fn commands_in_force(
             }
         }
     });
-    let held = station_outliers(&station);
     Ok((commands, held))
 }
 
-fn station_outliers(station: &station::Station) -> usize {
-    let counters = station.counters();
-    usize::try_from(
-        counters
-            .rejected
-            .get(station::frame_gate::Rejection::Outlier.name())
-            .copied()
-            .unwrap_or(0),
-    )
-    .unwrap_or(usize::MAX)
+/// Frames the station's outlier check has held back so far.
+fn station_outliers(station: &station::Station) -> u64 {
+    let outlier = station::frame_gate::Rejection::Outlier.name();
+    station
+        .counters()
+        .rejected
+        .get(outlier)
+        .copied()
+        .unwrap_or(0)
 }
 
 /// How far `commands` moved toward the outliers, at each outlier frame and the
