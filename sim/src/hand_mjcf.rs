@@ -102,6 +102,15 @@ pub struct HandMjcfOptions {
     /// MuJoCo friction coefficients: sliding, torsional (m), rolling (m). The contact
     /// dimension follows: 6 with rolling friction, 4 with torsional, else 3.
     pub friction: [f64; 3],
+    /// MuJoCo `solref` of the hand's contacts: time constant (s) and damping ratio. Stiff
+    /// enough that a squeezed object sinks a fraction of a millimetre into the pads, not
+    /// several millimetres, so a grip holds its shape while the arm carries it.
+    pub contact_solref: [f64; 2],
+    /// MuJoCo `solimp` of the hand's contacts: impedance at zero and at full penetration and
+    /// the width (m) between them.
+    pub contact_solimp: [f64; 3],
+    /// Distance (m) at which a hand contact becomes active, before the geoms touch.
+    pub contact_margin_m: f64,
 }
 
 impl Default for HandMjcfOptions {
@@ -130,6 +139,14 @@ impl Default for HandMjcfOptions {
             // Rubber-like pads on printed plastic: sliding 1; torsional friction over a
             // contact patch of about 1 cm, so a pinched object does not spin; no rolling.
             friction: [1.0, 0.01, 0.0],
+            // Stiff, quickly saturating pads (the settings of the benchmark authors' own ORCA
+            // scene). The shipped G4 grasp in lock step, seeds 201–220: 20 of 20 with these,
+            // 1 of 20 with MuJoCo's soft default (solref 0.02 1, solimp 0.9 0.95 0.001, no
+            // margin), under which the squeezed cylinder sinks millimetres into the palm and
+            // rolls out of the grip while carried (README, "The simulated benchmark").
+            contact_solref: [0.005, 1.0],
+            contact_solimp: [0.5, 0.99, 0.0001],
+            contact_margin_m: 0.0005,
         }
     }
 }
@@ -678,8 +695,8 @@ fn defaults_xml(options: &HandMjcfOptions) -> String {
     let torque = num(options.max_torque_nm);
     format!(
         "<default class=\"{HAND_CLASS}\">\n\
-         \x20 <geom type=\"capsule\" condim=\"{condim}\" friction=\"{} {} {}\" density=\"{}\" \
-         rgba=\"{HAND_RGBA}\"/>\n\
+         \x20 <geom type=\"capsule\" condim=\"{condim}\" friction=\"{} {} {}\" solref=\"{}\" \
+         solimp=\"{}\" margin=\"{}\" density=\"{}\" rgba=\"{HAND_RGBA}\"/>\n\
          \x20 <joint type=\"hinge\" limited=\"true\" solreflimit=\"{LIMIT_TIME_CONSTANT_S} 1\" \
          damping=\"{}\" armature=\"{}\" \
          actuatorgravcomp=\"true\" actuatorfrclimited=\"true\" actuatorfrcrange=\"-{torque} {torque}\"/>\n\
@@ -689,6 +706,9 @@ fn defaults_xml(options: &HandMjcfOptions) -> String {
         num(sliding),
         num(torsional),
         num(rolling),
+        nums(&options.contact_solref),
+        nums(&options.contact_solimp),
+        num(options.contact_margin_m),
         num(HAND_DENSITY_KG_M3),
         num(options.joint_damping),
         num(options.armature),
@@ -749,6 +769,11 @@ fn num(value: f64) -> String {
     } else {
         format!("{value}")
     }
+}
+
+/// Numbers separated by spaces (`solref`, `solimp`).
+fn nums(values: &[f64]) -> String {
+    values.iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")
 }
 
 fn vec3(v: &Vector3<f64>) -> String {

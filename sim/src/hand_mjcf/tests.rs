@@ -297,6 +297,9 @@ fn hinges_carrying_more_are_damped_more() {
 fn options_reach_the_defaults_and_names_are_escaped() {
     let options = HandMjcfOptions {
         friction: [0.8, 0.0, 0.0],
+        contact_solref: [0.004, 0.9],
+        contact_solimp: [0.6, 0.98, 0.0002],
+        contact_margin_m: 0.001,
         ..HandMjcfOptions::default()
     };
     let text = format!("<mujoco>{}</mujoco>", defaults_xml(&options));
@@ -304,6 +307,9 @@ fn options_reach_the_defaults_and_names_are_escaped() {
     let geom = elements(&doc, "geom")[0];
     assert_eq!(geom.attribute("condim"), Some("3"));
     assert_eq!(floats(geom, "friction"), vec![0.8, 0.0, 0.0]);
+    assert_eq!(floats(geom, "solref"), vec![0.004, 0.9]);
+    assert_eq!(floats(geom, "solimp"), vec![0.6, 0.98, 0.0002]);
+    assert_eq!(floats(geom, "margin"), vec![0.001]);
     let position = elements(&doc, "position")[0];
     assert_eq!(floats(position, "kp"), vec![options.position_gain]);
     let torque = options.max_torque_nm;

@@ -59,7 +59,7 @@ mod tests {
         let grasp = grasp_point(&script);
         // The G4 rod in front of the palm (README "The simulated benchmark").
         assert!(
-            (grasp - Vector3::new(0.05, -0.2, -0.06)).norm() < 1e-12,
+            (grasp - Vector3::new(0.01, -0.2, -0.06)).norm() < 1e-12,
             "{grasp}"
         );
         let closed: Vec<_> = script
