@@ -115,6 +115,7 @@ fn continuous_correctness(
     marks: &[(i64, Mark)],
     counted: impl Fn(i64) -> bool,
 ) -> Correctness {
+    // A sum of no values is −0.0 in Rust; `+ 0.0` makes it 0 (no "-0.000" in a report).
     let total: f64 = marks
         .iter()
         .filter(|(t, _)| counted(*t))
@@ -122,7 +123,8 @@ fn continuous_correctness(
             Mark::Progress(v) => Some(*v),
             Mark::Drop => None,
         })
-        .sum();
+        .sum::<f64>()
+        + 0.0;
     let mut notes = Vec::new();
     if total > full {
         notes.push(format!(
@@ -190,6 +192,14 @@ mod tests {
         assert!(c.is_ok_and(|c| c.notes[0].contains("counted as 6")));
         assert!(correctness(&kind, &progress(&[0.5]), None).is_err());
         assert!(correctness(&kind, &progress(&[-1.0]), None).is_err());
+    }
+
+    #[test]
+    fn no_progress_on_a_continuous_task_is_zero_not_negative_zero() {
+        let kind = CorrectnessKind::Rotation { full_deg: 360.0 };
+        let c = correctness(&kind, &[], None).unwrap();
+        assert!(c.value == 0.0 && c.value.is_sign_positive(), "{}", c.value);
+        assert_eq!(format!("{:.3} {}", c.value, c.progress), "0.000 0");
     }
 
     #[test]

@@ -38,6 +38,7 @@ mod continuous;
 mod grasp;
 mod horizontal;
 mod mjcf;
+mod start;
 mod vertical;
 mod world;
 
@@ -48,6 +49,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use scoring::{InvalidMapping, PhysicsMapping, TaskSpec};
 
 use crate::hand_mjcf::HandMjcf;
+
+pub use start::{MECHANISM_CENTRE_XY, START_OFFSET_MAX_M, START_YAW_MAX_RAD, StartPerturbation};
 
 /// The 18 task IDs this module writes scenes for, in catalog order.
 pub const TASK_IDS: [&str; 18] = [
@@ -72,6 +75,8 @@ pub struct SceneOptions {
     /// The mocap body's initial pose (the arm flange) in the world frame, m. Default the
     /// station's start pose: (0.45, 0, 0.40), flange pointing down (a half turn about x).
     pub arm_start: Isometry3<f64>,
+    /// How the task's start is moved (default: not at all).
+    pub start: StartPerturbation,
 }
 
 impl Default for SceneOptions {
@@ -82,6 +87,7 @@ impl Default for SceneOptions {
                 Translation3::new(0.45, 0.0, 0.40),
                 UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI),
             ),
+            start: StartPerturbation::NONE,
         }
     }
 }
@@ -139,6 +145,12 @@ pub enum SceneError {
         /// The pose given, as text.
         value: String,
     },
+    /// The start perturbation is out of range.
+    #[error("start = {value}: a shift of at most 5 mm along x and y and a turn of at most 3°")]
+    Start {
+        /// The perturbation given, as text.
+        value: String,
+    },
     /// The scene's progress mapping does not fit the task's correctness kind in the catalog.
     #[error("task {id}: the scene's progress mapping does not fit its catalog entry: {source}")]
     Mapping {
@@ -168,10 +180,11 @@ pub fn task_scene(
     options: &SceneOptions,
 ) -> Result<Scene, SceneError> {
     check_options(options)?;
-    let scaffold = scaffold_for(&task.id).ok_or_else(|| SceneError::UnknownTask {
-        id: task.id.clone(),
-        known: TASK_IDS.join(", "),
-    })?;
+    let scaffold =
+        scaffold_for(&task.id, &options.start).ok_or_else(|| SceneError::UnknownTask {
+            id: task.id.clone(),
+            known: TASK_IDS.join(", "),
+        })?;
     scaffold
         .mapping
         .validate(&task.correctness)
@@ -208,32 +221,48 @@ fn check_options(options: &SceneOptions) -> Result<(), SceneError> {
             value: format!("{pose:?}"),
         });
     }
+    let start = &options.start;
+    let within = start.offset_m.iter().all(|v| v.abs() <= START_OFFSET_MAX_M)
+        && start.yaw_rad.abs() <= START_YAW_MAX_RAD;
+    if !within {
+        return Err(SceneError::Start {
+            value: format!("{start:?}"),
+        });
+    }
     Ok(())
 }
 
-fn scaffold_for(id: &str) -> Option<Scaffold> {
+fn scaffold_for(id: &str, start: &StartPerturbation) -> Option<Scaffold> {
     use continuous::Rotor;
     use grasp::Object;
     use horizontal::RailGrip;
     use vertical::Handle;
     Some(match id {
-        "V1" => vertical::scaffold(Handle::Wheel),
-        "V2" => vertical::scaffold(Handle::Stick),
-        "V3" => vertical::scaffold(Handle::Sphere),
-        "H1" => horizontal::rail_scaffold(RailGrip::Scissors),
-        "H2" => horizontal::rail_scaffold(RailGrip::Chopsticks),
-        "H3" => horizontal::rail_scaffold(RailGrip::Syringe),
-        "H4" | "H5" => horizontal::rod_scaffold(),
-        "C1" => continuous::rotor_scaffold(Rotor::Bolt),
-        "C2" => continuous::rotor_scaffold(Rotor::Stick),
-        "C3" => continuous::rotor_scaffold(Rotor::Wheel),
-        "C4" => continuous::spinner_scaffold(),
-        "G1" => grasp::scaffold(Object::Wheel),
-        "G2" => grasp::scaffold(Object::Sphere),
-        "G3" => grasp::scaffold(Object::Disk),
-        "G4" => grasp::scaffold(Object::CylinderSmall),
-        "G5" => grasp::scaffold(Object::CylinderMedium),
-        "G6" => grasp::scaffold(Object::CylinderLarge),
+        "V1" => placed(vertical::scaffold(Handle::Wheel), start),
+        "V2" => placed(vertical::scaffold(Handle::Stick), start),
+        "V3" => placed(vertical::scaffold(Handle::Sphere), start),
+        "H1" => placed(horizontal::rail_scaffold(RailGrip::Scissors), start),
+        "H2" => placed(horizontal::rail_scaffold(RailGrip::Chopsticks), start),
+        "H3" => placed(horizontal::rail_scaffold(RailGrip::Syringe), start),
+        "H4" | "H5" => placed(horizontal::rod_scaffold(), start),
+        "C1" => placed(continuous::rotor_scaffold(Rotor::Bolt), start),
+        "C2" => placed(continuous::rotor_scaffold(Rotor::Stick), start),
+        "C3" => placed(continuous::rotor_scaffold(Rotor::Wheel), start),
+        "C4" => placed(continuous::spinner_scaffold(), start),
+        "G1" => grasp::scaffold(Object::Wheel, start),
+        "G2" => grasp::scaffold(Object::Sphere, start),
+        "G3" => grasp::scaffold(Object::Disk, start),
+        "G4" => grasp::scaffold(Object::CylinderSmall, start),
+        "G5" => grasp::scaffold(Object::CylinderMedium, start),
+        "G6" => grasp::scaffold(Object::CylinderLarge, start),
         _ => return None,
     })
+}
+
+/// A mechanism's scaffold moved as `start` says.
+fn placed(scaffold: Scaffold, start: &StartPerturbation) -> Scaffold {
+    Scaffold {
+        bodies: start.place_mechanism(&scaffold.bodies),
+        ..scaffold
+    }
 }

@@ -29,8 +29,13 @@ fn main() {
     let mut slowest = f64::INFINITY;
     println!("physics real-time factor, {SIMULATED_S} s per scene, hand in motion:");
     for task in &catalog.tasks {
-        let mut loaded =
-            load_task(task, &model, SceneSource::Project, start).expect("the project's scene");
+        let mut loaded = load_task(
+            task,
+            &model,
+            SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+            start,
+        )
+        .expect("the project's scene");
         let steps = (SIMULATED_S / TICK_S) as usize;
         let began = Instant::now();
         for k in 0..steps {

@@ -15,8 +15,8 @@
 
 use scoring::{GraspMapping, PhysicsMapping};
 
-use super::Scaffold;
 use super::mjcf::nums;
+use super::{Scaffold, StartPerturbation};
 
 /// Where the object starts (world x, y), m.
 const START_XY: [f64; 2] = [0.5, -0.2];
@@ -65,10 +65,15 @@ struct Layout {
 
 /// Two posts 10 cm high, 124 mm apart along y: the thin cylinder lies across them, and a
 /// thumb–index pinch from above reaches under it between them, the other fingers hanging below
-/// the pinch beside the posts.
+/// the pinch beside the posts. Each post's top is rounded (a capsule across it along x): a
+/// cylinder lying on a flat box top turned a few degrees got a spurious deep contact from
+/// MuJoCo's convex collision and was shot off the posts (6 of 60 starts moved by up to 5 mm
+/// and 3°); on the rounded tops none moved.
 const POSTS: &str = concat!(
-    "      <geom name=\"post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 0.062 0.05\"/>\n",
-    "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.05\" pos=\"0 -0.062 0.05\"/>\n",
+    "      <geom name=\"post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.047\" pos=\"0 0.062 0.047\"/>\n",
+    "      <geom name=\"post_a_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 0.062 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
+    "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.047\" pos=\"0 -0.062 0.047\"/>\n",
+    "      <geom name=\"post_b_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 -0.062 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
 );
 /// A bin around the target region, walls 60 mm high (relative to the start's support body:
 /// the target is 0.2 m along +x): a rolling cylinder set down in it stays in it.
@@ -134,7 +139,7 @@ fn layout(object: Object) -> Layout {
 }
 
 /// The support, the free object and the target marker, with the grasp mapping.
-pub(super) fn scaffold(object: Object) -> Scaffold {
+pub(super) fn scaffold(object: Object, start: &StartPerturbation) -> Scaffold {
     let layout = layout(object);
     let mut bodies = format!(
         "    <body name=\"object_support\" pos=\"{} 0\">\n{}",
@@ -148,8 +153,8 @@ pub(super) fn scaffold(object: Object) -> Scaffold {
         nums(&[TARGET_XY[0] - START_XY[0], TARGET_XY[1] - START_XY[1], 0.0005]),
     ));
     bodies.push_str(&format!(
-        "    <body name=\"object\" pos=\"{}\">\n      <freejoint name=\"object_free\"/>\n      <geom name=\"object\" class=\"pomdar_free_object\" {}/>\n    </body>\n",
-        nums(&[START_XY[0], START_XY[1], layout.start_z]),
+        "    <body name=\"object\" {}>\n      <freejoint name=\"object_free\"/>\n      <geom name=\"object\" class=\"pomdar_free_object\" {}/>\n    </body>\n",
+        start.free_body_attributes([START_XY[0], START_XY[1], layout.start_z]),
         layout.geom
     ));
     let grasp = GraspMapping::with_target(

@@ -52,6 +52,11 @@ pub struct SimArgs {
     /// spread of the successful runs' completion times.
     #[arg(long, requires = "lockstep", default_value_t = 1)]
     pub runs: u64,
+    /// With --lockstep: move the task's start by each run's seed: the free object of a grasp
+    /// task (the whole mechanism of the others) shifted by up to 5 mm along x and y and turned
+    /// by up to 3° about the vertical; the project's scenes only.
+    #[arg(long, requires = "lockstep")]
+    pub perturb_start: bool,
     /// DDS settings.
     #[command(flatten)]
     pub node: NodeArgs,
@@ -84,6 +89,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     use crate::physics::setup::{SceneSource, load_task, project_scene_xml};
     use crate::score::score_inputs::ScoringInputs;
     use crate::station_setup::load_station_config;
+    use simulation::scene::StartPerturbation;
 
     // The simulated robot is driven like the real one: guarded the same way.
     args.guard.apply();
@@ -99,21 +105,26 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     let arm_start = station.arm.start_pose_isometry()?;
     let model = retarget::HandModel::orca_v1_right();
     if let Some(path) = &args.write_scene {
-        let (xml, _) = project_scene_xml(&task, &model, arm_start)?;
+        let (xml, _) = project_scene_xml(&task, &model, arm_start, StartPerturbation::NONE)?;
         crate::atomic_file::write_atomically(path, xml.as_bytes())
             .with_context(|| format!("cannot write {}", path.display()))?;
         println!("wrote the {} scene to {}", task.id, path.display());
         return Ok(());
     }
-    let source = match &args.scene {
+    if args.perturb_start && args.scene.is_some() {
+        anyhow::bail!(
+            "--perturb-start moves the project's scenes only: a lab's own --scene is loaded as written"
+        );
+    }
+    let source = |seed: u64| match &args.scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project,
+        None => SceneSource::Project(start_move(args.perturb_start, seed)),
     };
     if let Some(script) = &args.lockstep {
-        let load = || load_task(&task, &model, source, arm_start);
+        let load = |seed: u64| load_task(&task, &model, source(seed), arm_start);
         return lockstep(&station, &model, &load, script, &args);
     }
-    let loaded = load_task(&task, &model, source, arm_start)?;
+    let loaded = load_task(&task, &model, source(args.seed), arm_start)?;
     let config = PhysicsRobotConfig::for_station(&station, &loaded, arm_start);
     let report = Arc::new(Mutex::new(PhysicsRobotReport::default()));
     let (_control, control_rx) = tokio::sync::mpsc::channel(4);
@@ -199,7 +210,9 @@ struct LockstepRun {
 fn lockstep(
     station: &station::StationConfig,
     model: &retarget::HandModel,
-    load: &dyn Fn() -> Result<
+    load: &dyn Fn(
+        u64,
+    ) -> Result<
         crate::physics::setup::SimulatedTask,
         crate::physics::error::PhysicsError,
     >,
@@ -216,7 +229,7 @@ fn lockstep(
         let run = lockstep_run(
             station,
             model,
-            load()?,
+            load(args.seed)?,
             &script,
             (jitter_m, args.seed),
             args,
@@ -226,16 +239,17 @@ fn lockstep(
     }
     let mut completions = Vec::new();
     for seed in (0..args.runs).map(|k| args.seed.wrapping_add(k)) {
-        let run = lockstep_run(station, model, load()?, &script, (jitter_m, seed), args)?;
+        let run = lockstep_run(station, model, load(seed)?, &script, (jitter_m, seed), args)?;
         let completion = (run.correctness >= 1.0)
             .then(|| run.outcome.events.last().map(|e| e.sim_time_s))
             .flatten();
         println!(
-            "seed {seed}: correctness {:.3}, progress {} {}{}",
+            "seed {seed}: correctness {:.3}, progress {} {}{}{}",
             run.correctness,
             run.outcome.progress,
             run.task.correctness.progress_unit(),
-            completion.map_or(String::new(), |t| format!(", done at {t:.2} s"))
+            completion.map_or(String::new(), |t| format!(", done at {t:.2} s")),
+            start_note(args.perturb_start, seed)
         );
         completions.push(completion);
     }
@@ -320,12 +334,43 @@ fn print_spread(completions: &[Option<f64>], args: &SimArgs, jitter_m: f64) {
         ),
         _ => String::new(),
     };
+    let starts = if args.perturb_start {
+        ", starts moved up to 5 mm and 3°"
+    } else {
+        ""
+    };
     println!(
-        "correctness 1 in {} of {} runs (seeds {}–{}, glove noise {:.1} mm){spread}",
+        "correctness 1 in {} of {} runs (seeds {}–{}, glove noise {:.1} mm{starts}){spread}",
         done.len(),
         completions.len(),
         args.seed,
         args.seed.wrapping_add(args.runs - 1),
         jitter_m * 1e3
     );
+}
+
+/// The move of a run's start: drawn from its seed with `--perturb-start`, else none.
+#[cfg(feature = "physics")]
+fn start_move(perturb: bool, seed: u64) -> simulation::scene::StartPerturbation {
+    use simulation::scene::StartPerturbation;
+    if perturb {
+        StartPerturbation::from_seed(seed)
+    } else {
+        StartPerturbation::NONE
+    }
+}
+
+/// `" (start +1.2, −4.0 mm, +0.8°)"` for a moved start, else nothing.
+#[cfg(feature = "physics")]
+fn start_note(perturb: bool, seed: u64) -> String {
+    if !perturb {
+        return String::new();
+    }
+    let start = start_move(true, seed);
+    format!(
+        " (start {:+.1}, {:+.1} mm, {:+.1}°)",
+        start.offset_m[0] * 1e3,
+        start.offset_m[1] * 1e3,
+        start.yaw_rad.to_degrees()
+    )
 }

@@ -9,7 +9,7 @@ use retarget::HandModel;
 use scoring::TaskSpec;
 use simulation::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mjcf};
 use simulation::progress::PhysicsMapping;
-use simulation::scene::{SceneOptions, task_scene};
+use simulation::scene::{SceneOptions, StartPerturbation, task_scene};
 
 use super::engine::{HandBinding, PhysicsEngine};
 use super::error::PhysicsError;
@@ -35,22 +35,25 @@ pub struct SimulatedTask {
 /// Where the scene comes from.
 #[derive(Debug, Clone, Copy)]
 pub enum SceneSource<'a> {
-    /// The project's scaffold for the task.
-    Project,
+    /// The project's scaffold for the task, its start moved as given.
+    Project(StartPerturbation),
     /// A lab's own MJCF file (its hand's joints and actuators named as the URDF's degrees of
     /// freedom, its hand under a mocap body named [`MOUNT_BODY`]).
     LabFile(&'a Path),
 }
 
-/// The project's scene of `task` written as MJCF (for `pomdar sim --write-scene`).
+/// The project's scene of `task` written as MJCF (for `pomdar sim --write-scene`), its start
+/// moved by `start`.
 pub fn project_scene_xml(
     task: &TaskSpec,
     model: &HandModel,
     arm_start: Isometry3<f64>,
+    start: StartPerturbation,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
     let hand = hand_mjcf(model, &HandMjcfOptions::default());
     let options = SceneOptions {
         arm_start,
+        start,
         ..SceneOptions::default()
     };
     let scene = task_scene(task, &hand, &options).map_err(|e| PhysicsError::Load {
@@ -70,8 +73,8 @@ pub fn load_task(
     let hand = hand_mjcf(model, &HandMjcfOptions::default());
     let binding = hand_binding(&hand);
     let (engine, progress, scene_xml) = match source {
-        SceneSource::Project => {
-            let (xml, progress) = project_scene_xml(task, model, arm_start)?;
+        SceneSource::Project(start) => {
+            let (xml, progress) = project_scene_xml(task, model, arm_start, start)?;
             let origin = format!("the project's scene for {}", task.id);
             let engine = PhysicsEngine::from_xml_str(&xml, &origin, &binding)?;
             (engine, progress, Some(xml))

@@ -180,7 +180,13 @@ fn every_scene_scores_its_scripted_progress_as_the_paper_does() {
     assert_eq!(ids.len(), 18);
     for &(id, script, expected) in table {
         let task = catalog.get(id).unwrap();
-        let mut loaded = load_task(task, &model, SceneSource::Project, arm_start()).unwrap();
+        let mut loaded = load_task(
+            task,
+            &model,
+            SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+            arm_start(),
+        )
+        .unwrap();
         assert_scores(id, task, &mut loaded, script, expected);
     }
 }

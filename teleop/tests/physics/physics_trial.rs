@@ -130,11 +130,13 @@ fn the_scripts_in_lock_step_give_the_same_levels() {
 }
 
 /// `--runs`: one line per seed, in order, and a success count that is theirs; the first seed's
-/// run is the single run's (the same correctness as `--seed 1` alone).
+/// run is the single run's (the same correctness as `--seed 1` alone). With `--perturb-start`
+/// each run's start is moved by its seed and the lines say how.
 #[test]
 fn lock_step_runs_over_seeds_count_their_successes() {
-    let output = Command::new(env!("CARGO_BIN_EXE_pomdar"))
-        .args([
+    for perturb in [false, true] {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_pomdar"));
+        command.args([
             "sim",
             "--task",
             "G4",
@@ -143,28 +145,39 @@ fn lock_step_runs_over_seeds_count_their_successes() {
             "--seed",
             "1",
             "--lockstep",
-        ])
-        .arg(shipped("grasp_place.toml"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(output.status.success(), "{stdout}");
-    let runs: Vec<&str> = stdout.lines().filter(|l| l.starts_with("seed ")).collect();
-    let seeds: Vec<&str> = runs
-        .iter()
-        .filter_map(|l| l.split(':').next()?.strip_prefix("seed "))
-        .collect();
-    assert_eq!(seeds, ["1", "2", "3"], "{stdout}");
-    let successes = runs
-        .iter()
-        .filter(|l| l.contains("correctness 1.000"))
-        .count();
-    let summary = stdout.lines().last().unwrap_or_default();
-    assert!(
-        summary.starts_with(&format!(
-            "correctness 1 in {successes} of 3 runs (seeds 1–3"
-        )),
-        "{stdout}"
-    );
-    assert!(runs[0].contains("correctness 1.000"), "{stdout}");
+        ]);
+        command.arg(shipped("grasp_place.toml"));
+        if perturb {
+            command.arg("--perturb-start");
+        }
+        let output = command.output().unwrap();
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(output.status.success(), "{stdout}");
+        let runs: Vec<&str> = stdout.lines().filter(|l| l.starts_with("seed ")).collect();
+        let seeds: Vec<&str> = runs
+            .iter()
+            .filter_map(|l| l.split(':').next()?.strip_prefix("seed "))
+            .collect();
+        assert_eq!(seeds, ["1", "2", "3"], "{stdout}");
+        let successes = runs
+            .iter()
+            .filter(|l| l.contains("correctness 1.000"))
+            .count();
+        let summary = stdout.lines().last().unwrap_or_default();
+        assert!(
+            summary.starts_with(&format!(
+                "correctness 1 in {successes} of 3 runs (seeds 1–3"
+            )),
+            "{stdout}"
+        );
+        assert!(runs[0].contains("correctness 1.000"), "{stdout}");
+        // Each run names the move of its start ("(start +3.6, +1.9 mm, +3.0°)"), all different.
+        let starts: Vec<&str> = runs
+            .iter()
+            .filter_map(|l| l.split_once("(start ").map(|(_, s)| s))
+            .collect();
+        assert_eq!(starts.len(), if perturb { 3 } else { 0 }, "{stdout}");
+        assert!(starts.windows(2).all(|w| w[0] != w[1]), "{stdout}");
+        assert_eq!(summary.contains("starts moved"), perturb, "{summary}");
+    }
 }
