@@ -180,6 +180,16 @@ pub struct HandMjcf {
     pub root_body: String,
     /// The real hand's joint speed, rad/s, for the engine's rate limit on controls.
     pub max_speed_rad_s: f64,
+    /// `<mesh>`, `<material>` and `<texture>` elements (no enclosing `<asset>`) the hand's
+    /// geoms use; empty for a hand of primitives.
+    pub assets: String,
+    /// Per degree of freedom, MuJoCo's `qpos` minus the URDF angle (a joint's `ref`): a command
+    /// in URDF angles is sent as angle + offset and a measured `qpos` read as qpos − offset.
+    /// Zero for a hand written from the URDF.
+    pub zero_offsets_rad: Vec<f64>,
+    /// The Euler sequence the hand's `euler` attributes use (`<compiler eulerseq>`), if not
+    /// MuJoCo's default.
+    pub eulerseq: Option<String>,
     /// Suggested pose of the hand's root in an arm flange frame whose +z points away from the
     /// arm: fingers extended along +z, palm facing +x, the wrist on the flange axis and the
     /// hand's nearest link origin one `palm_radius_m` beyond the flange face.
@@ -203,6 +213,9 @@ pub fn hand_mjcf(model: &HandModel, options: &HandMjcfOptions) -> HandMjcf {
         tip_bodies: frames.tips.map(name_of),
         palm_body: name_of(frames.palm),
         root_body: tree.body_names[0].clone(),
+        assets: String::new(),
+        zero_offsets_rad: vec![0.0; model.dof()],
+        eulerseq: None,
         max_speed_rad_s: options.max_speed_rad_s,
         mount: mount_pose(&tree),
     }
@@ -682,33 +695,46 @@ fn zero_pose_fk(model: &HandModel) -> FkState {
     state
 }
 
+impl HandMjcfOptions {
+    /// The contact attributes of the hand's geoms (`condim`, `friction`, `solref`, `solimp`,
+    /// `margin`), as MJCF attribute names and values. The contact dimension follows the
+    /// friction: 6 with rolling friction, 4 with torsional, else 3.
+    pub fn contact_attributes(&self) -> Vec<(&'static str, String)> {
+        let [_, torsional, rolling] = self.friction;
+        let condim = if rolling > 0.0 {
+            6
+        } else if torsional > 0.0 {
+            4
+        } else {
+            3
+        };
+        vec![
+            ("condim", condim.to_string()),
+            ("friction", nums(&self.friction)),
+            ("solref", nums(&self.contact_solref)),
+            ("solimp", nums(&self.contact_solimp)),
+            ("margin", num(self.contact_margin_m)),
+        ]
+    }
+}
+
 /// The default class: contact and mass of geoms, hinge dynamics, servo gain and limits.
 fn defaults_xml(options: &HandMjcfOptions) -> String {
-    let [sliding, torsional, rolling] = options.friction;
-    let condim = if rolling > 0.0 {
-        6
-    } else if torsional > 0.0 {
-        4
-    } else {
-        3
-    };
+    let contact: String = options
+        .contact_attributes()
+        .iter()
+        .map(|(name, value)| format!(" {name}=\"{value}\""))
+        .collect();
     let torque = num(options.max_torque_nm);
     format!(
         "<default class=\"{HAND_CLASS}\">\n\
-         \x20 <geom type=\"capsule\" condim=\"{condim}\" friction=\"{} {} {}\" solref=\"{}\" \
-         solimp=\"{}\" margin=\"{}\" density=\"{}\" rgba=\"{HAND_RGBA}\"/>\n\
+         \x20 <geom type=\"capsule\"{contact} density=\"{}\" rgba=\"{HAND_RGBA}\"/>\n\
          \x20 <joint type=\"hinge\" limited=\"true\" solreflimit=\"{LIMIT_TIME_CONSTANT_S} 1\" \
          damping=\"{}\" armature=\"{}\" \
          actuatorgravcomp=\"true\" actuatorfrclimited=\"true\" actuatorfrcrange=\"-{torque} {torque}\"/>\n\
          \x20 <position kp=\"{}\" ctrllimited=\"true\" forcelimited=\"true\" \
          forcerange=\"-{torque} {torque}\"/>\n\
          </default>\n",
-        num(sliding),
-        num(torsional),
-        num(rolling),
-        nums(&options.contact_solref),
-        nums(&options.contact_solimp),
-        num(options.contact_margin_m),
         num(HAND_DENSITY_KG_M3),
         num(options.joint_damping),
         num(options.armature),

@@ -12,5 +12,6 @@
 //! MJCF into MuJoCo, steps it and feeds the readings back here.
 
 pub mod hand_mjcf;
+pub mod lab_hand;
 pub mod progress;
 pub mod scene;

@@ -32,7 +32,7 @@ fn main() {
         let mut loaded = load_task(
             task,
             &model,
-            SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+            SceneSource::Project(Default::default()),
             start,
         )
         .expect("the project's scene");

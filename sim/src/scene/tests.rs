@@ -29,6 +29,9 @@ pub(crate) fn tiny_hand() -> HandMjcf {
         palm_body: "tiny_palm".into(),
         root_body: "tiny_palm".into(),
         max_speed_rad_s: 5.0,
+        assets: String::new(),
+        zero_offsets_rad: vec![0.0],
+        eulerseq: None,
         mount: Isometry3::from_parts(Translation3::new(0.0, 0.0, 0.01), UnitQuaternion::identity()),
     }
 }

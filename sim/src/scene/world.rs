@@ -37,7 +37,14 @@ pub(super) fn world_xml(
 ) -> String {
     let mut xml = String::new();
     let _ = writeln!(xml, "<mujoco model=\"pomdar_{task_id}\">");
-    xml.push_str("  <compiler angle=\"radian\" autolimits=\"true\"/>\n");
+    let eulerseq = hand
+        .eulerseq
+        .as_ref()
+        .map_or(String::new(), |seq| format!(" eulerseq=\"{seq}\""));
+    let _ = writeln!(
+        xml,
+        "  <compiler angle=\"radian\" autolimits=\"true\"{eulerseq}/>"
+    );
     let _ = writeln!(
         xml,
         "  <option timestep=\"{}\" gravity=\"0 0 -9.81\" integrator=\"implicitfast\" cone=\"elliptic\" impratio=\"10\"/>",
@@ -48,6 +55,7 @@ pub(super) fn world_xml(
         "  <default>\n{}\n{TASK_DEFAULTS}  </default>",
         indent(&hand.defaults, 4)
     );
+    xml.push_str(&section("asset", &hand.assets));
     xml.push_str("  <worldbody>\n");
     xml.push_str(TABLE_AND_LIGHT);
     xml.push_str(&arm_mount(hand, options));

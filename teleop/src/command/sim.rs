@@ -52,6 +52,12 @@ pub struct SimArgs {
     /// spread of the successful runs' completion times.
     #[arg(long, requires = "lockstep", default_value_t = 1)]
     pub runs: u64,
+    /// The lab's own MuJoCo model of the hand (the manufacturer's MJCF of ORCA v1, with its
+    /// meshes beside it) instead of the hand the project writes from the URDF: its joints
+    /// named as the URDF's degrees of freedom, MuJoCo's qpos = URDF angle + the joint's `ref`
+    /// (README, "The simulated benchmark"). The project's scenes only.
+    #[arg(long, value_name = "FILE")]
+    pub hand_mjcf: Option<PathBuf>,
     /// With --lockstep: move the task's start by each run's seed: the free object of a grasp
     /// task (the whole mechanism of the others) shifted by up to 5 mm along x and y and turned
     /// by up to 3° about the vertical; the project's scenes only.
@@ -86,10 +92,9 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     use crate::physics::robot_node::{
         PhysicsRobotConfig, PhysicsRobotReport, PhysicsRobotRun, run_physics_robot,
     };
-    use crate::physics::setup::{SceneSource, load_task, project_scene_xml};
+    use crate::physics::setup::{ProjectScene, SceneSource, load_task, project_scene_xml};
     use crate::score::score_inputs::ScoringInputs;
     use crate::station_setup::load_station_config;
-    use simulation::scene::StartPerturbation;
 
     // The simulated robot is driven like the real one: guarded the same way.
     args.guard.apply();
@@ -105,20 +110,27 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     let arm_start = station.arm.start_pose_isometry()?;
     let model = retarget::HandModel::orca_v1_right();
     if let Some(path) = &args.write_scene {
-        let (xml, _) = project_scene_xml(&task, &model, arm_start, StartPerturbation::NONE)?;
+        let scene = ProjectScene {
+            hand_file: args.hand_mjcf.as_deref(),
+            ..ProjectScene::default()
+        };
+        let (xml, _) = project_scene_xml(&task, &model, arm_start, scene)?;
         crate::atomic_file::write_atomically(path, xml.as_bytes())
             .with_context(|| format!("cannot write {}", path.display()))?;
         println!("wrote the {} scene to {}", task.id, path.display());
         return Ok(());
     }
-    if args.perturb_start && args.scene.is_some() {
+    if (args.perturb_start || args.hand_mjcf.is_some()) && args.scene.is_some() {
         anyhow::bail!(
-            "--perturb-start moves the project's scenes only: a lab's own --scene is loaded as written"
+            "--perturb-start and --hand-mjcf change the project's scenes only: a lab's own --scene is loaded as written"
         );
     }
     let source = |seed: u64| match &args.scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(start_move(args.perturb_start, seed)),
+        None => SceneSource::Project(ProjectScene {
+            start: start_move(args.perturb_start, seed),
+            hand_file: args.hand_mjcf.as_deref(),
+        }),
     };
     if let Some(script) = &args.lockstep {
         let load = |seed: u64| load_task(&task, &model, source(seed), arm_start);

@@ -74,7 +74,7 @@ pub(crate) fn spawn_physics_robot(
     use crate::physics::setup::{SceneSource, load_task};
     let source = match scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+        None => SceneSource::Project(Default::default()),
     };
     let arm_start = config.arm.start_pose_isometry()?;
     let loaded = load_task(task, model, source, arm_start)?;

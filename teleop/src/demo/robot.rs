@@ -145,7 +145,7 @@ fn spawn_physics(
     use crate::physics::setup::{SceneSource, load_task};
     let source = match &physics.scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+        None => SceneSource::Project(Default::default()),
     };
     let arm_start = station
         .arm

@@ -25,6 +25,9 @@ pub struct HandBinding {
     pub mount_body: String,
     /// The servos' speed limit, rad/s.
     pub max_speed_rad_s: f64,
+    /// Per degree of freedom, MuJoCo's `qpos` minus the URDF angle (a manufacturer model's
+    /// joint `ref`); everything this engine takes and gives is in URDF angles.
+    pub zero_offsets_rad: Vec<f64>,
 }
 
 /// A joint of the scene, resolved.
@@ -42,8 +45,11 @@ pub struct PhysicsEngine {
     actuators: Vec<usize>,
     ctrl_ranges: Vec<[f64; 2]>,
     mocap: usize,
+    /// Targets in URDF angles.
     targets: Vec<f64>,
     max_speed_rad_s: f64,
+    /// `qpos` − URDF angle per degree of freedom.
+    offsets: Vec<f64>,
 }
 
 impl PhysicsEngine {
@@ -90,13 +96,24 @@ impl PhysicsEngine {
             .name_to_id(MjtObjBase::mjOBJ_BODY, &binding.mount_body)
             .and_then(|body| usize::try_from(model.body_mocapid()[body]).ok())
             .ok_or_else(|| missing("mocap body", vec![binding.mount_body.clone()]))?;
+        let offsets = if binding.zero_offsets_rad.is_empty() {
+            vec![0.0; joints.len()]
+        } else {
+            binding.zero_offsets_rad.clone()
+        };
+        // Control ranges in URDF angles.
         let ctrl_ranges = actuators
             .iter()
-            .map(|&a| model.actuator_ctrlrange()[a])
+            .zip(&offsets)
+            .map(|(&a, o)| model.actuator_ctrlrange()[a].map(|v| v - o))
             .collect();
         let mut data = MjData::new(model);
         data.forward();
-        let targets = joints.iter().map(|j| data.qpos()[j.qpos]).collect();
+        let targets = joints
+            .iter()
+            .zip(&offsets)
+            .map(|(j, o)| data.qpos()[j.qpos] - o)
+            .collect();
         let mut engine = PhysicsEngine {
             data,
             joints,
@@ -105,6 +122,7 @@ impl PhysicsEngine {
             mocap,
             targets,
             max_speed_rad_s: binding.max_speed_rad_s,
+            offsets,
         };
         engine.hold_controls_at_targets();
         Ok(engine)
@@ -120,8 +138,8 @@ impl PhysicsEngine {
         self.data.ffi().time
     }
 
-    /// Command the hand: one target per degree of freedom, radians (clamped to the actuator's
-    /// control range). Wrong lengths and non-finite values are refused.
+    /// Command the hand: one target per degree of freedom, URDF angles in radians (clamped to
+    /// the actuator's control range). Wrong lengths and non-finite values are refused.
     pub fn set_hand_targets(&mut self, targets: &[f64]) -> Result<(), PhysicsError> {
         if targets.len() != self.targets.len() || targets.iter().any(|t| !t.is_finite()) {
             return Err(PhysicsError::BadTargets {
@@ -156,19 +174,34 @@ impl PhysicsEngine {
         let max_move = self.max_speed_rad_s * dt;
         for _ in 0..steps {
             for (i, &a) in self.actuators.iter().enumerate() {
+                let target = self.targets[i] + self.offsets[i];
                 let ctrl = &mut self.data.ctrl_mut()[a];
-                *ctrl += (self.targets[i] - *ctrl).clamp(-max_move, max_move);
+                *ctrl += (target - *ctrl).clamp(-max_move, max_move);
             }
             self.data.step();
         }
     }
 
-    /// The hand's measured joint positions, radians, per degree of freedom.
+    /// The hand's measured joint positions, URDF angles in radians, per degree of freedom.
     pub fn hand_positions(&self) -> Vec<f64> {
         self.joints
             .iter()
-            .map(|j| self.data.qpos()[j.qpos])
+            .zip(&self.offsets)
+            .map(|(j, o)| self.data.qpos()[j.qpos] - o)
             .collect()
+    }
+
+    /// Put the hand at `angles` (URDF angles, one per degree of freedom), at rest, its targets
+    /// there too, and recompute the kinematics (poses in tests and tools).
+    pub fn set_hand_positions(&mut self, angles: &[f64]) -> Result<(), PhysicsError> {
+        self.set_hand_targets(angles)?;
+        for ((j, o), angle) in self.joints.iter().zip(&self.offsets).zip(angles) {
+            self.data.qpos_mut()[j.qpos] = angle + o;
+            self.data.qvel_mut()[j.qvel] = 0.0;
+        }
+        self.hold_controls_at_targets();
+        self.data.forward();
+        Ok(())
     }
 
     /// The hand's measured joint speeds, rad/s, per degree of freedom.
@@ -261,7 +294,7 @@ impl PhysicsEngine {
     fn hold_controls_at_targets(&mut self) {
         for (i, &a) in self.actuators.iter().enumerate() {
             let range = self.ctrl_ranges[i];
-            self.data.ctrl_mut()[a] = self.targets[i].clamp(range[0], range[1]);
+            self.data.ctrl_mut()[a] = self.targets[i].clamp(range[0], range[1]) + self.offsets[i];
         }
     }
 }

@@ -8,6 +8,7 @@ use nalgebra::Isometry3;
 use retarget::HandModel;
 use scoring::TaskSpec;
 use simulation::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mjcf};
+use simulation::lab_hand::lab_hand_mjcf;
 use simulation::progress::PhysicsMapping;
 use simulation::scene::{SceneOptions, StartPerturbation, task_scene};
 
@@ -32,28 +33,58 @@ pub struct SimulatedTask {
     pub scene_xml: Option<String>,
 }
 
+/// The project's scene of a task: how its start is moved and which hand it holds.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ProjectScene<'a> {
+    /// How the task's start is moved.
+    pub start: StartPerturbation,
+    /// The lab's own MJCF of the hand (the manufacturer's model, with its meshes) instead of
+    /// the hand the project writes from the URDF.
+    pub hand_file: Option<&'a Path>,
+}
+
 /// Where the scene comes from.
 #[derive(Debug, Clone, Copy)]
 pub enum SceneSource<'a> {
-    /// The project's scaffold for the task, its start moved as given.
-    Project(StartPerturbation),
+    /// The project's scaffold for the task.
+    Project(ProjectScene<'a>),
     /// A lab's own MJCF file (its hand's joints and actuators named as the URDF's degrees of
     /// freedom, its hand under a mocap body named [`MOUNT_BODY`]).
     LabFile(&'a Path),
 }
 
-/// The project's scene of `task` written as MJCF (for `pomdar sim --write-scene`), its start
-/// moved by `start`.
+/// The hand the twin simulates: the lab's MJCF `hand_file`, or the project's from `model`.
+pub fn twin_hand(model: &HandModel, hand_file: Option<&Path>) -> Result<HandMjcf, PhysicsError> {
+    let options = HandMjcfOptions::default();
+    let Some(path) = hand_file else {
+        return Ok(hand_mjcf(model, &options));
+    };
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| PhysicsError::Load {
+        origin: origin.clone(),
+        message: format!("cannot read the hand's MJCF: {e}"),
+    })?;
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let dir = absolute
+        .parent()
+        .map_or(String::new(), |d| d.display().to_string());
+    lab_hand_mjcf(&text, &origin, &dir, model, &options).map_err(|e| PhysicsError::Load {
+        origin,
+        message: e.to_string(),
+    })
+}
+
+/// The project's scene of `task` written as MJCF (for `pomdar sim --write-scene`).
 pub fn project_scene_xml(
     task: &TaskSpec,
     model: &HandModel,
     arm_start: Isometry3<f64>,
-    start: StartPerturbation,
+    scene: ProjectScene<'_>,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
-    let hand = hand_mjcf(model, &HandMjcfOptions::default());
+    let hand = twin_hand(model, scene.hand_file)?;
     let options = SceneOptions {
         arm_start,
-        start,
+        start: scene.start,
         ..SceneOptions::default()
     };
     let scene = task_scene(task, &hand, &options).map_err(|e| PhysicsError::Load {
@@ -70,11 +101,15 @@ pub fn load_task(
     source: SceneSource<'_>,
     arm_start: Isometry3<f64>,
 ) -> Result<SimulatedTask, PhysicsError> {
-    let hand = hand_mjcf(model, &HandMjcfOptions::default());
+    let hand_file = match source {
+        SceneSource::Project(scene) => scene.hand_file,
+        SceneSource::LabFile(_) => None,
+    };
+    let hand = twin_hand(model, hand_file)?;
     let binding = hand_binding(&hand);
     let (engine, progress, scene_xml) = match source {
-        SceneSource::Project(start) => {
-            let (xml, progress) = project_scene_xml(task, model, arm_start, start)?;
+        SceneSource::Project(scene) => {
+            let (xml, progress) = project_scene_xml(task, model, arm_start, scene)?;
             let origin = format!("the project's scene for {}", task.id);
             let engine = PhysicsEngine::from_xml_str(&xml, &origin, &binding)?;
             (engine, progress, Some(xml))
@@ -115,5 +150,6 @@ pub fn hand_binding(hand: &HandMjcf) -> HandBinding {
         dof_actuators: hand.dof_actuators.clone(),
         mount_body: MOUNT_BODY.to_string(),
         max_speed_rad_s: hand.max_speed_rad_s,
+        zero_offsets_rad: hand.zero_offsets_rad.clone(),
     }
 }

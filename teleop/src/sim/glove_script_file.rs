@@ -67,7 +67,7 @@ mod tests {
             .iter()
             .filter(|k| k.pose == ScriptPose::Fist)
             .collect();
-        assert!(closed.iter().all(|k| (k.closure - 0.7).abs() < 1e-12));
+        assert!(closed.iter().all(|k| (k.closure - 0.85).abs() < 1e-12));
         let highest_carry = closed
             .iter()
             .map(|k| k.wrist_m[2] - grasp.z)

@@ -6,5 +6,6 @@
 
 mod physics_demo;
 mod physics_engine;
+mod physics_hands;
 mod physics_scenes;
 mod physics_trial;

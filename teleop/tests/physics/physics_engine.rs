@@ -30,7 +30,40 @@ fn binding() -> HandBinding {
         dof_actuators: vec!["a0".into()],
         mount_body: "mount".into(),
         max_speed_rad_s: 4.0,
+        zero_offsets_rad: Vec::new(),
     }
+}
+
+/// A manufacturer's model whose hinge puts the URDF's zero at `qpos` = 0.3 (`ref`), its ranges
+/// in `qpos`.
+#[test]
+fn urdf_angles_go_in_and_come_out_across_a_joint_zero_offset() {
+    let scene = SCENE
+        .replace(r#"ctrlrange="-1 1""#, r#"ctrlrange="-0.7 1.3""#)
+        .replace(
+            r#"axis="0 1 0" range="-1 1""#,
+            r#"axis="0 1 0" range="-0.7 1.3" ref="0.3""#,
+        );
+    assert_eq!(scene.matches("ref=").count(), 1);
+    let binding = HandBinding {
+        zero_offsets_rad: vec![0.3],
+        ..binding()
+    };
+    let mut engine = PhysicsEngine::from_xml_str(&scene, "offset scene", &binding).unwrap();
+    // At MuJoCo's initial state (qpos = ref) the URDF angle is 0.
+    assert!(engine.hand_positions()[0].abs() < 1e-12);
+    assert!(engine.hand_targets()[0].abs() < 1e-12);
+    engine.set_hand_targets(&[0.5]).unwrap();
+    engine.advance(1.0);
+    let angle = engine.hand_positions()[0];
+    assert!((angle - 0.5).abs() < 0.02, "{angle}");
+    assert!((engine.joint_position("j0").unwrap() - 0.8).abs() < 0.02);
+    // The control range, in URDF angles, is [-1, 1]: 1.2 is clamped to 1.
+    engine.set_hand_targets(&[1.2]).unwrap();
+    assert!((engine.hand_targets()[0] - 1.0).abs() < 1e-12);
+    engine.set_hand_positions(&[-0.4]).unwrap();
+    assert!((engine.joint_position("j0").unwrap() + 0.1).abs() < 1e-12);
+    assert!((engine.hand_positions()[0] + 0.4).abs() < 1e-12);
 }
 
 #[test]

@@ -183,7 +183,7 @@ fn every_scene_scores_its_scripted_progress_as_the_paper_does() {
         let mut loaded = load_task(
             task,
             &model,
-            SceneSource::Project(simulation::scene::StartPerturbation::NONE),
+            SceneSource::Project(Default::default()),
             arm_start(),
         )
         .unwrap();
