@@ -46,6 +46,11 @@ pub struct StationConfig {
     /// path is relative to the configuration file's directory; unset: no calibration
     /// (identity transform).
     pub calibration_profile: Option<PathBuf>,
+    /// The simulated benchmark's hand: a lab's MuJoCo model of the robot hand (the
+    /// manufacturer's MJCF, its meshes beside it) instead of the hand the project writes from
+    /// the URDF. In a file, a relative path is relative to the configuration file's directory;
+    /// unset: the project's hand. Only the simulator reads it.
+    pub simulated_hand_mjcf: Option<PathBuf>,
 }
 
 /// How keypoints arrive.
@@ -153,6 +158,7 @@ impl Default for StationConfig {
             arm: ArmConfig::default(),
             ros_tools: RosToolsConfig::default(),
             calibration_profile: None,
+            simulated_hand_mjcf: None,
         }
     }
 }

@@ -4,7 +4,8 @@
 //! project scenes, stepped as the `pomdar sim` node steps it (5 ms advances of 2 ms MuJoCo
 //! steps). Prints the real-time factor (simulated seconds per wall second) of each scene and
 //! the slowest. `cargo bench -p teleop --features physics --bench physics_realtime`
-//! (after `bash sim/setup_mujoco.sh`).
+//! (after `bash sim/setup_mujoco.sh`); `-- --hand-mjcf FILE` runs the lab's MJCF of the hand
+//! (the manufacturer's, with its meshes) instead.
 
 #![allow(clippy::expect_used)] // a benchmark stops on a broken set-up
 
@@ -13,7 +14,7 @@ use std::time::Instant;
 use nalgebra::{Isometry3, Translation3};
 use retarget::HandModel;
 use scoring::TaskCatalog;
-use teleop::physics::setup::{SceneSource, load_task};
+use teleop::physics::setup::{ProjectScene, SceneSource, load_task};
 
 const SIMULATED_S: f64 = 10.0;
 const TICK_S: f64 = 0.005;
@@ -26,16 +27,28 @@ fn main() {
         .start_pose_isometry()
         .expect("the default start pose");
     let catalog = TaskCatalog::builtin();
+    let args: Vec<String> = std::env::args().collect();
+    let hand_file = args
+        .iter()
+        .position(|a| a == "--hand-mjcf")
+        .and_then(|i| args.get(i + 1))
+        .map(std::path::PathBuf::from);
+    let scene = ProjectScene {
+        hand_file: hand_file.as_deref(),
+        ..ProjectScene::default()
+    };
     let mut slowest = f64::INFINITY;
-    println!("physics real-time factor, {SIMULATED_S} s per scene, hand in motion:");
+    println!(
+        "physics real-time factor, {SIMULATED_S} s per scene, hand in motion ({}):",
+        hand_file
+            .as_ref()
+            .map_or("the project's hand".to_string(), |f| f
+                .display()
+                .to_string())
+    );
     for task in &catalog.tasks {
-        let mut loaded = load_task(
-            task,
-            &model,
-            SceneSource::Project(Default::default()),
-            start,
-        )
-        .expect("the project's scene");
+        let mut loaded = load_task(task, &model, SceneSource::Project(scene), start)
+            .expect("the project's scene");
         let steps = (SIMULATED_S / TICK_S) as usize;
         let began = Instant::now();
         for k in 0..steps {

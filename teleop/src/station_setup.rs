@@ -55,7 +55,7 @@ pub enum SetupError {
 }
 
 /// Read, parse and validate a station configuration file; errors name it. A relative
-/// `calibration_profile` is resolved against the file's directory.
+/// `calibration_profile` or `simulated_hand_mjcf` is resolved against the file's directory.
 pub fn read_station_config(path: &Path) -> Result<StationConfig, SetupError> {
     let text = std::fs::read_to_string(path).map_err(|source| SetupError::ReadConfig {
         path: path.to_path_buf(),
@@ -65,11 +65,14 @@ pub fn read_station_config(path: &Path) -> Result<StationConfig, SetupError> {
         path: path.to_path_buf(),
         source,
     })?;
-    if let Some(profile) = &config.calibration_profile
-        && profile.is_relative()
-    {
-        let dir = path.parent().unwrap_or(Path::new(""));
-        config.calibration_profile = Some(dir.join(profile));
+    let dir = path.parent().unwrap_or(Path::new(""));
+    for file in [
+        &mut config.calibration_profile,
+        &mut config.simulated_hand_mjcf,
+    ] {
+        if let Some(relative) = file.as_ref().filter(|f| f.is_relative()) {
+            *file = Some(dir.join(relative));
+        }
     }
     Ok(config)
 }
@@ -146,11 +149,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_relative_profile_is_relative_to_the_config_file() {
+    fn relative_files_are_relative_to_the_config_file() {
         let dir = std::env::temp_dir().join(format!("pomdar-station-cfg-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("station.toml");
-        std::fs::write(&path, "calibration_profile = \"profiles/alice.toml\"\n").unwrap();
+        std::fs::write(
+            &path,
+            "calibration_profile = \"profiles/alice.toml\"\nsimulated_hand_mjcf = \"hands/orca.xml\"\n",
+        )
+        .unwrap();
         let config = read_station_config(&path).unwrap();
         let overridden = load_station_config(Some(&path), Some(Path::new("/p.toml"))).unwrap();
         std::fs::remove_dir_all(&dir).ok();
@@ -158,6 +165,7 @@ mod tests {
             config.calibration_profile,
             Some(dir.join("profiles/alice.toml"))
         );
+        assert_eq!(config.simulated_hand_mjcf, Some(dir.join("hands/orca.xml")));
         assert_eq!(
             overridden.calibration_profile,
             Some(Path::new("/p.toml").to_path_buf())

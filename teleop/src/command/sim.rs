@@ -55,7 +55,8 @@ pub struct SimArgs {
     /// The lab's own MuJoCo model of the hand (the manufacturer's MJCF of ORCA v1, with its
     /// meshes beside it) instead of the hand the project writes from the URDF: its joints
     /// named as the URDF's degrees of freedom, MuJoCo's qpos = URDF angle + the joint's `ref`
-    /// (README, "The simulated benchmark"). The project's scenes only.
+    /// (README, "The simulated benchmark"). The project's scenes only. Default: the station
+    /// configuration's `simulated_hand_mjcf`.
     #[arg(long, value_name = "FILE")]
     pub hand_mjcf: Option<PathBuf>,
     /// With --lockstep: move the task's start by each run's seed: the free object of a grasp
@@ -107,11 +108,15 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         )
     })?;
     let station = load_station_config(args.config.as_deref(), None)?;
+    let hand_file = args
+        .hand_mjcf
+        .as_deref()
+        .or(station.simulated_hand_mjcf.as_deref());
     let arm_start = station.arm.start_pose_isometry()?;
     let model = retarget::HandModel::orca_v1_right();
     if let Some(path) = &args.write_scene {
         let scene = ProjectScene {
-            hand_file: args.hand_mjcf.as_deref(),
+            hand_file,
             ..ProjectScene::default()
         };
         let (xml, _) = project_scene_xml(&task, &model, arm_start, scene)?;
@@ -120,7 +125,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         println!("wrote the {} scene to {}", task.id, path.display());
         return Ok(());
     }
-    if (args.perturb_start || args.hand_mjcf.is_some()) && args.scene.is_some() {
+    if (args.perturb_start || hand_file.is_some()) && args.scene.is_some() {
         anyhow::bail!(
             "--perturb-start and --hand-mjcf change the project's scenes only: a lab's own --scene is loaded as written"
         );
@@ -129,7 +134,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         Some(path) => SceneSource::LabFile(path),
         None => SceneSource::Project(ProjectScene {
             start: start_move(args.perturb_start, seed),
-            hand_file: args.hand_mjcf.as_deref(),
+            hand_file,
         }),
     };
     if let Some(script) = &args.lockstep {

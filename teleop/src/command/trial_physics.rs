@@ -71,10 +71,13 @@ pub(crate) fn spawn_physics_robot(
     shutdown: &watch::Receiver<bool>,
 ) -> anyhow::Result<PhysicsParts> {
     use crate::physics::robot_node::{PhysicsRobotOptions, spawn_physics_robot as spawn};
-    use crate::physics::setup::{SceneSource, load_task};
+    use crate::physics::setup::{ProjectScene, SceneSource, load_task};
     let source = match scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(Default::default()),
+        None => SceneSource::Project(ProjectScene {
+            hand_file: config.simulated_hand_mjcf.as_deref(),
+            ..ProjectScene::default()
+        }),
     };
     let arm_start = config.arm.start_pose_isometry()?;
     let loaded = load_task(task, model, source, arm_start)?;

@@ -142,10 +142,13 @@ fn spawn_physics(
     physics: &PhysicsTask,
 ) -> Result<DemoRobot, DemoError> {
     use crate::physics::robot_node::{PhysicsRobotOptions, spawn_physics_robot};
-    use crate::physics::setup::{SceneSource, load_task};
+    use crate::physics::setup::{ProjectScene, SceneSource, load_task};
     let source = match &physics.scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(Default::default()),
+        None => SceneSource::Project(ProjectScene {
+            hand_file: station.simulated_hand_mjcf.as_deref(),
+            ..ProjectScene::default()
+        }),
     };
     let arm_start = station
         .arm
