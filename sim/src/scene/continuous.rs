@@ -18,6 +18,15 @@ use super::mjcf::{num, nums};
 const AXIS_XY: [f64; 2] = [0.5, 0.0];
 /// The post's top, where a rotor's hinge sits, m.
 const POST_TOP: f64 = 0.06;
+/// C4's spinner axis on the table (world x, y), m, and the top of its post, m: 1 cm nearer
+/// the arm, 3 cm to the hand's right of the rotors' axis and 1.5 cm higher. C4 keeps the arm
+/// fixed at its start pose, where the open fingertips hang 4.5 cm in front of the rotors' axis
+/// at the height of a spinner's lobes and curl up and away from it: there closing the hand
+/// turned the spinner backward or not at all. Here the ring and little fingers' curl sweeps
+/// through the lobes left of the axis and flicks it forward: more than a turn anywhere within
+/// ±1 cm of this place (measured with MuJoCo, a fist closed in 0.5 s).
+const SPINNER_XY: [f64; 2] = [0.49, -0.03];
+const SPINNER_TOP: f64 = 0.075;
 /// Ten turns, rad (the lab's C1 bolt).
 const TEN_TURNS_RAD: f64 = 20.0 * std::f64::consts::PI;
 
@@ -33,7 +42,7 @@ pub(super) enum Rotor {
 }
 
 /// The base plate and the post the rotors sit on.
-fn base() -> String {
+fn base(xy: [f64; 2], top: f64) -> String {
     format!(
         concat!(
             "    <body name=\"rotor_base\" pos=\"{xy} 0\">\n",
@@ -41,9 +50,9 @@ fn base() -> String {
             "      <geom name=\"base_post\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 {half}\" pos=\"0 0 {mid}\"/>\n",
             "    </body>\n",
         ),
-        xy = nums(&AXIS_XY),
-        half = num((POST_TOP - 0.006) / 2.0),
-        mid = num((POST_TOP + 0.006) / 2.0),
+        xy = nums(&xy),
+        half = num((top - 0.006) / 2.0),
+        mid = num((top + 0.006) / 2.0),
     )
 }
 
@@ -58,7 +67,7 @@ pub(super) fn rotor_scaffold(rotor: Rotor) -> Scaffold {
       <joint name="rotor_hinge" class="pomdar_object" type="hinge" axis="0 0 -1"{range} damping="0.002" frictionloss="0.002"/>
 {geoms}    </body>
 "#,
-        base = base(),
+        base = base(AXIS_XY, POST_TOP),
         xy = nums(&AXIS_XY),
         top = num(POST_TOP),
         geoms = rotor_geoms(rotor),
@@ -107,9 +116,9 @@ pub(super) fn spinner_scaffold() -> Scaffold {
       <geom name="spinner_hub" class="pomdar_object" type="cylinder" size="0.011 0.004" pos="0 0 0.005" mass="0.006"/>
 {lobes}    </body>
 "#,
-        base = base(),
-        xy = nums(&AXIS_XY),
-        top = num(POST_TOP),
+        base = base(SPINNER_XY, SPINNER_TOP),
+        xy = nums(&SPINNER_XY),
+        top = num(SPINNER_TOP),
     );
     Scaffold {
         bodies,

@@ -8,4 +8,5 @@ mod physics_demo;
 mod physics_engine;
 mod physics_hands;
 mod physics_scenes;
+mod physics_tasks;
 mod physics_trial;
