@@ -100,9 +100,18 @@ pub enum LaunchConfigKind {
 }
 
 impl LaunchConfigKind {
-    /// The kind of a file, from its folder under `launch_configs/`.
+    /// The kind of a file, from its folder under `launch_configs/` (`sim/tasks/` holds the
+    /// glove task scripts of single tasks, not a task catalog).
     pub fn of(path: &Path) -> Option<LaunchConfigKind> {
         let folder = path.parent()?.file_name()?.to_str()?;
+        let grandparent = path
+            .parent()?
+            .parent()
+            .and_then(Path::file_name)
+            .and_then(|n| n.to_str());
+        if folder == "tasks" && grandparent == Some("sim") {
+            return Some(LaunchConfigKind::GloveScript);
+        }
         match folder {
             "hands" => Some(LaunchConfigKind::HandImport),
             "retarget" => Some(LaunchConfigKind::Retarget),
@@ -198,7 +207,7 @@ mod tests {
     #[test]
     fn the_shipped_glove_scripts_are_checked_as_scripts() {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../launch_configs/sim");
-        for name in ["grasp_place.toml", "grasp_miss.toml"] {
+        for name in ["grasp_place.toml", "grasp_miss.toml", "tasks/C4.toml"] {
             let kind = check_file(&dir.join(name)).unwrap();
             assert_eq!(kind, LaunchConfigKind::GloveScript, "{name}");
         }
