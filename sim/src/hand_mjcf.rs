@@ -196,6 +196,11 @@ pub struct HandMjcf {
     pub mount: Isometry3<f64>,
 }
 
+/// [`HandMjcf::mount`] of `model`'s hand, without writing the hand.
+pub(crate) fn hand_mount(model: &HandModel, options: &HandMjcfOptions) -> Isometry3<f64> {
+    mount_pose(&HandTree::new(model, options))
+}
+
 /// Write `model` as MJCF with the servo and contact parameters of `options`.
 pub fn hand_mjcf(model: &HandModel, options: &HandMjcfOptions) -> HandMjcf {
     let tree = HandTree::new(model, options);

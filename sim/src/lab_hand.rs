@@ -34,7 +34,7 @@ mod tests;
 use retarget::{HandModel, LinkId};
 use roxmltree::{Document, Node};
 
-use crate::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mjcf};
+use crate::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mount};
 use xml_copy::{Attributes, copy, get, set};
 
 /// The default class holding the lab hand's top-level defaults.
@@ -107,7 +107,6 @@ pub fn lab_hand_mjcf(
     let refs = dof_refs(root, origin, model)?;
     let (actuators, dof_actuators) = actuators_xml(root, origin, model, &refs)?;
     let bodies = body_names(root);
-    let generated = hand_mjcf(model, options);
     Ok(HandMjcf {
         body: body_xml(root, model, &refs),
         defaults: defaults_xml(root, options),
@@ -128,7 +127,8 @@ pub fn lab_hand_mjcf(
         eulerseq: compiler
             .and_then(|c| c.attribute("eulerseq"))
             .map(str::to_string),
-        mount: generated.mount,
+        // The file's world frame is the URDF root link's, as the project's hand's root is.
+        mount: hand_mount(model, options),
     })
 }
 

@@ -82,12 +82,22 @@ pub fn project_scene_xml(
     scene: ProjectScene<'_>,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
     let hand = twin_hand(model, scene.hand_file)?;
+    scene_with_hand(task, &hand, arm_start, scene.start)
+}
+
+/// The project's scene of `task` holding `hand`, its start moved by `start`.
+fn scene_with_hand(
+    task: &TaskSpec,
+    hand: &HandMjcf,
+    arm_start: Isometry3<f64>,
+    start: StartPerturbation,
+) -> Result<(String, PhysicsMapping), PhysicsError> {
     let options = SceneOptions {
         arm_start,
-        start: scene.start,
+        start,
         ..SceneOptions::default()
     };
-    let scene = task_scene(task, &hand, &options).map_err(|e| PhysicsError::Load {
+    let scene = task_scene(task, hand, &options).map_err(|e| PhysicsError::Load {
         origin: format!("the project's scene for {}", task.id),
         message: e.to_string(),
     })?;
@@ -109,7 +119,8 @@ pub fn load_task(
     let binding = hand_binding(&hand);
     let (engine, progress, scene_xml) = match source {
         SceneSource::Project(scene) => {
-            let (xml, progress) = project_scene_xml(task, model, arm_start, scene)?;
+            // The hand read once: it is the scene's and the binding's.
+            let (xml, progress) = scene_with_hand(task, &hand, arm_start, scene.start)?;
             let origin = format!("the project's scene for {}", task.id);
             let engine = PhysicsEngine::from_xml_str(&xml, &origin, &binding)?;
             (engine, progress, Some(xml))
