@@ -8,6 +8,13 @@
 //! them on the robot's own topics with the reliability the robot's drivers ask for (on that
 //! computer's loopback, which no cable cut interrupts), dropping any command older than
 //! `max_age_ms` on arrival ([`CommandAgeGate`]).
+//!
+//! A command's age is judged from the older of its two times: when the station sent it (the
+//! DDS source timestamp) and its header stamp, the time its data refers to (a hand command's
+//! glove frame, an arm target's control tick). The robot's drivers judge a command by its
+//! header stamp, so a command that left the station fresh but computed from a glove frame
+//! that was already old (a glove or a station that stalled) is as old to them as one the
+//! link delayed; the counts say which of the two it was.
 
 use serde::{Deserialize, Serialize};
 
@@ -23,8 +30,9 @@ pub struct RobotLinkConfig {
     /// `/pomdar/link/pomdar/hand/joint_targets`. Empty: publish straight to the robot's topics
     /// with `output.qos` (one computer, or a link that is never cut).
     pub relay_prefix: String,
-    /// `pomdar relay` drops a command whose age on arrival (its receive time minus the time the
-    /// station sent it, on clocks the lab keeps in step) exceeds this, milliseconds.
+    /// `pomdar relay` drops a command whose age on arrival exceeds this, milliseconds: its
+    /// receive time minus the older of the time the station sent it and its header stamp (the
+    /// time its data refers to), on clocks the lab keeps in step.
     pub max_age_ms: u64,
 }
 
@@ -114,14 +122,17 @@ pub enum AgeVerdict {
     TooOld {
         /// Its age, nanoseconds.
         age_ns: i64,
+        /// Whether its header stamp was already older than the limit when the station sent
+        /// it (its input was late: the glove or the station stalled, not the link).
+        when_sent: bool,
     },
-    /// Sent later than it was received by more than the limit: the two computers' clocks
-    /// disagree (or the sender's is wrong); dropped, since its age cannot be known.
+    /// Sent or stamped later than it was received by more than the limit: the computers'
+    /// clocks disagree (or the sender's is wrong); dropped, since its age cannot be known.
     FromTheFuture {
         /// How far ahead, nanoseconds.
         ahead_ns: i64,
     },
-    /// The sender set no send time: its age cannot be known; dropped.
+    /// Neither a send time nor a header stamp: its age cannot be known; dropped.
     Unstamped,
 }
 
@@ -139,6 +150,9 @@ pub struct AgeCounts {
     pub forwarded: u64,
     /// Commands dropped as older than the limit.
     pub too_old: u64,
+    /// Of those, the commands whose header stamp was already older than the limit when the
+    /// station sent them.
+    pub too_old_when_sent: u64,
     /// Commands dropped as sent in the future (clocks out of step).
     pub from_the_future: u64,
     /// Commands dropped without a send time.
@@ -154,7 +168,36 @@ impl AgeCounts {
     }
 }
 
-/// The relay's check of each command's age: receive time minus send time, both wall clocks.
+/// The times a command carries, as the relay reads them.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CommandTimes {
+    /// When the station sent it (the DDS source timestamp), nanoseconds since the epoch.
+    pub sent_ns: Option<i64>,
+    /// Its header stamp, nanoseconds since the epoch; None for a type without a header or a
+    /// stamp left at zero.
+    pub stamp_ns: Option<i64>,
+}
+
+impl CommandTimes {
+    /// The times of a command sent at `sent_ns` with header stamp `stamp_ns` (zero: unset).
+    pub fn new(sent_ns: Option<i64>, stamp_ns: Option<i64>) -> CommandTimes {
+        CommandTimes {
+            sent_ns,
+            stamp_ns: stamp_ns.filter(|s| *s != 0),
+        }
+    }
+
+    /// Whether the header stamp was older than `max_age_ns` when the command was sent.
+    fn stale_when_sent(&self, max_age_ns: i64) -> bool {
+        match (self.sent_ns, self.stamp_ns) {
+            (Some(sent), Some(stamp)) => sent.saturating_sub(stamp) > max_age_ns,
+            _ => false,
+        }
+    }
+}
+
+/// The relay's check of each command's age: its receive time minus the older of its send
+/// time and header stamp, all wall clocks.
 #[derive(Debug, Clone)]
 pub struct CommandAgeGate {
     max_age_ns: i64,
@@ -172,32 +215,40 @@ impl CommandAgeGate {
         }
     }
 
-    /// Judge a command sent at `sent_ns` (None: no send time) and received at `received_ns`.
-    pub fn judge(&mut self, sent_ns: Option<i64>, received_ns: i64) -> AgeVerdict {
-        let verdict = match sent_ns {
-            None => AgeVerdict::Unstamped,
-            Some(sent) => {
-                let age_ns = received_ns.saturating_sub(sent);
-                if age_ns > self.max_age_ns {
-                    AgeVerdict::TooOld { age_ns }
-                } else if age_ns < -self.max_age_ns {
-                    AgeVerdict::FromTheFuture { ahead_ns: -age_ns }
-                } else {
-                    AgeVerdict::Forward
-                }
-            }
-        };
+    /// Judge a command with `times` received at `received_ns`.
+    pub fn judge(&mut self, times: CommandTimes, received_ns: i64) -> AgeVerdict {
+        let verdict = self.verdict(times, received_ns);
         let counts = &mut self.counts;
         match verdict {
             AgeVerdict::Forward => counts.forwarded += 1,
-            AgeVerdict::TooOld { age_ns } => {
+            AgeVerdict::TooOld { age_ns, when_sent } => {
                 counts.too_old += 1;
+                counts.too_old_when_sent += u64::from(when_sent);
                 counts.oldest_dropped_ns = counts.oldest_dropped_ns.max(age_ns);
             }
             AgeVerdict::FromTheFuture { .. } => counts.from_the_future += 1,
             AgeVerdict::Unstamped => counts.unstamped += 1,
         }
         verdict
+    }
+
+    fn verdict(&self, times: CommandTimes, received_ns: i64) -> AgeVerdict {
+        let known = [times.sent_ns, times.stamp_ns].into_iter().flatten();
+        let (Some(oldest), Some(newest)) = (known.clone().min(), known.max()) else {
+            return AgeVerdict::Unstamped;
+        };
+        let age_ns = received_ns.saturating_sub(oldest);
+        let ahead_ns = newest.saturating_sub(received_ns);
+        if age_ns > self.max_age_ns {
+            AgeVerdict::TooOld {
+                age_ns,
+                when_sent: times.stale_when_sent(self.max_age_ns),
+            }
+        } else if ahead_ns > self.max_age_ns {
+            AgeVerdict::FromTheFuture { ahead_ns }
+        } else {
+            AgeVerdict::Forward
+        }
     }
 
     /// What the gate decided so far.
@@ -212,27 +263,40 @@ mod tests {
 
     const MS: i64 = 1_000_000;
 
+    fn sent(sent_ns: i64) -> CommandTimes {
+        CommandTimes::new(Some(sent_ns), None)
+    }
+
     #[test]
     fn commands_within_the_age_limit_pass_older_ones_and_unknown_ages_do_not() {
         let mut gate = CommandAgeGate::new(100);
         let t = 1_700_000_000_000 * MS;
-        assert_eq!(gate.judge(Some(t - 2 * MS), t), AgeVerdict::Forward);
-        assert_eq!(gate.judge(Some(t - 100 * MS), t), AgeVerdict::Forward);
+        assert_eq!(gate.judge(sent(t - 2 * MS), t), AgeVerdict::Forward);
+        assert_eq!(gate.judge(sent(t - 100 * MS), t), AgeVerdict::Forward);
         assert_eq!(
-            gate.judge(Some(t - 101 * MS), t),
-            AgeVerdict::TooOld { age_ns: 101 * MS }
+            gate.judge(sent(t - 101 * MS), t),
+            AgeVerdict::TooOld {
+                age_ns: 101 * MS,
+                when_sent: false
+            }
         );
         assert_eq!(
-            gate.judge(Some(t - 8_000 * MS), t),
-            AgeVerdict::TooOld { age_ns: 8_000 * MS }
+            gate.judge(sent(t - 8_000 * MS), t),
+            AgeVerdict::TooOld {
+                age_ns: 8_000 * MS,
+                when_sent: false
+            }
         );
         // A little ahead (clocks a few ms apart) passes; far ahead cannot be judged.
-        assert_eq!(gate.judge(Some(t + 5 * MS), t), AgeVerdict::Forward);
+        assert_eq!(gate.judge(sent(t + 5 * MS), t), AgeVerdict::Forward);
         assert_eq!(
-            gate.judge(Some(t + 500 * MS), t),
+            gate.judge(sent(t + 500 * MS), t),
             AgeVerdict::FromTheFuture { ahead_ns: 500 * MS }
         );
-        assert_eq!(gate.judge(None, t), AgeVerdict::Unstamped);
+        assert_eq!(
+            gate.judge(CommandTimes::default(), t),
+            AgeVerdict::Unstamped
+        );
         let counts = gate.counts();
         assert_eq!(
             (counts.forwarded, counts.too_old, counts.from_the_future),
@@ -241,6 +305,50 @@ mod tests {
         assert_eq!((counts.unstamped, counts.dropped()), (1, 4));
         assert_eq!(counts.oldest_dropped_ns, 8_000 * MS);
         assert!(!AgeVerdict::Unstamped.forwards());
+    }
+
+    #[test]
+    fn a_header_stamp_older_than_its_send_time_ages_the_command() {
+        let mut gate = CommandAgeGate::new(100);
+        let t = 1_700_000_000_000 * MS;
+        // Sent 5 ms ago from a glove frame 40 ms old: fresh.
+        let fresh = CommandTimes::new(Some(t - 5 * MS), Some(t - 40 * MS));
+        assert_eq!(gate.judge(fresh, t), AgeVerdict::Forward);
+        // Sent 5 ms ago from a frame 139 ms old (the glove or the station stalled).
+        let late_input = CommandTimes::new(Some(t - 5 * MS), Some(t - 139 * MS));
+        assert_eq!(
+            gate.judge(late_input, t),
+            AgeVerdict::TooOld {
+                age_ns: 139 * MS,
+                when_sent: true
+            }
+        );
+        // Stamped fresh, delayed by the link: old by its send time.
+        let late_link = CommandTimes::new(Some(t - 300 * MS), Some(t - 301 * MS));
+        assert_eq!(
+            gate.judge(late_link, t),
+            AgeVerdict::TooOld {
+                age_ns: 301 * MS,
+                when_sent: false
+            }
+        );
+        // A zero stamp is no stamp; a stamp alone is judged.
+        assert_eq!(
+            gate.judge(CommandTimes::new(Some(t - 5 * MS), Some(0)), t),
+            AgeVerdict::Forward
+        );
+        assert_eq!(
+            gate.judge(CommandTimes::new(None, Some(t - 2 * MS)), t),
+            AgeVerdict::Forward
+        );
+        // A stamp far ahead of this clock cannot be judged.
+        assert_eq!(
+            gate.judge(CommandTimes::new(Some(t - 5 * MS), Some(t + 500 * MS)), t),
+            AgeVerdict::FromTheFuture { ahead_ns: 500 * MS }
+        );
+        let counts = gate.counts();
+        assert_eq!((counts.too_old, counts.too_old_when_sent), (2, 1));
+        assert_eq!((counts.forwarded, counts.from_the_future), (3, 1));
     }
 
     #[test]

@@ -189,7 +189,8 @@ enum Command {
     /// it and nothing old is resent when it returns. The relay republishes each command on the
     /// robot's topic with the configuration's output.qos (reliable for the lab's drivers), on
     /// this computer, and drops any command older than `[robot_link] max_age_ms` (100 ms) on
-    /// arrival: the station's and this computer's clocks must be kept in step (chrony). It
+    /// arrival, by the older of its send time and its header stamp (a hand command's glove
+    /// frame): the lab's clocks must be kept in step (chrony). It
     /// estimates the offset between the two clocks from the smallest command ages and warns,
     /// naming it, once it takes a quarter of that limit. Drops and refused publishes are
     /// reported every 5 s at most; a summary on Ctrl-C. Twice a second it publishes its status

@@ -8,12 +8,13 @@ use futures::StreamExt as _;
 use msgs::RosMessage;
 use ros2_client::{Publisher, Subscription};
 use station::link_clock::ClockOffsetMonitor;
-use station::robot_link::{AgeCounts, AgeVerdict, CommandAgeGate};
+use station::robot_link::{AgeCounts, AgeVerdict, CommandAgeGate, CommandTimes};
 use tokio::sync::watch;
 
 use super::{RelayReport, RelayRoute, RelaySettings};
 use crate::clock::WallClock;
 use crate::ingress::log_limit::LogLimiter;
+use crate::ros::probe_timing::HeaderStamp;
 use crate::ros::{RosError, RosNode};
 
 /// How often at most the relay says it dropped commands, or could not publish them, per
@@ -86,22 +87,23 @@ impl LegWarnings {
             return;
         }
         let old = counts.too_old - self.counts_at_last.too_old;
+        let late_input = counts.too_old_when_sent - self.counts_at_last.too_old_when_sent;
         let ahead = counts.from_the_future - self.counts_at_last.from_the_future;
         let unstamped = counts.unstamped - self.counts_at_last.unstamped;
         let mut parts = Vec::new();
         if old > 0 {
             parts.push(format!(
-                "{old} older than {max_age_ms} ms (the oldest dropped so far {:.0} ms)",
+                "{old} older than {max_age_ms} ms (the oldest dropped so far {:.0} ms; {late_input} of them already that old when the station sent them: its glove input was late, not the link)",
                 counts.oldest_dropped_ns as f64 * 1e-6
             ));
         }
         if ahead > 0 {
             parts.push(format!(
-                "{ahead} sent more than {max_age_ms} ms ahead of this computer's clock (keep the station's and this computer's clocks in step, e.g. chrony)"
+                "{ahead} sent or stamped more than {max_age_ms} ms ahead of this computer's clock (keep the lab's clocks in step, e.g. chrony: a hand command's stamp is its glove frame's time)"
             ));
         }
         if unstamped > 0 {
-            parts.push(format!("{unstamped} without a send time"));
+            parts.push(format!("{unstamped} with neither a send time nor a stamp"));
         }
         eprintln!("relay: {topic}: dropped {}", parts.join(", "));
         self.counts_at_last = counts.clone();
@@ -120,7 +122,7 @@ impl LegWarnings {
 }
 
 /// Relay one topic until `shutdown` or its subscription ends.
-pub async fn relay_leg<M: RosMessage + 'static>(
+pub async fn relay_leg<M: RosMessage + HeaderStamp + 'static>(
     leg: Option<&Leg<M>>,
     context: &LegContext<'_>,
     mut shutdown: watch::Receiver<bool>,
@@ -142,7 +144,8 @@ pub async fn relay_leg<M: RosMessage + 'static>(
                 if let Some(sent) = sent {
                     context.observe_age(now.saturating_sub(sent), now);
                 }
-                let verdict = gate.judge(sent, now);
+                let times = CommandTimes::new(sent, message.header_stamp_ns());
+                let verdict = gate.judge(times, now);
                 let failed =
                     verdict.forwards() && leg.publisher.async_publish(message).await.is_err();
                 (Some(verdict), failed)

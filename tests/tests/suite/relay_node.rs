@@ -1,6 +1,8 @@
 //! `pomdar relay`'s node on loopback DDS: commands on the relay topic, sent with chosen DDS
-//! source timestamps, reach the robot's topic when fresh and are dropped, and counted, when
-//! older than `[robot_link] max_age_ms`, sent "in the future" by more than it, or after.
+//! source timestamps and header stamps, reach the robot's topic when fresh and are dropped,
+//! and counted, when older than `[robot_link] max_age_ms` by either time (a header stamp
+//! already that old when sent is counted as such), sent "in the future" by more than it, or
+//! after.
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -17,8 +19,10 @@ use tokio::sync::watch;
 
 const MS: i64 = 1_000_000;
 
-fn command(marker: f64) -> JointState {
+/// A joint target marked `marker`, its header stamp `stamp_ns` (0: unset).
+fn command(marker: f64, stamp_ns: i64) -> JointState {
     JointState {
+        header: station::convert::header(stamp_ns, ""),
         name: vec!["right_index_mcp".into()],
         position: vec![marker],
         ..JointState::default()
@@ -56,23 +60,28 @@ async fn the_relay_forwards_fresh_commands_and_drops_old_and_future_ones() {
     tokio::time::sleep(Duration::from_millis(500)).await;
 
     let clock = StationClock::new();
+    // (marker, send time offset, header stamp's age when sent; None: unset)
     let sent = [
-        (1.0, 0),
-        (2.0, -5_000 * MS),
-        (3.0, 5_000 * MS),
-        (4.0, -101 * MS),
-        (5.0, 0),
+        (1.0, 0, None),
+        (2.0, -5_000 * MS, None),
+        (3.0, 5_000 * MS, None),
+        (4.0, -101 * MS, None),
+        (5.0, 0, Some(20 * MS)),
+        (6.0, 0, Some(150 * MS)),
+        (7.0, 0, None),
     ];
-    for (marker, offset) in sent {
+    for (marker, offset, stamp_age) in sent {
+        let now = clock.now_ns();
+        let stamp = stamp_age.map_or(0, |age| now - age);
         station
-            .write(command(marker), clock.now_ns() + offset)
+            .write(command(marker, stamp), now + offset)
             .await
             .unwrap();
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
     let mut heard = Vec::new();
     let mut stream = Box::pin(driver.async_stream());
-    while heard.len() < 2 {
+    while heard.len() < 3 {
         let next = tokio::time::timeout(Duration::from_secs(10), stream.next()).await;
         let (message, _) = next
             .expect("the relay forwarded too little")
@@ -81,14 +90,19 @@ async fn the_relay_forwards_fresh_commands_and_drops_old_and_future_ones() {
         heard.push(message.position[0]);
     }
     // Anything else would have arrived by now, in order, before the last fresh one.
-    assert_eq!(heard, [1.0, 5.0], "forwarded commands");
+    assert_eq!(heard, [1.0, 5.0, 7.0], "forwarded commands");
     stop.send(true).unwrap();
     relay.await.unwrap().unwrap();
     let report = report.lock().unwrap();
     let ages = &report.topics[&route.to].ages;
     assert_eq!(
-        (ages.forwarded, ages.too_old, ages.from_the_future),
-        (2, 2, 1),
+        (
+            ages.forwarded,
+            ages.too_old,
+            ages.too_old_when_sent,
+            ages.from_the_future
+        ),
+        (3, 3, 1, 1),
         "{report:?}"
     );
     assert!(ages.oldest_dropped_ns >= 5_000 * MS, "{report:?}");
