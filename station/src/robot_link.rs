@@ -122,9 +122,10 @@ pub enum AgeVerdict {
     TooOld {
         /// Its age, nanoseconds.
         age_ns: i64,
-        /// Whether its header stamp was already older than the limit when the station sent
-        /// it (its input was late: the glove or the station stalled, not the link).
-        when_sent: bool,
+        /// Whether it is too old by its header stamp only, the link having delivered it within
+        /// the limit of its send time: its input was late (the glove or the station stalled),
+        /// not the link.
+        by_stamp: bool,
     },
     /// Sent or stamped later than it was received by more than the limit: the computers'
     /// clocks disagree (or the sender's is wrong); dropped, since its age cannot be known.
@@ -150,9 +151,9 @@ pub struct AgeCounts {
     pub forwarded: u64,
     /// Commands dropped as older than the limit.
     pub too_old: u64,
-    /// Of those, the commands whose header stamp was already older than the limit when the
-    /// station sent them.
-    pub too_old_when_sent: u64,
+    /// Of those, the commands too old by their header stamp only (the link delivered them
+    /// within the limit of their send time): late input, not the link.
+    pub too_old_by_stamp: u64,
     /// Commands dropped as sent in the future (clocks out of step).
     pub from_the_future: u64,
     /// Commands dropped without a send time.
@@ -187,12 +188,14 @@ impl CommandTimes {
         }
     }
 
-    /// Whether the header stamp was older than `max_age_ns` when the command was sent.
-    fn stale_when_sent(&self, max_age_ns: i64) -> bool {
-        match (self.sent_ns, self.stamp_ns) {
-            (Some(sent), Some(stamp)) => sent.saturating_sub(stamp) > max_age_ns,
-            _ => false,
-        }
+    /// Whether a command received at `received_ns` is too old by its stamp only: its send
+    /// time, if any, within `max_age_ns`.
+    fn old_by_stamp_only(&self, received_ns: i64, max_age_ns: i64) -> bool {
+        self.stamp_ns
+            .is_some_and(|stamp| received_ns.saturating_sub(stamp) > max_age_ns)
+            && self
+                .sent_ns
+                .is_none_or(|sent| received_ns.saturating_sub(sent) <= max_age_ns)
     }
 }
 
@@ -221,9 +224,9 @@ impl CommandAgeGate {
         let counts = &mut self.counts;
         match verdict {
             AgeVerdict::Forward => counts.forwarded += 1,
-            AgeVerdict::TooOld { age_ns, when_sent } => {
+            AgeVerdict::TooOld { age_ns, by_stamp } => {
                 counts.too_old += 1;
-                counts.too_old_when_sent += u64::from(when_sent);
+                counts.too_old_by_stamp += u64::from(by_stamp);
                 counts.oldest_dropped_ns = counts.oldest_dropped_ns.max(age_ns);
             }
             AgeVerdict::FromTheFuture { .. } => counts.from_the_future += 1,
@@ -242,7 +245,7 @@ impl CommandAgeGate {
         if age_ns > self.max_age_ns {
             AgeVerdict::TooOld {
                 age_ns,
-                when_sent: times.stale_when_sent(self.max_age_ns),
+                by_stamp: times.old_by_stamp_only(received_ns, self.max_age_ns),
             }
         } else if ahead_ns > self.max_age_ns {
             AgeVerdict::FromTheFuture { ahead_ns }
@@ -277,14 +280,14 @@ mod tests {
             gate.judge(sent(t - 101 * MS), t),
             AgeVerdict::TooOld {
                 age_ns: 101 * MS,
-                when_sent: false
+                by_stamp: false
             }
         );
         assert_eq!(
             gate.judge(sent(t - 8_000 * MS), t),
             AgeVerdict::TooOld {
                 age_ns: 8_000 * MS,
-                when_sent: false
+                by_stamp: false
             }
         );
         // A little ahead (clocks a few ms apart) passes; far ahead cannot be judged.
@@ -314,22 +317,25 @@ mod tests {
         // Sent 5 ms ago from a glove frame 40 ms old: fresh.
         let fresh = CommandTimes::new(Some(t - 5 * MS), Some(t - 40 * MS));
         assert_eq!(gate.judge(fresh, t), AgeVerdict::Forward);
-        // Sent 5 ms ago from a frame 139 ms old (the glove or the station stalled).
-        let late_input = CommandTimes::new(Some(t - 5 * MS), Some(t - 139 * MS));
-        assert_eq!(
-            gate.judge(late_input, t),
-            AgeVerdict::TooOld {
-                age_ns: 139 * MS,
-                when_sent: true
-            }
-        );
+        // Sent 5 ms ago from a frame 139 ms old (the glove or the station stalled), or 80 ms
+        // ago from a frame 60 ms old: too old by the stamp only, the link on time.
+        for (sent, stamp) in [(5, 139), (80, 140)] {
+            let late_input = CommandTimes::new(Some(t - sent * MS), Some(t - stamp * MS));
+            assert_eq!(
+                gate.judge(late_input, t),
+                AgeVerdict::TooOld {
+                    age_ns: stamp * MS,
+                    by_stamp: true
+                }
+            );
+        }
         // Stamped fresh, delayed by the link: old by its send time.
         let late_link = CommandTimes::new(Some(t - 300 * MS), Some(t - 301 * MS));
         assert_eq!(
             gate.judge(late_link, t),
             AgeVerdict::TooOld {
                 age_ns: 301 * MS,
-                when_sent: false
+                by_stamp: false
             }
         );
         // A zero stamp is no stamp; a stamp alone is judged.
@@ -347,7 +353,7 @@ mod tests {
             AgeVerdict::FromTheFuture { ahead_ns: 500 * MS }
         );
         let counts = gate.counts();
-        assert_eq!((counts.too_old, counts.too_old_when_sent), (2, 1));
+        assert_eq!((counts.too_old, counts.too_old_by_stamp), (3, 2));
         assert_eq!((counts.forwarded, counts.from_the_future), (3, 1));
     }
 

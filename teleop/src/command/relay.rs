@@ -63,12 +63,12 @@ pub async fn relay(args: RelayArgs) -> anyhow::Result<()> {
         for (topic, counts) in &report.topics {
             let ages = &counts.ages;
             eprintln!(
-                "relay: {topic}: forwarded {}, dropped {} ({} older than {} ms of which {} already when the station sent them, {} ahead of this clock, {} without a send time or stamp), {} lost in DDS, {} not published",
+                "relay: {topic}: forwarded {}, dropped {} ({} older than {} ms of which {} by their stamp only (late input, not the link), {} ahead of this clock, {} without a send time or stamp), {} lost in DDS, {} not published",
                 ages.forwarded,
                 ages.dropped(),
                 ages.too_old,
                 settings.max_age_ms,
-                ages.too_old_when_sent,
+                ages.too_old_by_stamp,
                 ages.from_the_future,
                 ages.unstamped,
                 counts.input_errors,

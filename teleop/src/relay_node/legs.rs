@@ -87,13 +87,13 @@ impl LegWarnings {
             return;
         }
         let old = counts.too_old - self.counts_at_last.too_old;
-        let late_input = counts.too_old_when_sent - self.counts_at_last.too_old_when_sent;
+        let late_input = counts.too_old_by_stamp - self.counts_at_last.too_old_by_stamp;
         let ahead = counts.from_the_future - self.counts_at_last.from_the_future;
         let unstamped = counts.unstamped - self.counts_at_last.unstamped;
         let mut parts = Vec::new();
         if old > 0 {
             parts.push(format!(
-                "{old} older than {max_age_ms} ms (the oldest dropped so far {:.0} ms; {late_input} of them already that old when the station sent them: its glove input was late, not the link)",
+                "{old} older than {max_age_ms} ms (the oldest dropped so far {:.0} ms; {late_input} of them by their stamp only: the glove input was late, not the link)",
                 counts.oldest_dropped_ns as f64 * 1e-6
             ));
         }

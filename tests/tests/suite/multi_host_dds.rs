@@ -357,16 +357,16 @@ fn stop_nodes(session: &mut Session<'_>) {
 struct RelayLine {
     forwarded: u64,
     dropped: u64,
-    /// Dropped because the command's glove frame was already older than the limit when the
-    /// station sent it (the glove link was cut), not because the station–robot link was late.
+    /// Dropped as too old by the command's header stamp (its glove frame's time) only, the
+    /// station–robot link having delivered it within the limit: the glove link was cut.
     dropped_input_late: u64,
     lost_in_dds: u64,
     not_published: u64,
 }
 
-/// `relay: TOPIC: forwarded F, dropped D (O older than 100 ms of which W already when the
-/// station sent them, A ahead of this clock, U without a send time or stamp), L lost in DDS,
-/// P not published`.
+/// `relay: TOPIC: forwarded F, dropped D (O older than 100 ms of which W by their stamp only
+/// (late input, not the link), A ahead of this clock, U without a send time or stamp), L lost
+/// in DDS, P not published`.
 fn relay_line(session: &Session<'_>, topic: &str) -> RelayLine {
     let text = session.output_of("C", "pomdar relay");
     let prefix = format!("relay: {topic}: forwarded ");
@@ -402,9 +402,10 @@ fn relay_line(session: &Session<'_>, topic: &str) -> RelayLine {
 }
 
 /// Host C heard every command the station sent (reliable QoS, and the B–C link stayed up),
-/// except those the relay dropped because their glove frame was already older than
-/// `[robot_link] max_age_ms` when the station sent them: the commands between 100 ms into
-/// the glove cut and the hold at 150 ms, still stamped with the last frame's time. Every
+/// except those the relay dropped as older than `[robot_link] max_age_ms` by their header
+/// stamp only (their glove frame's time; the B–C link delivered them within the limit): the
+/// commands between 100 ms into the glove cut and the hold at 150 ms, still stamped with the
+/// last frame's time. Every
 /// command is accounted for: sent = forwarded + dropped, heard = forwarded, and nothing
 /// dropped for the link's sake, lost or left unpublished.
 fn check_c_heard_every_command(session: &Session<'_>) {

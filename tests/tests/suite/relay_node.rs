@@ -1,7 +1,7 @@
 //! `pomdar relay`'s node on loopback DDS: commands on the relay topic, sent with chosen DDS
 //! source timestamps and header stamps, reach the robot's topic when fresh and are dropped,
-//! and counted, when older than `[robot_link] max_age_ms` by either time (a header stamp
-//! already that old when sent is counted as such), sent "in the future" by more than it, or
+//! and counted, when older than `[robot_link] max_age_ms` by either time (one too old by its
+//! header stamp only is counted as such), sent "in the future" by more than it, or
 //! after.
 
 use std::sync::{Arc, Mutex};
@@ -99,7 +99,7 @@ async fn the_relay_forwards_fresh_commands_and_drops_old_and_future_ones() {
         (
             ages.forwarded,
             ages.too_old,
-            ages.too_old_when_sent,
+            ages.too_old_by_stamp,
             ages.from_the_future
         ),
         (3, 3, 1, 1),
