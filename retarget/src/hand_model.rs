@@ -215,6 +215,24 @@ impl HandModel {
         &self.frames
     }
 
+    /// Per degree of freedom, the digit whose fingertip chain alone it moves; `None` for one
+    /// shared by several chains (a wrist) or moving none.
+    pub fn dof_digits(&self) -> Vec<Option<Finger>> {
+        self.dofs
+            .iter()
+            .map(|dof| {
+                let moves: Vec<Finger> = Finger::ALL
+                    .into_iter()
+                    .filter(|f| self.chains[self.frames.tip(*f).0].contains(&dof.joint))
+                    .collect();
+                match moves[..] {
+                    [finger] => Some(finger),
+                    _ => None,
+                }
+            })
+            .collect()
+    }
+
     /// Number of links.
     pub fn link_count(&self) -> usize {
         self.link_names.len()

@@ -8,12 +8,13 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 7] = [
+pub const CORE_CRATES: [&str; 8] = [
     "msgs",
     "retarget",
     "calibration",
     "scoring",
     "study",
+    "review",
     "station",
     "simulation",
 ];

@@ -31,6 +31,16 @@
 //! closure = 0.8               # optional, default 1: 0 open … 1 the named pose
 //! ```
 //!
+//! A script may also name dropouts, windows of script time in which the simulated glove
+//! sends nothing (a tracker that lost the hand, a cable pulled), to rehearse and test what the
+//! station and the operator see then:
+//!
+//! ```toml
+//! [[dropouts]]
+//! from_s = 3.0                # seconds of script time, 0 ≤ from_s < to_s
+//! to_s = 3.4                  # windows in time order, not overlapping
+//! ```
+//!
 //! Pinch poses depend on the hand's proportions: [`GloveScript::resolve`] solves them for a
 //! shape (as [`Motion::new`](super::Motion::new) does, with the same [`PINCH_GAP_M`] gap)
 //! and gives the [`ResolvedScript`] that samples the script.
@@ -152,6 +162,41 @@ impl ScriptKeyframe {
 pub struct GloveScript {
     /// The keyframes, in time order, the first at `t_s = 0`.
     pub keyframes: Vec<ScriptKeyframe>,
+    /// Windows of script time in which the glove sends nothing, in time order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dropouts: Vec<ScriptDropout>,
+}
+
+/// A window of script time in which the simulated glove sends nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScriptDropout {
+    /// Its start, seconds of script time.
+    pub from_s: f64,
+    /// Its end, seconds (the glove sends again from here).
+    pub to_s: f64,
+}
+
+/// `Err` unless every dropout is a finite window `0 ≤ from_s < to_s`, after the one before.
+fn check_dropouts(dropouts: &[ScriptDropout]) -> Result<(), Error> {
+    let mut previous_end = 0.0;
+    for (index, d) in dropouts.iter().enumerate() {
+        let ok = d.from_s.is_finite()
+            && d.to_s.is_finite()
+            && d.from_s >= previous_end
+            && d.to_s > d.from_s;
+        if !ok {
+            return Err(Error::ConfigRange {
+                key: format!("dropouts[{index}]"),
+                value: format!("from_s = {}, to_s = {}", d.from_s, d.to_s),
+                allowed: format!(
+                    "finite, from_s < to_s, from_s at least {previous_end} s (0, or the end of the dropout before)"
+                ),
+            });
+        }
+        previous_end = d.to_s;
+    }
+    Ok(())
 }
 
 /// A [`ConfigRange`](Error::ConfigRange) error for field `field` of keyframe `index`.
@@ -237,7 +282,7 @@ impl GloveScript {
             check_values(index, keyframe)?;
             previous_t_s = Some(keyframe.t_s);
         }
-        Ok(())
+        check_dropouts(&self.dropouts)
     }
 
     /// The time of the last keyframe, seconds: when the script ends (and holds).
@@ -263,6 +308,7 @@ impl GloveScript {
                 .map(|k| Vector3::from(k.wrist_m))
                 .collect(),
             poses,
+            dropouts: self.dropouts.clone(),
         })
     }
 }
@@ -283,6 +329,7 @@ pub struct ResolvedScript {
     times_s: Vec<f64>,
     wrists_m: Vec<Vector3<f64>>,
     poses: Vec<HumanHandPose>,
+    dropouts: Vec<ScriptDropout>,
 }
 
 /// The minimum-jerk profile `10v³ − 15v⁴ + 6v⁵`: 0 → 1 with zero velocity and acceleration at
@@ -322,6 +369,14 @@ impl ResolvedScript {
     pub fn pose(&self, t_s: f64) -> HumanHandPose {
         let (i, j, s) = self.segment(t_s);
         HumanHandPose::lerp(&self.poses[i], &self.poses[j], s)
+    }
+
+    /// Whether the glove sends at `t_s` (outside every dropout).
+    pub fn sends_at(&self, t_s: f64) -> bool {
+        !self
+            .dropouts
+            .iter()
+            .any(|d| (d.from_s..d.to_s).contains(&t_s))
     }
 
     /// The wrist offset and the hand pose at `t_s`.
@@ -417,6 +472,35 @@ closure = 0.5
     }
 
     #[test]
+    fn dropouts_silence_the_glove_in_their_windows_and_bad_ones_name_their_index() {
+        let text = format!(
+            "{EXAMPLE}\n[[dropouts]]\nfrom_s = 1.0\nto_s = 1.4\n\n[[dropouts]]\nfrom_s = 3.0\nto_s = 3.2\n"
+        );
+        let script = GloveScript::from_toml_str(&text).unwrap();
+        let resolved = script.resolve(&HumanHandShape::average()).unwrap();
+        let sends: Vec<bool> = [0.99, 1.0, 1.39, 1.4, 3.1, 3.2]
+            .map(|t| resolved.sends_at(t))
+            .to_vec();
+        assert_eq!(sends, [true, false, false, true, false, true]);
+        assert!(example().sends_at(1.2), "no dropouts: always sends");
+        for (from, to, index) in [(1.0, 1.0, 0), (-1.0, 0.5, 0), (1.0, 2.0, 1)] {
+            let mut bad = script.clone();
+            bad.dropouts[0] = ScriptDropout {
+                from_s: from,
+                to_s: to,
+            };
+            if index == 1 {
+                bad.dropouts[1] = ScriptDropout {
+                    from_s: 1.5,
+                    to_s: 1.8,
+                };
+            }
+            let error = bad.validate().unwrap_err().to_string();
+            assert!(error.contains(&format!("dropouts[{index}]")), "{error}");
+        }
+    }
+
+    #[test]
     fn after_the_last_keyframe_it_holds_and_before_the_first_too() {
         let resolved = example();
         let end = resolved.sample(5.0);
@@ -431,6 +515,7 @@ closure = 0.5
     fn a_single_keyframe_is_a_still_hand() {
         let script = GloveScript {
             keyframes: vec![ScriptKeyframe::new(0.0, [0.0, 0.1, 0.0], ScriptPose::Fist)],
+            dropouts: Vec::new(),
         };
         let resolved = script.resolve(&HumanHandShape::average()).unwrap();
         assert_eq!(resolved.duration_s(), 0.0);
@@ -461,7 +546,10 @@ closure = 0.5
 
     #[test]
     fn validation_errors_name_the_keyframe_field() {
-        let script = |keyframes: Vec<ScriptKeyframe>| GloveScript { keyframes };
+        let script = |keyframes: Vec<ScriptKeyframe>| GloveScript {
+            keyframes,
+            dropouts: Vec::new(),
+        };
         let check = |s: GloveScript| s.validate().map(|()| s);
         let open = |t: f64| ScriptKeyframe::new(t, [0.0; 3], ScriptPose::Open);
         assert_eq!(error_key(check(script(vec![]))), "keyframes");

@@ -57,7 +57,8 @@ mod shape;
 mod sim_glove;
 
 pub use glove_script::{
-    GloveScript, MAX_WRIST_OFFSET_M, ResolvedScript, ScriptKeyframe, ScriptPose, ScriptSample,
+    GloveScript, MAX_WRIST_OFFSET_M, ResolvedScript, ScriptDropout, ScriptKeyframe, ScriptPose,
+    ScriptSample,
 };
 pub use hand_kinematics::{DigitChains, place_points};
 pub use motion::{

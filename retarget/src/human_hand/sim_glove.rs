@@ -205,6 +205,12 @@ impl SimGlove {
         self.script.as_ref()
     }
 
+    /// Whether the glove sends a frame at `t_s`: always, unless its script has a dropout
+    /// there.
+    pub fn sends_at(&self, t_s: f64) -> bool {
+        self.script.as_ref().is_none_or(|s| s.sends_at(t_s))
+    }
+
     /// The keypoint layout of the frames.
     pub fn layout(&self) -> KeypointLayout {
         self.layout
@@ -350,6 +356,7 @@ mod tests {
                 ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::Open),
                 ScriptKeyframe::new(3.0, [0.0, 0.18, -0.25], ScriptPose::CylinderGrasp),
             ],
+            dropouts: Vec::new(),
         };
         let placement = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.0, 0.0, 0.4));
         let g = glove()
@@ -374,7 +381,10 @@ mod tests {
         let expected = g.shape().keypoints_in(&g.pose_at(2.5), g.layout(), &wrist);
         assert_eq!(points, expected);
         assert!(g.script().is_some() && glove().script().is_none());
-        let bad = GloveScript { keyframes: vec![] };
+        let bad = GloveScript {
+            keyframes: vec![],
+            dropouts: Vec::new(),
+        };
         assert!(glove().with_script(&bad).is_err());
     }
 

@@ -136,20 +136,7 @@ pub struct QualityRecorder {
 impl QualityRecorder {
     /// A recorder for commands of `model` retargeted from keypoints in `layout`.
     pub fn new(model: HandModel, layout: KeypointLayout) -> QualityRecorder {
-        let dof_digit = model
-            .dofs
-            .iter()
-            .map(|dof| {
-                let moves: Vec<Finger> = Finger::ALL
-                    .into_iter()
-                    .filter(|f| model.chains[model.frames.tip(*f).0].contains(&dof.joint))
-                    .collect();
-                match moves[..] {
-                    [finger] => Some(finger),
-                    _ => None,
-                }
-            })
-            .collect();
+        let dof_digit = model.dof_digits();
         QualityRecorder {
             fk: model.fk_state(),
             model,

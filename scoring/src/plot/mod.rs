@@ -14,6 +14,9 @@
 //!   deviation as error bars, a legend (the source comparison, `pomdar score --compare`).
 //! - [`tracking_grid`]: commanded and measured joint angle over time, one small panel per
 //!   joint in a grid (`pomdar tracking`).
+//! - [`review_figure`]: one trial on one time axis: coloured span lanes (drive state, arm,
+//!   pinches), stacked series panels with dotted thresholds and tick markers, and progress,
+//!   drop and feedback marks drawn across everything.
 //!
 //! The charts build one drawing description (polylines, polygons, circles, text;
 //! `primitives`) which two backends render: an SVG writer (`<text>` in a sans-serif family,
@@ -37,6 +40,14 @@ mod primitives;
 mod radar;
 mod radar_chart;
 mod radar_layout;
+mod review_chart;
+mod review_figure;
+mod review_layout;
+mod review_legend;
+mod review_lines;
+mod review_paint;
+mod review_panel;
+mod review_style;
 mod scale;
 mod stroke_font;
 mod svg_backend;
@@ -51,6 +62,10 @@ pub use pca_chart::{MAX_SCATTER_SERIES, PcaChart, PcaSeries, pca_scatter};
 pub use primitives::Rgba;
 pub use radar::radar;
 pub use radar_chart::{RadarChart, RadarSeries};
+pub use review_chart::{
+    MarkKind, ReviewChart, ReviewSeries, SeriesPanel, Span, SpanKind, SpanLane, TimeMark,
+};
+pub use review_figure::review_figure;
 pub use scale::MAX_SCORE;
 pub use tracking_chart::{TrackingChart, TrackingPanel, tracking_grid};
 

@@ -20,6 +20,7 @@ pub mod recover;
 pub mod relay;
 pub mod replay;
 pub mod resim;
+pub mod review;
 pub mod score;
 pub mod sim;
 pub mod sim_glove;

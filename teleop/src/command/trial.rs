@@ -26,6 +26,7 @@ use tokio::sync::{mpsc, watch};
 use tokio::task::JoinHandle;
 
 use super::trial_physics::{PhysicsLink, PhysicsParts, next_progress, progress_action};
+use crate::atomic_file::write_atomically;
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
 use crate::ros::NetworkConfig;
@@ -39,6 +40,7 @@ use crate::station_node::recorder::{RecordingOptions, config_digest};
 use crate::station_node::ros_node::{
     LatestInput, OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
 };
+use crate::trial_review::review_trial_file;
 use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
 use station::ros_tools::ServiceAction;
@@ -312,6 +314,7 @@ pub async fn run_session(
             manifest_path: dir.join(MANIFEST_FILE),
             dir,
             report_written: false,
+            config: config.clone(),
         },
         station,
         clock,
@@ -677,6 +680,8 @@ struct Session {
     manifest_path: PathBuf,
     /// Whether the complete session's report is written.
     report_written: bool,
+    /// The station's configuration (the topics and limits each trial is reviewed with).
+    config: StationConfig,
 }
 
 impl Session {
@@ -867,8 +872,12 @@ impl TrialConsole {
             }
             StationEvent::TrialFinished(path) => {
                 test_pause(&format!("{} finished: scoring it", path.display()));
+                let said = review_lines(&path, &self.session.dir, &self.session.config);
                 effects
                     .extend(flow.trial_logged(inputs.score_file(&path).map_err(|e| e.to_string())));
+                for line in said {
+                    flow.say(line);
+                }
             }
             StationEvent::TrialFinishFailed { path, error } => {
                 effects.extend(flow.trial_logged(Err(format!(
@@ -1076,6 +1085,42 @@ fn typed(prompt: &mut Option<(Prompt, String)>, key: Input) -> Option<Action> {
     }
 }
 
+/// Where the console writes each trial's review, in the session directory.
+const REVIEW_DIR: &str = "review";
+
+/// The session index appended to the report: every scored trial, worst first (lowest score,
+/// or correctness without a baseline; then more feedback), with its feedback count and a
+/// link to its review figure.
+fn review_index(dir: &Path, scores: &[scoring::TrialScore]) -> String {
+    let mut rows: Vec<(f64, usize, String)> = scores
+        .iter()
+        .map(|score| {
+            let stem = Path::new(&score.file)
+                .file_stem()
+                .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+            let json = dir.join(REVIEW_DIR).join(format!("{stem}.review.json"));
+            let feedback = std::fs::read_to_string(&json)
+                .ok()
+                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                .and_then(|v| v["feedback"].as_array().map(Vec::len));
+            let value = score.score.unwrap_or(score.correctness);
+            let row = format!(
+                "| {stem} | {value:.3} | {} | [figure](../{REVIEW_DIR}/{stem}.review.png) |\n",
+                feedback.map_or("no review".to_string(), |n| n.to_string())
+            );
+            (value, feedback.unwrap_or(0), row)
+        })
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
+    let mut text = String::from(
+        "\n## Trials, worst first\n\n| trial | score | feedback | review |\n|---|---|---|---|\n",
+    );
+    for (_, _, row) in rows {
+        text.push_str(&row);
+    }
+    text
+}
+
 /// Scores the session's counted trials and writes the report into `DIR/report`.
 fn write_session_report(
     dir: &Path,
@@ -1099,10 +1144,38 @@ fn write_session_report(
             }),
         }
     }
+    let index = review_index(dir, &scores);
     let mut report = inputs.report(scores, rejected, Vec::new());
     let out = dir.join("report");
     write_report_files(&out, &mut report)?;
-    Ok(out.join("report.md"))
+    let markdown = out.join("report.md");
+    let mut text = std::fs::read_to_string(&markdown)
+        .with_context(|| format!("cannot read {}", markdown.display()))?;
+    text.push_str(&index);
+    write_atomically(&markdown, text.as_bytes())?;
+    Ok(markdown)
+}
+
+/// The trial's review written into the session's `review/` directory, and what the console
+/// says of it: its feedback sentences (none for a clean trial), or why it has no review.
+fn review_lines(path: &Path, dir: &Path, config: &StationConfig) -> Vec<String> {
+    let settings = review::FeedbackSettings::default();
+    let out = dir.join(REVIEW_DIR);
+    if let Err(e) = std::fs::create_dir_all(&out) {
+        return vec![format!(
+            "warning: no review: cannot create {}: {e}",
+            out.display()
+        )];
+    }
+    match review_trial_file(path, config, &settings, Some(&out)) {
+        Ok(files) => files
+            .review
+            .feedback
+            .iter()
+            .map(|f| format!("  feedback: {}", f.text))
+            .collect(),
+        Err(e) => vec![format!("warning: no review: {e}")],
+    }
 }
 
 /// What the simulated robot is for.

@@ -70,16 +70,16 @@ pub fn run_lockstep(
     for k in 0..steps {
         let t = k as f64 * dt;
         let now_ns = (t * 1e9) as i64;
-        let (points, wrist) = glove.frame(t);
         let feedback = isometry_to_pose(&sim.arm_pose);
-        let mut inputs = vec![
-            StationInput::ArmFeedback(feedback),
-            StationInput::Wrist(isometry_to_pose(&wrist)),
-            StationInput::Keypoints(KeypointFrame {
+        let mut inputs = vec![StationInput::ArmFeedback(feedback)];
+        if glove.sends_at(t) {
+            let (points, wrist) = glove.frame(t);
+            inputs.push(StationInput::Wrist(isometry_to_pose(&wrist)));
+            inputs.push(StationInput::Keypoints(KeypointFrame {
                 points,
                 source_ns: now_ns,
-            }),
-        ];
+            }));
+        }
         if k % tick_every == 0 {
             inputs.push(StationInput::Control(ControlInput::Tick));
         }

@@ -243,6 +243,10 @@ pub async fn publish_glove(
             }
             _ = interval.tick() => {
                 let now = clock.now_ns();
+                // A script's dropout: nothing is sent.
+                if start_ns().is_some_and(|start| !glove.sends_at((now - start) as f64 * 1e-9)) {
+                    continue;
+                }
                 let (points, wrist) = match (start_ns(), &resting) {
                     (Some(start), _) => glove.frame((now - start) as f64 * 1e-9),
                     // A script holds its first keyframe before its time 0; the noise is keyed
@@ -278,6 +282,7 @@ mod tests {
                 ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::CylinderGrasp),
                 ScriptKeyframe::new(4.0, [0.0, 0.18, -0.15], ScriptPose::CylinderGrasp),
             ],
+            dropouts: Vec::new(),
         }
     }
 
@@ -325,7 +330,10 @@ mod tests {
     #[test]
     fn an_invalid_script_is_a_glove_error() {
         let config = SimGloveConfig {
-            script: Some(GloveScript { keyframes: vec![] }),
+            script: Some(GloveScript {
+                keyframes: vec![],
+                dropouts: Vec::new(),
+            }),
             ..SimGloveConfig::default()
         };
         let err = config.glove().unwrap_err().to_string();

@@ -1,0 +1,253 @@
+//! Post-trial feedback: short sentences from the trial's measured facts, each said only when
+//! its setting's threshold is crossed, so a clean trial gets none.
+//!
+//! | setting | default | says |
+//! |---|---|---|
+//! | `holds_min` | 1 | "held 3× (glove gaps 180–420 ms)" |
+//! | `pinch_misses_min` | 1 | "index pinch did not close in 4 of 6 attempts (robot 18 mm apart)" |
+//! | `wrist_at_limit_share` | 0.10 | "wrist at its limit 22 % of the time" |
+//! | `stall_before_drop_s` | 2.0 | "2.4 s without progress before the drop at 9.1 s" |
+//! | `rejected_frames_min` | 5 | "7 glove frames rejected (jump, outlier)" |
+//! | `tracking_error_deg` | 5.0 | "ring 7° off its commands on average" |
+//! | `arm_refusals_min` | 1 | "arm refused 2× (workspace)" |
+
+use serde::{Deserialize, Serialize};
+
+use crate::review::TrialReview;
+
+/// The thresholds of the feedback sentences.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FeedbackSettings {
+    /// Say the holds when the station held at least this many times.
+    pub holds_min: usize,
+    /// Say a finger's pinches when at least this many of them did not close.
+    pub pinch_misses_min: usize,
+    /// Say the wrist's limit when at least this share of the arm targets were at it.
+    pub wrist_at_limit_share: f64,
+    /// Say a drop when at least this long passed without progress before it, seconds.
+    pub stall_before_drop_s: f64,
+    /// Say the rejected glove frames when at least this many were rejected.
+    pub rejected_frames_min: u64,
+    /// Say a digit's tracking when its mean error reached this, degrees.
+    pub tracking_error_deg: f64,
+    /// Say the arm's refusals when it refused at least this many steps.
+    pub arm_refusals_min: u64,
+}
+
+impl Default for FeedbackSettings {
+    fn default() -> Self {
+        FeedbackSettings {
+            holds_min: 1,
+            pinch_misses_min: 1,
+            wrist_at_limit_share: 0.10,
+            stall_before_drop_s: 2.0,
+            rejected_frames_min: 5,
+            tracking_error_deg: 5.0,
+            arm_refusals_min: 1,
+        }
+    }
+}
+
+/// What a sentence is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeedbackKind {
+    /// The station held on a stalled glove.
+    Holds,
+    /// A finger's pinches did not close.
+    PinchNotClosed,
+    /// The wrist at its workspace limit.
+    WristAtLimit,
+    /// No progress for long before a drop.
+    StallBeforeDrop,
+    /// Glove frames rejected.
+    RejectedFrames,
+    /// A digit far from its commands.
+    TrackingError,
+    /// Arm steps refused.
+    ArmRefused,
+}
+
+/// One sentence of feedback.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Feedback {
+    /// What it is about.
+    pub kind: FeedbackKind,
+    /// The sentence.
+    pub text: String,
+    /// When it happened, seconds into the trial (each occurrence).
+    pub times_s: Vec<f64>,
+    /// The setting whose threshold it crossed.
+    pub setting: &'static str,
+}
+
+/// The sentences for `review` under `settings`, in the order of the table above.
+pub fn feedback(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
+    let mut said = Vec::new();
+    said.extend(holds(review, settings));
+    said.extend(pinches(review, settings));
+    said.extend(wrist(review, settings));
+    said.extend(stalls(review, settings));
+    said.extend(rejected(review, settings));
+    said.extend(tracking(review, settings));
+    said.extend(refusals(review, settings));
+    said
+}
+
+fn holds(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
+    let holds = &review.holds;
+    if holds.is_empty() || holds.len() < settings.holds_min {
+        return None;
+    }
+    let gaps: Vec<f64> = holds
+        .iter()
+        .map(|h| h.glove_gap_ms)
+        .filter(|g| g.is_finite())
+        .collect();
+    let (low, high) = gaps
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(l, h), g| (l.min(*g), h.max(*g)));
+    let text = match (holds.len(), gaps.len()) {
+        (1, 1) => format!("held once (glove gap {low:.0} ms)"),
+        (1, _) => "held once".to_string(),
+        (n, 0) => format!("held {n}×"),
+        (n, _) if (high - low) < 1.0 => format!("held {n}× (glove gaps {low:.0} ms)"),
+        (n, _) => format!("held {n}× (glove gaps {low:.0}–{high:.0} ms)"),
+    };
+    Some(Feedback {
+        kind: FeedbackKind::Holds,
+        text,
+        times_s: holds.iter().map(|h| h.from_s).collect(),
+        setting: "holds_min",
+    })
+}
+
+fn pinches(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
+    let mut said = Vec::new();
+    for finger in ["index", "middle", "ring", "little"] {
+        let attempts: Vec<_> = review
+            .pinches
+            .iter()
+            .filter(|p| p.finger == finger)
+            .collect();
+        let missed: Vec<_> = attempts.iter().filter(|p| !p.closed).collect();
+        if missed.is_empty() || missed.len() < settings.pinch_misses_min {
+            continue;
+        }
+        let apart: Vec<f64> = missed
+            .iter()
+            .map(|p| p.robot_min_mm)
+            .filter(|d| d.is_finite())
+            .collect();
+        let distance = match apart.is_empty() {
+            true => "no command followed it".to_string(),
+            false => format!(
+                "robot {:.0} mm apart",
+                apart.iter().sum::<f64>() / apart.len() as f64
+            ),
+        };
+        said.push(Feedback {
+            kind: FeedbackKind::PinchNotClosed,
+            text: format!(
+                "{finger} pinch did not close in {} of {} attempts ({distance})",
+                missed.len(),
+                attempts.len()
+            ),
+            times_s: missed.iter().map(|p| p.from_s).collect(),
+            setting: "pinch_misses_min",
+        });
+    }
+    said
+}
+
+fn wrist(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
+    let share = review.arm.at_limit_share?;
+    (share > 0.0 && share >= settings.wrist_at_limit_share).then(|| Feedback {
+        kind: FeedbackKind::WristAtLimit,
+        text: format!("wrist at its limit {:.0} % of the time", share * 100.0),
+        times_s: Vec::new(),
+        setting: "wrist_at_limit_share",
+    })
+}
+
+fn stalls(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
+    let mut last_progress = 0.0;
+    let mut said = Vec::new();
+    for mark in &review.progress {
+        match mark.value {
+            Some(_) => last_progress = mark.t_s,
+            None => {
+                let stalled = mark.t_s - last_progress;
+                if stalled >= settings.stall_before_drop_s {
+                    said.push(Feedback {
+                        kind: FeedbackKind::StallBeforeDrop,
+                        text: format!(
+                            "{stalled:.1} s without progress before the drop at {:.1} s",
+                            mark.t_s
+                        ),
+                        times_s: vec![mark.t_s],
+                        setting: "stall_before_drop_s",
+                    });
+                }
+            }
+        }
+    }
+    said
+}
+
+fn rejected(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
+    let total: u64 = review.glove.rejected.iter().map(|r| r.count).sum();
+    if total == 0 || total < settings.rejected_frames_min {
+        return None;
+    }
+    let mut reasons: Vec<&str> = review
+        .glove
+        .rejected
+        .iter()
+        .flat_map(|r| r.reasons.iter().map(String::as_str))
+        .collect();
+    reasons.sort_unstable();
+    reasons.dedup();
+    Some(Feedback {
+        kind: FeedbackKind::RejectedFrames,
+        text: format!("{total} glove frames rejected ({})", reasons.join(", ")),
+        times_s: review.glove.rejected.iter().map(|r| r.t_s).collect(),
+        setting: "rejected_frames_min",
+    })
+}
+
+fn tracking(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
+    review
+        .tracking_mean_deg
+        .iter()
+        .filter(|(_, e)| **e >= settings.tracking_error_deg)
+        .map(|(digit, e)| Feedback {
+            kind: FeedbackKind::TrackingError,
+            text: format!("{digit} {e:.0}° off its commands on average"),
+            times_s: Vec::new(),
+            setting: "tracking_error_deg",
+        })
+        .collect()
+}
+
+fn refusals(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
+    let total: u64 = review.arm.refusals.iter().map(|r| r.count).sum();
+    if total == 0 || total < settings.arm_refusals_min {
+        return None;
+    }
+    let mut reasons: Vec<&str> = review
+        .arm
+        .refusals
+        .iter()
+        .flat_map(|r| r.reasons.iter().map(String::as_str))
+        .collect();
+    reasons.sort_unstable();
+    reasons.dedup();
+    Some(Feedback {
+        kind: FeedbackKind::ArmRefused,
+        text: format!("arm refused {total}× ({})", reasons.join(", ")),
+        times_s: review.arm.refusals.iter().map(|r| r.t_s).collect(),
+        setting: "arm_refusals_min",
+    })
+}
