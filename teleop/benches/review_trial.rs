@@ -34,7 +34,10 @@ fn recorded_run(dir: &std::path::Path) -> PathBuf {
     if let Some(path) = existing {
         return path;
     }
-    eprintln!("recording a {SECONDS} s demo run into {} (once)", dir.display());
+    eprintln!(
+        "recording a {SECONDS} s demo run into {} (once)",
+        dir.display()
+    );
     std::fs::create_dir_all(dir).unwrap();
     let runtime = tokio::runtime::Runtime::new().unwrap();
     let outcome = runtime

@@ -1089,8 +1089,8 @@ fn typed(prompt: &mut Option<(Prompt, String)>, key: Input) -> Option<Action> {
 const REVIEW_DIR: &str = "review";
 
 /// The session index appended to the report: every scored trial, worst first (lowest score,
-/// or correctness without a baseline; then more feedback), with its feedback count and a
-/// link to its review figure.
+/// or correctness without a baseline; then more feedback), with its feedback (count and
+/// sentences) and a link to its review figure.
 fn review_index(dir: &Path, scores: &[scoring::TrialScore]) -> String {
     let mut rows: Vec<(f64, usize, String)> = scores
         .iter()
@@ -1099,16 +1099,23 @@ fn review_index(dir: &Path, scores: &[scoring::TrialScore]) -> String {
                 .file_stem()
                 .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
             let json = dir.join(REVIEW_DIR).join(format!("{stem}.review.json"));
-            let feedback = std::fs::read_to_string(&json)
+            let said: Option<Vec<String>> = std::fs::read_to_string(&json)
                 .ok()
                 .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-                .and_then(|v| v["feedback"].as_array().map(Vec::len));
+                .and_then(|v| {
+                    let list = v["feedback"].as_array()?;
+                    Some(list.iter().filter_map(|f| f["text"].as_str()).map(str::to_string).collect())
+                });
             let value = score.score.unwrap_or(score.correctness);
+            let feedback = match &said {
+                None => "no review".to_string(),
+                Some(s) if s.is_empty() => "0".to_string(),
+                Some(s) => format!("{}: {}", s.len(), s.join("; ")),
+            };
             let row = format!(
-                "| {stem} | {value:.3} | {} | [figure](../{REVIEW_DIR}/{stem}.review.png) |\n",
-                feedback.map_or("no review".to_string(), |n| n.to_string())
+                "| {stem} | {value:.3} | {feedback} | [figure](../{REVIEW_DIR}/{stem}.review.png) |\n"
             );
-            (value, feedback.unwrap_or(0), row)
+            (value, said.map_or(0, |s| s.len()), row)
         })
         .collect();
     rows.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));

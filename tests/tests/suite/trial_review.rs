@@ -210,6 +210,14 @@ fn a_glove_gap_and_a_pinch_the_hand_cannot_close_are_said_with_their_times() {
     let report = std::fs::read_to_string(report).unwrap();
     let stem = log.file_stem().unwrap().to_string_lossy().into_owned();
     assert!(report.contains("## Trials, worst first"), "{report}");
+    let row = report
+        .lines()
+        .find(|l| l.starts_with(&format!("| {stem} |")))
+        .unwrap_or_else(|| panic!("no row for {stem}: {report}"));
+    assert!(
+        row.contains("held once (glove gap ") && row.contains("little pinch did not close"),
+        "{row}"
+    );
     assert!(
         report.contains(&format!("[figure](../review/{stem}.review.png)")),
         "{report}"
