@@ -29,7 +29,7 @@ impl JointOrder {
             .map(|(dof, ros)| {
                 names
                     .iter()
-                    .position(|n| n == ros || *n == dof.name)
+                    .position(|n| n == ros || names_dof(n, &dof.name))
                     .ok_or_else(|| format!("no joint named {ros} (or {})", dof.name))
             })
             .collect::<Result<Vec<usize>, String>>()?;
@@ -51,4 +51,11 @@ impl JointOrder {
             .map(|&i| values.get(i).copied().unwrap_or(f64::NAN))
             .collect()
     }
+}
+
+/// Whether `name` is the degree of freedom `dof` under some prefix: `dof` itself, or `dof`
+/// after a prefix ending in `_` or `/` (`left_index_mcp`, `orca/index_mcp`).
+fn names_dof(name: &str, dof: &str) -> bool {
+    name.strip_suffix(dof)
+        .is_some_and(|prefix| prefix.is_empty() || prefix.ends_with(['_', '/']))
 }

@@ -101,6 +101,8 @@ pub struct TrialReview {
     pub feedback: Vec<Feedback>,
     /// The thresholds they were judged with.
     pub settings: FeedbackSettings,
+    /// What the review could not judge, and why.
+    pub notes: Vec<String>,
 }
 
 /// The dense series the figure draws (not in the JSON).
@@ -130,13 +132,20 @@ pub fn review(
     };
     let robot =
         robot_distances(&input.joint_targets, context.model, &window).map_err(model_error)?;
+    // The hand's own state may name its joints otherwise: then no tracking, and a note.
+    let mut notes = Vec::new();
     let tracking = digit_tracking(
         &input.joint_targets,
         &input.hand_states,
         context.model,
         &window,
     )
-    .map_err(model_error)?;
+    .unwrap_or_else(|reason| {
+        notes.push(format!(
+            "no tracking error: the hand's measured state has {reason}"
+        ));
+        DigitTracking::default()
+    });
     let series = ReviewSeries {
         glove_rate_hz: status_series(&input.statuses, &window, |s| s["input_rate_hz"].as_f64()),
         input_age_ms: input_age_ms(&input.glove_frames, &window),
@@ -163,6 +172,7 @@ pub fn review(
         tracking_mean_deg: tracking_means(&series.tracking),
         feedback: Vec::new(),
         settings: context.settings.clone(),
+        notes,
     };
     facts.feedback = feedback(&facts, context.settings);
     Ok((facts, series))

@@ -277,6 +277,55 @@ fn the_wrist_at_its_limit_and_arm_refusals_are_said_past_their_thresholds() {
 }
 
 #[test]
+fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_a_note() {
+    let model = HandModel::orca_v1_right();
+    let settings = FeedbackSettings::default();
+    let mut input = trial(&model, false);
+    let renamed = |sample: &JointSample, prefix: &str| JointSample {
+        names: model.dof_names().map(|n| format!("{prefix}{n}")).collect(),
+        ..sample.clone()
+    };
+    // Commands named orca/…, the hand's state 2° off on every joint, named left_….
+    input.joint_targets = input
+        .joint_targets
+        .iter()
+        .map(|c| renamed(c, "orca/"))
+        .collect();
+    input.hand_states = input
+        .joint_targets
+        .iter()
+        .map(|c| {
+            let mut state = renamed(c, "left_");
+            state.t_ns += 10 * MS;
+            state
+                .position
+                .iter_mut()
+                .for_each(|q| *q += 2f64.to_radians());
+            state
+        })
+        .collect();
+    let (facts, _) = review(&input, &context(&model, &settings)).unwrap();
+    assert_eq!(facts.tracking_mean_deg.len(), 5, "{:?}", facts.notes);
+    for (digit, error) in &facts.tracking_mean_deg {
+        assert!((error - 2.0).abs() < 1e-6, "{digit}: {error}");
+    }
+    // A state naming nothing the model has: no tracking, said as a note, the rest reviewed.
+    for state in &mut input.hand_states {
+        state.names = (0..state.names.len())
+            .map(|k| format!("joint{k}"))
+            .collect();
+    }
+    let (facts, _) = review(&input, &context(&model, &settings)).unwrap();
+    assert!(facts.tracking_mean_deg.is_empty());
+    assert!(
+        facts.notes[0]
+            .starts_with("no tracking error: the hand's measured state has no joint named"),
+        "{:?}",
+        facts.notes
+    );
+}
+
+#[test]
 fn a_log_without_a_start_cannot_be_reviewed() {
     let model = HandModel::orca_v1_right();
     let settings = FeedbackSettings::default();

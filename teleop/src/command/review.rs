@@ -59,6 +59,9 @@ pub fn review(args: ReviewArgs) -> anyhow::Result<()> {
                 for feedback in &files.review.feedback {
                     println!("  - {}", feedback.text);
                 }
+                for note in &files.review.notes {
+                    println!("  note: {note}");
+                }
                 eprintln!("wrote {}", files.png.display());
             }
             Err(e) => {

@@ -128,8 +128,8 @@ fn v1_script() -> String {
     v1
 }
 
-/// The V1 session's directory holds every trial's log (the redone one set aside), its
-/// report and its manifest.
+/// The V1 session's directory holds every trial's log (the redone one set aside), each
+/// trial's review, its report and its manifest.
 fn assert_v1_files(dir: &Path) {
     let mut files: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
@@ -146,9 +146,16 @@ fn assert_v1_files(dir: &Path) {
             "V1-t02.mcap.redone",
             "V1-t03.mcap",
             "report",
+            "review",
             "session.json"
         ]
     );
+    for trial in ["V1-p01", "V1-t01", "V1-t02-a2", "V1-t03"] {
+        for ext in ["png", "svg", "json"] {
+            let review = dir.join("review").join(format!("{trial}.review.{ext}"));
+            assert!(review.is_file(), "{} is missing", review.display());
+        }
+    }
 }
 
 /// One V1 log: its metadata (practice or not, trial index), its events in order (`want`),
