@@ -13,7 +13,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::review::TrialReview;
+use crate::review::{CountAt, TrialReview};
 
 /// The thresholds of the feedback sentences.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -197,24 +197,29 @@ fn stalls(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
 }
 
 fn rejected(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
-    let total: u64 = review.glove.rejected.iter().map(|r| r.count).sum();
-    if total == 0 || total < settings.rejected_frames_min {
+    let (total, reasons) = counted(&review.glove.rejected, settings.rejected_frames_min)?;
+    Some(Feedback {
+        kind: FeedbackKind::RejectedFrames,
+        text: format!("{total} glove frames rejected ({reasons})"),
+        times_s: review.glove.rejected.iter().map(|r| r.t_s).collect(),
+        setting: "rejected_frames_min",
+    })
+}
+
+/// The total of `counts` and their reasons (sorted, once each, comma-separated), when the
+/// total reaches `min` (and is not 0).
+fn counted(counts: &[CountAt], min: u64) -> Option<(u64, String)> {
+    let total: u64 = counts.iter().map(|r| r.count).sum();
+    if total == 0 || total < min {
         return None;
     }
-    let mut reasons: Vec<&str> = review
-        .glove
-        .rejected
+    let mut reasons: Vec<&str> = counts
         .iter()
         .flat_map(|r| r.reasons.iter().map(String::as_str))
         .collect();
     reasons.sort_unstable();
     reasons.dedup();
-    Some(Feedback {
-        kind: FeedbackKind::RejectedFrames,
-        text: format!("{total} glove frames rejected ({})", reasons.join(", ")),
-        times_s: review.glove.rejected.iter().map(|r| r.t_s).collect(),
-        setting: "rejected_frames_min",
-    })
+    Some((total, reasons.join(", ")))
 }
 
 fn tracking(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> {
@@ -232,21 +237,10 @@ fn tracking(review: &TrialReview, settings: &FeedbackSettings) -> Vec<Feedback> 
 }
 
 fn refusals(review: &TrialReview, settings: &FeedbackSettings) -> Option<Feedback> {
-    let total: u64 = review.arm.refusals.iter().map(|r| r.count).sum();
-    if total == 0 || total < settings.arm_refusals_min {
-        return None;
-    }
-    let mut reasons: Vec<&str> = review
-        .arm
-        .refusals
-        .iter()
-        .flat_map(|r| r.reasons.iter().map(String::as_str))
-        .collect();
-    reasons.sort_unstable();
-    reasons.dedup();
+    let (total, reasons) = counted(&review.arm.refusals, settings.arm_refusals_min)?;
     Some(Feedback {
         kind: FeedbackKind::ArmRefused,
-        text: format!("arm refused {total}× ({})", reasons.join(", ")),
+        text: format!("arm refused {total}× ({reasons})"),
         times_s: review.arm.refusals.iter().map(|r| r.t_s).collect(),
         setting: "arm_refusals_min",
     })

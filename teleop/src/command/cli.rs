@@ -333,10 +333,13 @@ enum Command {
     /// Runs the station in this process and shows, full-screen: the task and what to mark,
     /// the embodiment, the calibration profile, live health (glove rate, input age, latency,
     /// engaged/held, watchdog, rejected frames, arm), the countdown and the running timer, and
-    /// after each trial its time, correctness, score (with a baseline) and the series' mean ±
-    /// std. Each trial is its own MCAP log in the session directory
-    /// (<out>/<user>/<embodiment>/<task>), with session.json (the manifest) written after
-    /// every change and report/ (as `pomdar score --out`) when the plan is done. Run the same
+    /// after each trial its time, correctness, score (with a baseline), the series' mean ±
+    /// std and the trial's feedback (`pomdar review`: holds, pinches the robot did not close,
+    /// the wrist at its limit, …; nothing for a clean trial). Each trial is its own MCAP log
+    /// in the session directory (<out>/<user>/<embodiment>/<task>), its review figure and
+    /// JSON in review/, with session.json (the manifest) written after every change and
+    /// report/ (as `pomdar score --out`, ending with the trials worst first and their
+    /// feedback) when the plan is done. Run the same
     /// command again to resume an interrupted session: a trial cut short by quit, Ctrl-C or a
     /// crash is kept aside (*.interrupted) and run again.
     ///

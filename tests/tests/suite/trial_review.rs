@@ -7,11 +7,16 @@
 //! says the same. A clean session (the full hand, an index pinch, no dropout) gets no feedback.
 
 use std::path::Path;
+use std::sync::{Mutex, PoisonError};
 
 use pomdar_tests::pomdar_binary::run_pomdar;
 use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
 use serde_json::Value;
+
+/// The two sessions run one at a time: each is a whole console, station, glove and robot in
+/// real time, and the suite's other real-time tests share the machine's two cores with them.
+static ONE_SESSION_AT_A_TIME: Mutex<()> = Mutex::new(());
 
 /// Start of the glove script's dropout, and its end, seconds after the trial's start.
 const DROPOUT_S: (f64, f64) = (5.3, 5.65);
@@ -51,6 +56,9 @@ fn glove_script(dropout: bool) -> String {
 /// One recorded trial of task H5 with `embodiment`, the glove playing `script`; the console's
 /// output (its lines on stderr).
 fn session(root: &Path, embodiment: &str, script: &str) -> std::process::Output {
+    let _one = ONE_SESSION_AT_A_TIME
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
     let glove = root.join("glove.toml");
     std::fs::write(&glove, script).unwrap();
     let operator = root.join("operator.script");
