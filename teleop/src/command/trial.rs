@@ -40,7 +40,7 @@ use crate::station_node::recorder::{RecordingOptions, config_digest};
 use crate::station_node::ros_node::{
     LatestInput, OperatorCommand, StationEvent, StationHooks, StationSummary, run_station_observed,
 };
-use crate::trial_review::review_trial_file;
+use crate::trial_review::review_trial_file_in_background;
 use crate::utc_date::{compact_utc, now_unix_s};
 use station::StationConfig;
 use station::ros_tools::ServiceAction;
@@ -1174,7 +1174,7 @@ fn review_lines(path: &Path, dir: &Path, config: &StationConfig) -> Vec<String> 
             out.display()
         )];
     }
-    match review_trial_file(path, config, &settings, Some(&out)) {
+    match review_trial_file_in_background(path, config, &settings, Some(&out)) {
         Ok(files) => files
             .review
             .feedback

@@ -43,6 +43,33 @@ pub struct ReviewFiles {
     pub json: PathBuf,
 }
 
+/// [`review_trial_file`] on a thread of its own at the lowest CPU priority (nice 19 where the
+/// system allows it), waited for: the operator console reviews each finished trial while its
+/// station, glove and robot nodes keep running beside it, and they must not wait for the CPU.
+pub fn review_trial_file_in_background(
+    path: &Path,
+    config: &StationConfig,
+    settings: &FeedbackSettings,
+    out: Option<&Path>,
+) -> Result<ReviewFiles, TrialReviewError> {
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(|| {
+            lowest_cpu_priority();
+            review_trial_file(path, config, settings, out)
+        });
+        match worker.join() {
+            Ok(result) => result,
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    })
+}
+
+/// This thread at nice 19 (Linux: a thread's own priority); left as it is where refused.
+fn lowest_cpu_priority() {
+    let me = rustix::thread::gettid();
+    rustix::process::setpriority_process(Some(me), 19).ok();
+}
+
 /// Review the trial log at `path` recorded with `config`, and write `NAME.review.png`, `.svg`
 /// and `.json` into `out` (default: beside the log), each atomically.
 pub fn review_trial_file(
