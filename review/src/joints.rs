@@ -3,6 +3,7 @@
 //! order.
 
 use retarget::HandModel;
+use station::joint_names::dof_of_published_name;
 
 /// Where each of the model's degrees of freedom is in a sample's name list.
 #[derive(Debug, Clone, PartialEq)]
@@ -12,25 +13,36 @@ pub struct JointOrder {
 }
 
 impl JointOrder {
-    /// The order for samples named `names`: by the URDF's names or the model's, or, for a
-    /// sample without names and with one value per degree of freedom, the model's own order.
-    /// `Err` names the first degree of freedom the sample lacks.
-    pub fn new(model: &HandModel, names: &[String], values: usize) -> Result<JointOrder, String> {
+    /// The order for samples named `names`, each name read as the station reads a published
+    /// one ([`station::joint_names::dof_of_published_name`]: the model's name, its URDF name,
+    /// or `prefix` + the model's name), or, for a sample without names and with one value per
+    /// degree of freedom, the model's own order. `Err` names the first degree of freedom the
+    /// sample lacks.
+    pub fn new(
+        model: &HandModel,
+        names: &[String],
+        values: usize,
+        prefix: Option<&str>,
+    ) -> Result<JointOrder, String> {
         if names.is_empty() && values == model.dof() {
             return Ok(JointOrder {
                 names: Vec::new(),
                 index: (0..model.dof()).collect(),
             });
         }
-        let index = model
-            .dofs()
+        let dof_of: Vec<Option<usize>> = names
             .iter()
-            .zip(model.ros_dof_names())
-            .map(|(dof, ros)| {
-                names
-                    .iter()
-                    .position(|n| n == ros || names_dof(n, &dof.name))
-                    .ok_or_else(|| format!("no joint named {ros} (or {})", dof.name))
+            .map(|n| dof_of_published_name(model, n, prefix))
+            .collect();
+        let index = (0..model.dof())
+            .map(|dof| {
+                dof_of.iter().position(|d| *d == Some(dof)).ok_or_else(|| {
+                    format!(
+                        "no joint named {} (or {})",
+                        model.ros_dof_names()[dof],
+                        model.dofs()[dof].name
+                    )
+                })
             })
             .collect::<Result<Vec<usize>, String>>()?;
         Ok(JointOrder {
@@ -51,11 +63,4 @@ impl JointOrder {
             .map(|&i| values.get(i).copied().unwrap_or(f64::NAN))
             .collect()
     }
-}
-
-/// Whether `name` is the degree of freedom `dof` under some prefix: `dof` itself, or `dof`
-/// after a prefix ending in `_` or `/` (`left_index_mcp`, `orca/index_mcp`).
-fn names_dof(name: &str, dof: &str) -> bool {
-    name.strip_suffix(dof)
-        .is_some_and(|prefix| prefix.is_empty() || prefix.ends_with(['_', '/']))
 }

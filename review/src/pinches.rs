@@ -69,11 +69,11 @@ pub fn human_distances(
     series
 }
 
-/// The robot's distances, per joint target inside the trial. `Err` when a target's joints do
-/// not fit the model.
+/// The robot's distances, per joint target inside the trial (joint names read with the
+/// station's `prefix`, [`JointOrder`]). `Err` when a target's joints do not fit the model.
 pub fn robot_distances(
     commands: &[JointSample],
-    model: &HandModel,
+    (model, prefix): (&HandModel, Option<&str>),
     window: &TrialWindow,
 ) -> Result<DistanceSeries, String> {
     let mut series = DistanceSeries::default();
@@ -85,6 +85,7 @@ pub fn robot_distances(
                 model,
                 &command.names,
                 command.position.len(),
+                prefix,
             )?);
         }
         let Some(order) = &order else { continue };

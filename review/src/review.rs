@@ -25,6 +25,9 @@ use crate::window::TrialWindow;
 pub struct ReviewContext<'a> {
     /// The hand model the joint targets command.
     pub model: &'a HandModel,
+    /// The prefix the station put before the model's joint names (`[output]
+    /// joint_name_prefix`); without it the names are the model's or its URDF's.
+    pub joint_name_prefix: Option<String>,
     /// The glove keypoints' layout.
     pub layout: KeypointLayout,
     /// The arm's workspace box, when the station drives an arm.
@@ -130,22 +133,17 @@ pub fn review(
         file: input.source.clone(),
         reason,
     };
-    let robot =
-        robot_distances(&input.joint_targets, context.model, &window).map_err(model_error)?;
+    let joints = (context.model, context.joint_name_prefix.as_deref());
+    let robot = robot_distances(&input.joint_targets, joints, &window).map_err(model_error)?;
     // The hand's own state may name its joints otherwise: then no tracking, and a note.
     let mut notes = Vec::new();
-    let tracking = digit_tracking(
-        &input.joint_targets,
-        &input.hand_states,
-        context.model,
-        &window,
-    )
-    .unwrap_or_else(|reason| {
-        notes.push(format!(
-            "no tracking error: the hand's measured state has {reason}"
-        ));
-        DigitTracking::default()
-    });
+    let tracking = digit_tracking(&input.joint_targets, &input.hand_states, joints, &window)
+        .unwrap_or_else(|reason| {
+            notes.push(format!(
+                "no tracking error: the hand's measured state has {reason}"
+            ));
+            DigitTracking::default()
+        });
     let series = ReviewSeries {
         glove_rate_hz: status_series(&input.statuses, &window, |s| s["input_rate_hz"].as_f64()),
         input_age_ms: input_age_ms(&input.glove_frames, &window),

@@ -113,6 +113,7 @@ fn trial(model: &HandModel, faults: bool) -> TrialInput {
 fn context<'a>(model: &'a HandModel, settings: &'a FeedbackSettings) -> ReviewContext<'a> {
     ReviewContext {
         model,
+        joint_name_prefix: None,
         layout: LAYOUT,
         workspace: None,
         hold_timeout_ms: Some(150.0),
@@ -236,7 +237,7 @@ fn robot_distances_follow_the_model_and_joints_missing_from_a_target_are_named()
         end_ns: T0 + S,
     };
     let targets = vec![command(&model, T0 + 40 * MS, false)];
-    let d = robot_distances(&targets, &model, &window).unwrap();
+    let d = robot_distances(&targets, (&model, None), &window).unwrap();
     let fk = model.forward_new(&model.zero_pose()).unwrap();
     let tip = |f: Finger| fk.position(model.frames().tip(f));
     let expected = (tip(Finger::Index) - tip(Finger::Thumb)).norm() * 1e3;
@@ -244,7 +245,7 @@ fn robot_distances_follow_the_model_and_joints_missing_from_a_target_are_named()
     let mut short = targets[0].clone();
     short.names.pop();
     short.position.pop();
-    let error = robot_distances(&[short], &model, &window).unwrap_err();
+    let error = robot_distances(&[short], (&model, None), &window).unwrap_err();
     assert!(error.contains("no joint named"), "{error}");
 }
 
@@ -277,7 +278,7 @@ fn the_wrist_at_its_limit_and_arm_refusals_are_said_past_their_thresholds() {
 }
 
 #[test]
-fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_a_note() {
+fn joints_are_read_as_the_station_publishes_them_and_a_hand_state_that_fits_no_joint_is_a_note() {
     let model = HandModel::orca_v1_right();
     let settings = FeedbackSettings::default();
     let mut input = trial(&model, false);
@@ -285,7 +286,8 @@ fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_
         names: model.dof_names().map(|n| format!("{prefix}{n}")).collect(),
         ..sample.clone()
     };
-    // Commands named orca/…, the hand's state 2° off on every joint, named left_….
+    // Commands under the configured prefix orca/…, the hand's state 2° off on every joint,
+    // under the model's own names.
     input.joint_targets = input
         .joint_targets
         .iter()
@@ -295,7 +297,7 @@ fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_
         .joint_targets
         .iter()
         .map(|c| {
-            let mut state = renamed(c, "left_");
+            let mut state = renamed(c, "");
             state.t_ns += 10 * MS;
             state
                 .position
@@ -304,7 +306,9 @@ fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_
             state
         })
         .collect();
-    let (facts, _) = review(&input, &context(&model, &settings)).unwrap();
+    let mut context = context(&model, &settings);
+    context.joint_name_prefix = Some("orca/".into());
+    let (facts, _) = review(&input, &context).unwrap();
     assert_eq!(facts.tracking_mean_deg.len(), 5, "{:?}", facts.notes);
     for (digit, error) in &facts.tracking_mean_deg {
         assert!((error - 2.0).abs() < 1e-6, "{digit}: {error}");
@@ -315,7 +319,7 @@ fn joints_are_found_under_another_prefix_and_a_hand_state_that_fits_no_joint_is_
             .map(|k| format!("joint{k}"))
             .collect();
     }
-    let (facts, _) = review(&input, &context(&model, &settings)).unwrap();
+    let (facts, _) = review(&input, &context).unwrap();
     assert!(facts.tracking_mean_deg.is_empty());
     assert!(
         facts.notes[0]

@@ -24,7 +24,7 @@ pub struct DigitTracking {
 pub fn digit_tracking(
     commands: &[JointSample],
     states: &[JointSample],
-    model: &HandModel,
+    (model, prefix): (&HandModel, Option<&str>),
     window: &TrialWindow,
 ) -> Result<DigitTracking, String> {
     let digits = model.dof_digits();
@@ -39,8 +39,8 @@ pub fn digit_tracking(
         let Some(command) = next.checked_sub(1).map(|k| &commands[k]) else {
             continue;
         };
-        let c = reordered(model, &mut command_order, command)?;
-        let m = reordered(model, &mut state_order, state)?;
+        let c = reordered((model, prefix), &mut command_order, command)?;
+        let m = reordered((model, prefix), &mut state_order, state)?;
         tracking.t_s.push(window.secs(state.t_ns));
         for finger in Finger::ALL {
             let errors: Vec<f64> = (0..model.dof())
@@ -61,7 +61,7 @@ pub fn digit_tracking(
 
 /// `sample`'s values in the model's order, its order built or reused.
 fn reordered(
-    model: &HandModel,
+    (model, prefix): (&HandModel, Option<&str>),
     order: &mut Option<JointOrder>,
     sample: &JointSample,
 ) -> Result<Vec<f64>, String> {
@@ -70,6 +70,7 @@ fn reordered(
             model,
             &sample.names,
             sample.position.len(),
+            prefix,
         )?);
     }
     Ok(order

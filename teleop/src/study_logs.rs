@@ -12,14 +12,12 @@
 
 use std::path::{Path, PathBuf};
 
-use msgs::{Float32MultiArray, PoseArray};
 use nalgebra::Point3;
 use retarget::KeypointLayout;
 use scoring::{Ending, HUMAN_EMBODIMENT, TaskCatalog, TrialRecord};
-use station::convert::KeypointMessage;
 use study::{MotionFrame, TrialMotion};
 
-use crate::mcap_log::{LogError, LoggedMessage, TrialReader};
+use crate::mcap_log::{LogError, TrialReader};
 use crate::score::TrialFileError;
 use crate::score::load_trial::load_trial_log;
 
@@ -120,17 +118,6 @@ fn file_label(path: &Path) -> String {
     )
 }
 
-/// A keypoint message of a channel of either keypoint type.
-fn decode_keypoints(message: &LoggedMessage) -> Option<KeypointMessage> {
-    if message.is::<Float32MultiArray>() {
-        message.decode().ok().map(KeypointMessage::Array)
-    } else if message.is::<PoseArray>() {
-        message.decode().ok().map(KeypointMessage::Poses)
-    } else {
-        None
-    }
-}
-
 /// The keypoint channel: of the channels with a keypoint type, the first whose messages carry
 /// the layout's number of points (the glove's, not another array such as a policy output).
 fn keypoint_topic(reader: &TrialReader, layout: KeypointLayout) -> Option<String> {
@@ -142,10 +129,10 @@ fn keypoint_topic(reader: &TrialReader, layout: KeypointLayout) -> Option<String
                 || t.type_name == "geometry_msgs/msg/PoseArray"
         })
         .find(|t| {
-            reader
-                .messages_on(&t.topic)
-                .take(20)
-                .any(|m| decode_keypoints(m).is_some_and(|k| k.points().len() == layout.len()))
+            reader.messages_on(&t.topic).take(20).any(|m| {
+                m.keypoints()
+                    .is_some_and(|k| k.points().len() == layout.len())
+            })
         })
         .map(|t| t.topic.clone())
 }
@@ -163,7 +150,7 @@ fn keypoint_frames(
     let mut stamped: Vec<(i64, Option<Vec<Point3<f64>>>)> = reader
         .messages_on(&topic)
         .filter(|m| (record.start_ns..=record.end_ns).contains(&m.log_time_ns))
-        .map(|m| (m.publish_time_ns, decode_keypoints(m).map(|k| k.points())))
+        .map(|m| (m.publish_time_ns, m.keypoints().map(|k| k.points())))
         .collect();
     stamped.sort_by_key(|(t, _)| *t);
     let first = stamped.first().map_or(0, |(t, _)| *t);

@@ -4,14 +4,12 @@
 //! as invalid rather than silently dropping it.
 
 use calibration::POSE_NAMES;
-use msgs::{Float32MultiArray, PoseArray};
 use nalgebra::Point3;
 use retarget::KeypointLayout;
 
 use crate::calibrate::CalibrateError;
 use crate::calibrate::session_events::{SESSION_METADATA, capture_windows};
 use crate::mcap_log::{LoggedMessage, TrialReader};
-use station::convert::KeypointMessage;
 
 /// What a session log says about itself.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,12 +33,7 @@ pub struct PoseFrames {
 }
 
 fn points(message: &LoggedMessage) -> Vec<Point3<f64>> {
-    let decoded = if message.is::<Float32MultiArray>() {
-        message.decode().map(KeypointMessage::Array)
-    } else {
-        message.decode::<PoseArray>().map(KeypointMessage::Poses)
-    };
-    decoded.map(|m| m.points()).unwrap_or_default()
+    message.keypoints().map(|m| m.points()).unwrap_or_default()
 }
 
 /// The session's description and the frames of each pose, in capture order. Errors name the

@@ -30,6 +30,20 @@ impl LoggedMessage {
         names_definition(&self.type_name, &M::DEFINITION)
     }
 
+    /// The glove keypoints of a message on a channel of either keypoint type
+    /// (`Float32MultiArray`, `PoseArray`); None for another type or a payload that does not
+    /// decode.
+    pub fn keypoints(&self) -> Option<station::convert::KeypointMessage> {
+        use station::convert::KeypointMessage;
+        if self.is::<msgs::Float32MultiArray>() {
+            self.decode().ok().map(KeypointMessage::Array)
+        } else if self.is::<msgs::PoseArray>() {
+            self.decode().ok().map(KeypointMessage::Poses)
+        } else {
+            None
+        }
+    }
+
     /// Decodes the payload as `M`, after checking that the channel's type is `M` and its
     /// encoding `cdr`.
     pub fn decode<M: RosMessage>(&self) -> Result<M, LogError> {

@@ -89,6 +89,7 @@ pub fn review_trial_file(
     let arm = &config.arm;
     let context = ReviewContext {
         model: &model,
+        joint_name_prefix: config.output.joint_name_prefix.clone(),
         layout,
         workspace: config.drives_robot().then_some(WorkspaceLimits {
             min_m: arm.workspace_min_m,

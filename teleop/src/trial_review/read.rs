@@ -3,10 +3,9 @@
 //! measured states (`sensor_msgs/JointState`) and the arm targets' positions. A message that
 //! does not decode is left out (the station wrote every one; a damaged log still reviews).
 
-use msgs::{Float32MultiArray, JointState, PoseArray, PoseStamped, StringMsg};
+use msgs::{JointState, PoseStamped, StringMsg};
 use review::{GloveFrame, JointSample, TrialInput};
 use station::StationConfig;
-use station::convert::KeypointMessage;
 
 use crate::mcap_log::{LogError, LoggedMessage, TRIAL_EVENTS_TOPIC, TrialReader};
 
@@ -55,14 +54,9 @@ fn json_messages(reader: &TrialReader, topic: &str) -> Vec<(i64, serde_json::Val
 }
 
 fn glove_frame(message: &LoggedMessage) -> Option<GloveFrame> {
-    let decoded = if message.is::<Float32MultiArray>() {
-        KeypointMessage::Array(message.decode().ok()?)
-    } else {
-        KeypointMessage::Poses(message.decode::<PoseArray>().ok()?)
-    };
     Some(GloveFrame {
         t_ns: message.log_time_ns,
-        points: decoded.points(),
+        points: message.keypoints()?.points(),
     })
 }
 
