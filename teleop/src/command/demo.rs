@@ -149,7 +149,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
 fn print_summary(summary: &DemoSummary, recorded: Option<&std::path::Path>, control: &str) {
     let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2} ms"));
     println!("summary over {:.1} s:", summary.duration_s);
-    println!("  glove frames       {:.1} /s", summary.input_rate_hz);
+    println!(
+        "  glove frames       {:.1} /s over {:.1} s of sending",
+        summary.input_rate_hz, summary.glove_sending_s
+    );
     println!(
         "  joint targets      {:.1} /s ({} received)",
         summary.output_rate_hz, summary.hand_targets

@@ -97,13 +97,16 @@ pub struct DemoOptions {
 /// The machine-readable summary (`--json`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DemoSummary {
-    /// Seconds the glove played.
+    /// Seconds the run took, from the nodes' start to their stop.
     pub duration_s: f64,
+    /// Seconds between the glove's first and last frame.
+    pub glove_sending_s: f64,
     /// DDS domain id used.
     pub domain_id: u16,
-    /// Glove frames published per second.
+    /// Glove frames published per second while the glove sent (from its first frame to its
+    /// last: the wait for discovery before and the shutdown after are not counted).
     pub input_rate_hz: f64,
-    /// Joint targets received by the mock hand per second.
+    /// Joint targets received by the mock hand per second over the same span.
     pub output_rate_hz: f64,
     /// Glove publish → joint target received, milliseconds.
     pub latency_ms_p50: Option<f64>,
@@ -179,7 +182,7 @@ pub async fn run_demo(options: DemoOptions) -> Result<DemoOutcome, DemoError> {
     let mut summary = demo_summary(
         &options,
         elapsed,
-        stopped.glove.frames,
+        &stopped.glove,
         &stopped.station,
         &hand,
         &arm,
@@ -387,20 +390,35 @@ fn seconds_since(clock: StationClock, start_ns: i64) -> f64 {
     (clock.now_ns() - start_ns) as f64 * 1e-9
 }
 
+/// Joint targets the mock hand received between the glove's first and last frame, per second
+/// of that span.
+fn targets_per_second_while_sending(glove: &SimGloveReport, hand: &MockHandReport) -> f64 {
+    let Some((first, last)) = glove.sending_ns.filter(|(first, last)| last > first) else {
+        return 0.0;
+    };
+    let received = hand
+        .receive_times_ns
+        .iter()
+        .filter(|&&t| (first..=last).contains(&t))
+        .count();
+    received as f64 / ((last - first) as f64 * 1e-9)
+}
+
 /// The summary of a run that lasted `elapsed` seconds.
 fn demo_summary(
     options: &DemoOptions,
     elapsed: f64,
-    frames: u64,
+    glove: &SimGloveReport,
     station: &StationSummary,
     hand_report: &MockHandReport,
     arm_report: &MockFrankaReport,
 ) -> DemoSummary {
     DemoSummary {
         duration_s: elapsed,
+        glove_sending_s: glove.sending_span_s(),
         domain_id: options.domain_id,
-        input_rate_hz: frames as f64 / elapsed,
-        output_rate_hz: hand_report.targets as f64 / elapsed,
+        input_rate_hz: glove.sending_rate_hz().unwrap_or(0.0),
+        output_rate_hz: targets_per_second_while_sending(glove, hand_report),
         latency_ms_p50: hand_report.latency.percentile(0.5),
         latency_ms_p99: hand_report.latency.percentile(0.99),
         solver_ms_p50: station.step_time.percentile(0.5),
@@ -409,7 +427,7 @@ fn demo_summary(
         fingertip_error_mm: station.tip_error_mm.mean(),
         arm_targets: arm_report.commands,
         hand_targets: hand_report.targets,
-        frames_published: frames,
+        frames_published: glove.frames,
         frames_new: station.counters.frames_new,
         frames_repeated: station.counters.frames_repeated,
         longest_input_gap: station.longest_input_gap,

@@ -106,11 +106,20 @@ pub struct SimGloveReport {
     pub frames: u64,
     /// Messages whose publishing failed (not sent), by topic.
     pub publish_failed: BTreeMap<String, u64>,
+    /// Station-clock times of the first and the last frame published: the glove's sending
+    /// span, which excludes the wait for a subscriber before it and the shutdown after it.
+    pub sending_ns: Option<(i64, i64)>,
 }
 
 impl SimGloveReport {
     /// Count a frame whose keypoints and wrist pose were (`true`) or were not sent.
-    fn count(&mut self, config: &SimGloveConfig, keypoints_sent: bool, wrist_sent: bool) {
+    fn count(
+        &mut self,
+        config: &SimGloveConfig,
+        now_ns: i64,
+        keypoints_sent: bool,
+        wrist_sent: bool,
+    ) {
         for (topic, sent) in [
             (&config.keypoints_topic, keypoints_sent),
             (&config.wrist_topic, wrist_sent),
@@ -121,7 +130,23 @@ impl SimGloveReport {
         }
         if keypoints_sent && wrist_sent {
             self.frames += 1;
+            let first_ns = self.sending_ns.map_or(now_ns, |(first, _)| first);
+            self.sending_ns = Some((first_ns, now_ns));
         }
+    }
+
+    /// Frames published per second over the sending span (between the first and the last
+    /// frame); `None` before two frames.
+    pub fn sending_rate_hz(&self) -> Option<f64> {
+        let (first, last) = self.sending_ns?;
+        (self.frames >= 2 && last > first)
+            .then(|| (self.frames - 1) as f64 / ((last - first) as f64 * 1e-9))
+    }
+
+    /// Seconds between the first and the last frame published (0 before two frames).
+    pub fn sending_span_s(&self) -> f64 {
+        self.sending_ns
+            .map_or(0.0, |(first, last)| (last - first) as f64 * 1e-9)
     }
 
     /// Count a message on `topic` that was not sent.
@@ -261,7 +286,7 @@ pub async fn publish_glove(
                 let keypoints_sent = keypoints_pub.async_publish(array).await.is_ok();
                 let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
                 let wrist_sent = wrist_pub.async_publish(pose).await.is_ok();
-                report.count(config, keypoints_sent, wrist_sent);
+                report.count(config, now, keypoints_sent, wrist_sent);
             }
         }
     }

@@ -12,10 +12,10 @@ use teleop::demo::{DemoOptions, DemoOutcome, DemoSummary, run_demo};
 use teleop::mcap_log::TrialReader;
 use teleop::sim::sim_glove_node::SimGloveConfig;
 
-/// The run's summary: glove above 80 Hz, one joint target per new glove frame (commands on
-/// frame arrival, the default, plus the held command repeated at the 25 Hz tick after the
-/// glove stops), nothing rejected; the mock arm's targets on the horizontal axis line through
-/// the first, inside the box, within the step caps.
+/// The run's summary: glove above 80 Hz while it sends (its first to last frame: the wait for
+/// discovery is not glove time), one joint target per new glove frame over the same span
+/// (commands on frame arrival, the default), nothing rejected; the mock arm's targets on the
+/// horizontal axis line through the first, inside the box, within the step caps.
 fn assert_run(outcome: &DemoOutcome, arm: &ArmConfig) {
     let s = &outcome.summary;
     println!("{}", serde_json::to_string(s).unwrap());
