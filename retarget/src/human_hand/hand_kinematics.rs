@@ -81,6 +81,15 @@ impl HumanHandShape {
     /// The four chain points of every digit for `pose`, in the hand frame (mirrored for a left
     /// hand), metres.
     pub fn digit_chains(&self, pose: &HumanHandPose) -> DigitChains {
+        self.chains_with_tip_offsets(pose, &[[0.0; 3]; 5])
+    }
+
+    /// The chains with each tip moved by its offset in its digit's last-bone frame.
+    fn chains_with_tip_offsets(
+        &self,
+        pose: &HumanHandPose,
+        tip_offsets: &[[f64; 3]; 5],
+    ) -> DigitChains {
         let rx = |a: f64| Rotation3::from_axis_angle(&Vector3::x_axis(), a);
         let ry = |a: f64| Rotation3::from_axis_angle(&Vector3::y_axis(), a);
         let rz = |a: f64| Rotation3::from_axis_angle(&Vector3::z_axis(), a);
@@ -97,14 +106,17 @@ impl HumanHandShape {
             let p0 = Point3::from(Vector3::from(g.base_m) * s);
             let p1 = p0 + r1 * Vector3::y() * (s * g.bones_m[0]);
             let p2 = p1 + r2 * Vector3::y() * (s * g.bones_m[1]);
-            let p3 = p2 + r3 * Vector3::y() * (s * g.bones_m[2]);
+            let p3 = p2
+                + r3 * Vector3::y() * (s * g.bones_m[2])
+                + r3 * Vector3::from(tip_offsets[finger.index()]);
             [p0, p1, p2, p3].map(|p| Point3::from(p.coords.component_mul(&mirror)))
         })
     }
 
-    /// Keypoints of `pose` in `layout`, in the hand frame (wrist at the origin), metres.
+    /// Keypoints of `pose` in `layout`, in the hand frame (wrist at the origin), metres; each
+    /// tip where the glove reports it ([`HumanHandShape::tip_markers_m`]).
     pub fn keypoints(&self, pose: &HumanHandPose, layout: KeypointLayout) -> Vec<Point3<f64>> {
-        let chains = self.digit_chains(pose);
+        let chains = self.chains_with_tip_offsets(pose, &self.tip_markers_m);
         let mut points = vec![Point3::origin(); layout.len()];
         if let Some(forearm) = layout.forearm() {
             points[forearm] = Point3::new(0.0, -self.scale * self.forearm_m, 0.0);
@@ -128,7 +140,8 @@ impl HumanHandShape {
         place_points(&self.keypoints(pose, layout), hand_in_world)
     }
 
-    /// Distance from the thumb tip to the tip of `finger`, metres.
+    /// Distance from the thumb tip to the tip of `finger` (anatomical tips, not the glove's
+    /// markers), metres.
     pub fn thumb_gap_m(&self, pose: &HumanHandPose, finger: Finger) -> f64 {
         let chains = self.digit_chains(pose);
         (chains[Finger::Thumb.index()][3] - chains[finger.index()][3]).norm()

@@ -6,7 +6,8 @@
 //! scripted motions as functions of time, task scripts (a wrist path and hand poses as
 //! keyframes), and a simulated glove with deterministic jitter.
 //! The station's simulated glove publishes its frames; calibration
-//! generates its synthetic users with it (sizes 0.8–1.25×, a rotated glove frame, 2 mm noise).
+//! generates its synthetic users with it (sizes 0.8–1.25×, a rotated glove frame, 2 mm noise),
+//! and the evaluation's synthetic users vary its proportions too ([`HandVariation`]).
 //!
 //! ## Frames and units
 //!
@@ -29,6 +30,7 @@
 //! | `glove_script.rs` | [`GloveScript`]: a task played once, wrist path and hand poses as keyframes |
 //! | `noise.rs` | [`SplitMix64`]: deterministic uniform and Gaussian numbers |
 //! | `sim_glove.rs` | [`SimGlove`]: shape + motion + placement + jitter → frames |
+//! | `variation.rs` | [`HandVariation`]: non-uniform hands (digit lengths, palm breadth, thumb base, tip markers) |
 //!
 //! ## Example
 //!
@@ -55,6 +57,7 @@ mod pinch;
 mod pose;
 mod shape;
 mod sim_glove;
+mod variation;
 
 pub use glove_script::{
     GloveScript, MAX_WRIST_OFFSET_M, ResolvedScript, ScriptDropout, ScriptKeyframe, ScriptPose,
@@ -69,5 +72,6 @@ pub use pinch::{DIP_PER_PIP, MAX_PINCH_GAP_M, PinchPose, pinch_pose};
 pub use pose::{
     ANGLE_NAMES, FingerAngles, HumanHandPose, JOINT_RANGES_RAD, POSE_ANGLES, ThumbAngles,
 };
-pub use shape::{DigitGeometry, Handedness, HumanHandShape, REALISTIC_SCALE};
+pub use shape::{DigitGeometry, Handedness, HumanHandShape, MAX_TIP_MARKER_M, REALISTIC_SCALE};
 pub use sim_glove::{MAX_JITTER_SD_M, SimGlove, WristSway, misalign};
+pub use variation::{HandVariation, VariationRanges};

@@ -97,6 +97,11 @@ pub struct HumanHandShape {
     /// Thumb pronation added per radian of CMC abduction (opposition turns the thumb pad
     /// towards the fingers), dimensionless.
     pub thumb_pronation_per_abduction: f64,
+    /// Where the glove reports each fingertip, relative to the anatomical tip, in the digit's
+    /// last-bone frame (`x` across, `y` along, `z` out of the pad), metres, not scaled; indexed
+    /// by [`Finger::index`]. Zero for the average hand ([`super::HandVariation`]).
+    #[serde(default)]
+    pub tip_markers_m: [[f64; 3]; 5],
 }
 
 const fn digit(base_mm: [f64; 3], bones_mm: [f64; 3], splay_deg: f64) -> DigitGeometry {
@@ -108,6 +113,9 @@ const fn digit(base_mm: [f64; 3], bones_mm: [f64; 3], splay_deg: f64) -> DigitGe
         pronation_rad: 0.0,
     }
 }
+
+/// Largest tip marker offset per axis, metres.
+pub const MAX_TIP_MARKER_M: f64 = 0.02;
 
 /// Realistic adult hand sizes relative to the average hand (checked by
 /// [`HumanHandShape::validate`] with some margin).
@@ -133,6 +141,7 @@ impl HumanHandShape {
             ],
             forearm_m: 0.25,
             thumb_pronation_per_abduction: 0.5,
+            tip_markers_m: [[0.0; 3]; 5],
         }
     }
 
@@ -195,6 +204,18 @@ impl HumanHandShape {
                         "must be in (0, 0.2) m",
                     ));
                 }
+            }
+            let marker = self.tip_markers_m[finger.index()];
+            if !marker
+                .iter()
+                .all(|m| m.is_finite() && m.abs() <= MAX_TIP_MARKER_M)
+            {
+                let worst = marker.iter().fold(0.0f64, |a, m| a.max(m.abs()));
+                return Err(bad(
+                    format!("human_hand.{finger}.tip_markers_m"),
+                    worst,
+                    "must be finite and within ±0.02 m per axis",
+                ));
             }
             let angles = [d.splay_rad, d.elevation_rad, d.pronation_rad];
             for (&v, name) in d.base_m.iter().chain(&angles).zip([

@@ -13,8 +13,9 @@ use crate::station_setup::load_station_config;
 /// `pomdar eval-set` options.
 #[derive(Debug, Args)]
 pub struct EvalSetArgs {
-    /// The real recordings (MCAP) the set is made from, or directories searched for them.
-    #[arg(required = true, value_name = "RECORDING")]
+    /// The real recordings (MCAP) the set is made from, or directories searched for them
+    /// (none: only the synthetic users).
+    #[arg(value_name = "RECORDING")]
     pub sources: Vec<PathBuf>,
     /// The set's directory (created if needed; an existing recording in it is not replaced).
     #[arg(long, value_name = "DIR")]
@@ -22,9 +23,11 @@ pub struct EvalSetArgs {
     /// Seed of the noise, the dropped frames and the synthetic users.
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub seed: u64,
-    /// Synthetic users besides the copies: the simulated glove on hands of 0.85-1.15x, turned
-    /// up to 10 deg, 1 mm jitter, 21 points at 25 Hz, 30 s of a task-like sequence (odd users)
-    /// or the four pinches (even users); their pinches are real contacts of the simulated hand.
+    /// Synthetic users besides the copies: the simulated glove on hands of 0.85-1.15x with
+    /// their own proportions (thumb +-15 %, index and middle +-10 %, palm breadth +-10 %, the
+    /// thumb's base moved, tip markers +-5 mm off the tips), turned up to 10 deg, 1 mm jitter,
+    /// 21 points at 25 Hz, 30 s of a task-like sequence (odd users) or the four pinches (even
+    /// users); their pinches are real contacts of the simulated hand.
     #[arg(long, value_name = "N", default_value_t = 4)]
     pub synthetic_users: u64,
     /// Station configuration: the keypoint topic and format read and written (default: the
@@ -36,7 +39,16 @@ pub struct EvalSetArgs {
 /// `pomdar eval-set`.
 pub fn eval_set(args: EvalSetArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), None)?;
-    let sources = mcap_files_under(&args.sources)?.files;
+    if args.sources.is_empty() && args.synthetic_users == 0 {
+        anyhow::bail!(
+            "nothing to build: give the real recordings (RECORDING) or --synthetic-users N (1 or more)"
+        );
+    }
+    let sources = if args.sources.is_empty() {
+        Vec::new()
+    } else {
+        mcap_files_under(&args.sources)?.files
+    };
     std::fs::create_dir_all(&args.out)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.out.display()))?;
     let set = build_set(

@@ -171,8 +171,9 @@ fn write_synthetic_user(
         path,
         source: PathBuf::from("synthetic"),
         variants: vec![format!(
-            "hand {:.2}x, glove turned {:+.1} deg, {:.0} mm jitter, {:.0} Hz",
+            "hand {:.2}x {}, glove turned {:+.1} deg, {:.0} mm jitter, {:.0} Hz",
             user.scale,
+            user.variation.label(),
             user.turn_deg,
             synthetic_users::JITTER_M * 1e3,
             synthetic_users::RATE_HZ

@@ -1,14 +1,18 @@
 //! Synthetic users for the evaluation set: the project's simulated glove (a kinematic human
 //! hand, [`retarget::human_hand`]) worn by users the defaults were never tuned on. Each user
-//! has a hand size, a glove turned on the hand and keypoint jitter drawn from a seed, and
-//! performs a task-like sequence (grasp, release, pinches) or the four pinches in turn, in the
-//! lab's 21-point layout at the Rokoko glove's 25 distinct frames per second. Unlike the
-//! transformed copies of a real recording, here the human pinches are known to be real
-//! thumb-to-finger contacts of the simulated hand.
+//! has a hand size, its own proportions ([`HandVariation`]: thumb ±15 %, index and middle
+//! ±10 %, palm breadth ±10 %, the thumb's base moved, the glove's tip markers ±5 mm off the
+//! tips), a glove turned on the hand and keypoint jitter, all drawn from a seed, and performs
+//! a task-like sequence (grasp, release, pinches) or the four pinches in turn, in the lab's
+//! 21-point layout at the Rokoko glove's 25 distinct frames per second. Unlike the transformed
+//! copies of a real recording, here the human pinches are known to be real thumb-to-finger
+//! contacts of the simulated hand (its fingertips touch; the glove reports their markers).
 
 use nalgebra::{Rotation3, Unit, Vector3};
 use retarget::KeypointLayout;
-use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove, SplitMix64};
+use retarget::human_hand::{
+    HandVariation, HumanHandShape, Motion, MotionKind, SimGlove, SplitMix64, VariationRanges,
+};
 
 use super::variants::TimedFrame;
 
@@ -34,6 +38,8 @@ pub struct SyntheticUser {
     pub scale: f64,
     /// Angle the glove is turned on the hand, degrees.
     pub turn_deg: f64,
+    /// The hand's proportions.
+    pub variation: HandVariation,
     /// The frames, from time 0.
     pub frames: Vec<TimedFrame>,
 }
@@ -64,7 +70,8 @@ pub fn synthetic_user(seed: u64, k: u64) -> Result<SyntheticUser, retarget::Erro
     } else {
         MotionKind::Pinches
     };
-    let shape = HumanHandShape::average().scaled(scale);
+    let variation = HandVariation::draw(&mut rng, &VariationRanges::DEFAULT);
+    let shape = variation.apply(HumanHandShape::average().scaled(scale));
     let motion = Motion::new(kind, kind.default_period_s(), &shape)?;
     let glove = SimGlove::new(shape, motion, LAYOUT)?
         .with_misalignment(turn)
@@ -87,6 +94,7 @@ pub fn synthetic_user(seed: u64, k: u64) -> Result<SyntheticUser, retarget::Erro
         name: format!("synthetic-{k}-{motion_name}-s{scale:.2}"),
         scale,
         turn_deg,
+        variation,
         frames,
     })
 }
@@ -108,6 +116,8 @@ mod tests {
             assert!(u.frames.iter().all(|f| f.points.len() == LAYOUT.len()));
         }
         assert!(a.name.contains("tasklike") && b.name.contains("pinches"));
+        assert_ne!(a.variation, b.variation);
+        assert!((0.85..=1.15).contains(&a.variation.thumb_length));
         assert_eq!(a.frames[1].t_ns, 40_000_000);
     }
 }
