@@ -28,6 +28,10 @@ impl Default for StartLimits {
     }
 }
 
+/// A glove gap at least this long is named when the station is not engaged, ms (the
+/// station's default hold timeout).
+const NOTED_GAP_MS: f64 = 150.0;
+
 /// The station's health at one status.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Health {
@@ -253,9 +257,25 @@ impl Health {
             ));
         }
         if limits.drives_robot && !self.engaged() {
-            return Some(format!("the station is {}: press e to engage", self.state));
+            return Some(format!(
+                "the station is {}{}: press e to engage",
+                self.state,
+                self.gap_note()
+            ));
         }
         None
+    }
+
+    /// Where the glove's frames once stopped long enough to hold the hand, which side
+    /// stalled: the longest gap as received beside the same frames' gap as sent (equal: the
+    /// glove stopped sending; longer as received: the network or this machine held them).
+    fn gap_note(&self) -> String {
+        match self.longest_gap_ms {
+            Some((received, sent)) if received >= NOTED_GAP_MS => format!(
+                " (longest glove gap so far {received:.0} ms as received, {sent:.0} ms as sent)"
+            ),
+            _ => String::new(),
+        }
     }
 }
 
@@ -325,9 +345,17 @@ mod tests {
                 .is_some_and(|r| r.contains("no glove input"))
         );
         let off = Health::from_status(&status("disengaged", 99.0, Some(5.0)), 0);
+        let why = off.refuse_start(&limits, 0).unwrap();
+        assert!(why.contains("engage") && !why.contains("gap"), "{why}");
+        // Disengaged after the glove's frames stopped: which side stalled is named.
+        let mut stalled = status("disengaged", 99.0, Some(5.0));
+        stalled["longest_input_gap"] = json!({"received_ms": 1203.4, "sent_ms": 10.2});
+        let why = Health::from_status(&stalled, 0)
+            .refuse_start(&limits, 0)
+            .unwrap();
         assert!(
-            off.refuse_start(&limits, 0)
-                .is_some_and(|r| r.contains("engage"))
+            why.contains("1203 ms as received, 10 ms as sent") && why.contains("press e"),
+            "{why}"
         );
         assert!(Health::default().refuse_start(&limits, 0).is_some());
     }
