@@ -201,7 +201,7 @@ impl<'a> Study<'a> {
         calibration: &CalibrationTransform,
     ) -> Result<f64, Error> {
         let layout: KeypointLayout = self.inputs.config.layout;
-        let shape = HumanHandShape::average().scaled(user.hand_scale);
+        let shape = user.shape();
         let mut retargeter = self.retargeter()?;
         retargeter.set_calibration(*calibration)?;
         let mut noise = SplitMix64::keyed(user.seed, 0x0004_E1D0_u64);

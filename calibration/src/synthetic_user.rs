@@ -12,7 +12,8 @@
 
 use nalgebra::{Point3, Rotation3};
 use retarget::human_hand::{
-    HumanHandPose, HumanHandShape, Motion, SimGlove, SplitMix64, WristSway,
+    HandVariation, HumanHandPose, HumanHandShape, Motion, SimGlove, SplitMix64, VariationRanges,
+    WristSway,
 };
 use retarget::{CalibrationTransform, KeypointLayout};
 
@@ -30,6 +31,9 @@ pub struct SyntheticUser {
     pub noise_sd_m: f64,
     /// Seed of the noise.
     pub seed: u64,
+    /// The hand's proportions ([`HandVariation::NONE`]: a uniformly scaled average hand, for
+    /// which [`SyntheticUser::true_transform`] is exact).
+    pub variation: HandVariation,
 }
 
 /// The population of the acceptance test: hand sizes 0.8–1.25×, misalignment up to ±20°
@@ -53,6 +57,19 @@ impl SyntheticUser {
             glove_rpy_rad,
             noise_sd_m: POPULATION_NOISE_M,
             seed,
+            variation: HandVariation::NONE,
+        }
+    }
+
+    /// A user of the acceptance population whose hand also has its own proportions
+    /// ([`HandVariation`] with its default ranges), deterministic in `seed`. A global scale
+    /// and rotation cannot fit such a hand exactly: [`SyntheticUser::true_transform`] gives the
+    /// one for its size and glove, the best a global model can aim at.
+    pub fn random_non_uniform(seed: u64) -> SyntheticUser {
+        let mut rng = SplitMix64::keyed(seed, 0x0DD_5A9E);
+        SyntheticUser {
+            variation: HandVariation::draw(&mut rng, &VariationRanges::DEFAULT),
+            ..SyntheticUser::random(seed)
         }
     }
 
@@ -63,7 +80,14 @@ impl SyntheticUser {
             glove_rpy_rad: [0.0; 3],
             noise_sd_m: 0.0,
             seed: 0,
+            variation: HandVariation::NONE,
         }
+    }
+
+    /// The user's hand: the average hand at their size, with their proportions.
+    pub fn shape(&self) -> HumanHandShape {
+        self.variation
+            .apply(HumanHandShape::average().scaled(self.hand_scale))
     }
 
     /// The glove misalignment.
@@ -81,7 +105,7 @@ impl SyntheticUser {
         schedule: &CaptureSchedule,
         poses: &[HumanHandPose; 7],
     ) -> Result<SimGlove, Error> {
-        let shape = HumanHandShape::average().scaled(self.hand_scale);
+        let shape = self.shape();
         let motion = Motion::calibration_poses(*poses, schedule.slot_s)?;
         Ok(SimGlove::new(shape, motion, layout)?
             .with_wrist_sway(WristSway::GENTLE)?
@@ -152,5 +176,24 @@ mod tests {
                 .all(|u| u.glove_rpy_rad.iter().all(|x| x.abs() <= a))
         );
         assert_eq!(SyntheticUser::random(5), SyntheticUser::random(5));
+    }
+
+    #[test]
+    fn a_non_uniform_user_is_the_same_user_with_its_own_proportions() {
+        let (plain, varied) = (
+            SyntheticUser::random(9),
+            SyntheticUser::random_non_uniform(9),
+        );
+        assert_eq!(plain.variation, HandVariation::NONE);
+        assert_ne!(varied.variation, HandVariation::NONE);
+        assert_eq!(
+            SyntheticUser {
+                variation: HandVariation::NONE,
+                ..varied
+            },
+            plain
+        );
+        assert!((0.85..=1.15).contains(&varied.variation.thumb_length));
+        assert_eq!(varied, SyntheticUser::random_non_uniform(9));
     }
 }

@@ -228,6 +228,7 @@ mod tests {
     use super::*;
     use calibration::{CaptureSchedule, PoseSet, SyntheticUser, human_copies};
     use retarget::HandModel;
+    use retarget::human_hand::HandVariation;
 
     fn user_frames(noise_sd_m: f64, k: usize) -> Vec<Vec<Point3<f64>>> {
         let model = HandModel::orca_v1_right();
@@ -237,6 +238,7 @@ mod tests {
             glove_rpy_rad: [0.1, -0.05, 0.08],
             noise_sd_m,
             seed: 3,
+            variation: HandVariation::NONE,
         };
         user.capture_frames(
             KeypointLayout::Lab22,

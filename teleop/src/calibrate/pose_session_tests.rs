@@ -3,6 +3,7 @@
 
 use calibration::{CaptureSchedule, PoseSet, SyntheticUser, human_copies};
 use retarget::HandModel;
+use retarget::human_hand::HandVariation;
 
 use super::*;
 
@@ -27,6 +28,7 @@ fn frames(k: usize, noise_sd_m: f64) -> Vec<Vec<Point3<f64>>> {
         glove_rpy_rad: [0.0; 3],
         noise_sd_m,
         seed: 5,
+        variation: HandVariation::NONE,
     }
     .capture_frames(
         KeypointLayout::Lab22,

@@ -13,6 +13,7 @@ use calibration::{
     CalibrationSettings, CaptureSchedule, FitInputs, PoseSet, Study, SyntheticUser, human_copies,
 };
 use msgs::{Float32MultiArray, PoseStamped};
+use retarget::human_hand::HandVariation;
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel};
 use tokio::sync::watch;
 
@@ -48,6 +49,7 @@ pub fn synthetic_user(
         glove_rpy_rad: glove_rpy_deg.map(f64::to_radians),
         noise_sd_m: SIMULATED_NOISE_M,
         seed,
+        variation: HandVariation::NONE,
     })
 }
 

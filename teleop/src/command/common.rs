@@ -123,6 +123,24 @@ pub(crate) fn mcap_files_under(
     Ok(found)
 }
 
+/// The `.mcap` files in `paths` (files, or directories searched), for a command that reads
+/// every one: a path that cannot be read stops it, named with the reason, rather than being
+/// left out of its figures.
+pub(crate) fn readable_mcap_files(
+    paths: &[std::path::PathBuf],
+) -> anyhow::Result<Vec<std::path::PathBuf>> {
+    let found = mcap_files_under(paths)?;
+    if !found.problems.is_empty() {
+        let problems: Vec<String> = found
+            .problems
+            .iter()
+            .map(|p| format!("{}: {}", p.file, p.reason))
+            .collect();
+        anyhow::bail!("cannot read {}", problems.join("; "));
+    }
+    Ok(found.files)
+}
+
 /// `--view [ADDR:]PORT`, shared by the commands that run a station.
 #[derive(Debug, Clone, Args)]
 pub struct ViewArgs {

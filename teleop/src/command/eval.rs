@@ -8,7 +8,7 @@ use clap::Args;
 use retarget::HandModel;
 use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
-use super::common::mcap_files_under;
+use super::common::readable_mcap_files;
 use crate::eval::external::{evaluate_commands, external_table};
 use crate::eval::outlier_study::outlier_study;
 use crate::eval::profile_scales::{profile_scales, profile_scales_table};
@@ -95,7 +95,7 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let files = if single {
         args.inputs.clone()
     } else {
-        mcap_files_under(&args.inputs)?.files
+        readable_mcap_files(&args.inputs)?
     };
     let mut outputs = Vec::new();
     let style = match single {
@@ -131,7 +131,7 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
 /// `pomdar eval --outlier-study`: per recording, what one-frame outliers do with the outlier
 /// check and without it.
 fn eval_outlier_study(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
-    let files = mcap_files_under(&args.inputs)?.files;
+    let files = readable_mcap_files(&args.inputs)?;
     let mut outputs = Vec::new();
     for path in &files {
         let reader = TrialReader::open(path)?;
@@ -171,7 +171,7 @@ fn eval_commands(
     config: &station::StationConfig,
     topic: &str,
 ) -> anyhow::Result<()> {
-    let files = mcap_files_under(&args.inputs)?.files;
+    let files = readable_mcap_files(&args.inputs)?;
     let mut outputs = Vec::new();
     for path in &files {
         let reader = TrialReader::open(path)?;
@@ -203,7 +203,7 @@ fn eval_profile_scales(args: &EvalArgs, config: &station::StationConfig) -> anyh
     }
     let model = HandModel::orca_v1_right();
     let mut outputs = Vec::new();
-    for path in &mcap_files_under(&args.inputs)?.files {
+    for path in &readable_mcap_files(&args.inputs)? {
         let reader = TrialReader::open(path)?;
         let rows = profile_scales(&reader, config, &model, &args.profile_scales)
             .map_err(|e| in_file(path, &e))?;

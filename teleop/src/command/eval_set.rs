@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::mcap_files_under;
+use super::common::readable_mcap_files;
 use crate::atomic_file::write_atomically;
 use crate::eval::eval_set::build_set;
 use crate::station_setup::load_station_config;
@@ -47,7 +47,7 @@ pub fn eval_set(args: EvalSetArgs) -> anyhow::Result<()> {
     let sources = if args.sources.is_empty() {
         Vec::new()
     } else {
-        mcap_files_under(&args.sources)?.files
+        readable_mcap_files(&args.sources)?
     };
     std::fs::create_dir_all(&args.out)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.out.display()))?;

@@ -502,3 +502,16 @@ fn held_out_users_with_their_own_proportions_close_their_pinches() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A path that cannot be read stops `pomdar eval` and names it, rather than a summary that
+/// silently leaves it out.
+#[test]
+fn a_recording_that_cannot_be_read_stops_the_evaluation_naming_it() {
+    let dir = pomdar_tests::scratch_dir("eval_missing");
+    let missing = dir.join("nowhere.mcap");
+    let output = pomdar(&["eval", missing.to_str().unwrap(), dir.to_str().unwrap()]);
+    assert!(!output.status.success(), "pomdar eval succeeded");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("nowhere.mcap"), "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}
