@@ -6,6 +6,7 @@ pub mod deployment_guide;
 pub mod guide_session;
 pub mod interop;
 pub mod line_console;
+pub mod load_turns;
 pub mod module_graph;
 pub mod netns_lab;
 pub mod pomdar_binary;

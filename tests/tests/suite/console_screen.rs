@@ -189,6 +189,7 @@ fn the_full_screen_console_shows_its_states_and_restores_the_terminal() {
         eprintln!("SKIPPED: util-linux `script` (a pseudo-terminal) is not available here");
         return;
     }
+    let _no_flood_beside = pomdar_tests::load_turns::real_time();
     let dir = scratch_dir("console-screen");
     let mut console = Console::start(&dir);
     engage(&mut console);

@@ -538,6 +538,7 @@ fn crafted_data_frags_do_not_exhaust_the_relay() {
 }
 
 fn crafted_data_frags_against(subject: &Subject) {
+    let _alone = pomdar_tests::load_turns::flooding();
     let dir = scratch_dir(&format!(
         "crafted-datagrams-{}",
         subject.name.replace(' ', "_")
