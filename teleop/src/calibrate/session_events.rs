@@ -166,6 +166,8 @@ mod tests {
             std::env::temp_dir().join(format!("pomdar-session-events-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(format!("{name}.mcap"));
+        // A directory named by the process id may be left from an earlier process that had it.
+        std::fs::remove_file(&path).ok();
         let mut writer = TrialWriter::create(&path, TrialWriterOptions::default()).unwrap();
         for (i, event) in events.iter().enumerate() {
             writer

@@ -305,6 +305,7 @@ mod tests {
     #[test]
     fn a_log_is_read_per_joint_and_a_log_without_states_says_where_it_looked() {
         let dir = std::env::temp_dir().join(format!("pomdar-tracking-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok(); // left by an earlier process with this id
         std::fs::create_dir_all(&dir).unwrap();
         let model = HandModel::orca_v1_right();
         let with = dir.join("with.mcap");
