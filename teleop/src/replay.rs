@@ -229,8 +229,21 @@ pub async fn replay(
             }
         }
         report.passes += 1;
-        if !options.looped || *shutdown.borrow() {
+        if *shutdown.borrow() {
+            return Ok(report);
+        }
+        if !options.looped {
+            // The participant's event loop sends what was published on its own thread;
+            // dropping it at once lost the last frames of a replay on a loaded machine.
+            tokio::select! {
+                _ = shutdown.changed() => {}
+                _ = tokio::time::sleep(SEND_LINGER) => {}
+            }
             return Ok(report);
         }
     }
 }
+
+/// How long the replay's participant stays up after its last message, so that the samples
+/// still queued in its event loop are sent.
+const SEND_LINGER: Duration = Duration::from_millis(300);
