@@ -71,17 +71,17 @@ pub fn eval_set(args: EvalSetArgs) -> anyhow::Result<()> {
     let manifest = args.out.join("set.json");
     write_atomically(&manifest, serde_json::to_string_pretty(&set)?)?;
     eprintln!(
-        "wrote {} recordings from {} sources and {} synthetic users, and {}; evaluate with: pomdar eval {} {}",
+        "wrote {} recordings from {} sources and {} synthetic users, and {}; evaluate with: pomdar eval {}",
         set.len(),
         sources.len(),
         args.synthetic_users,
         manifest.display(),
         args.sources
             .iter()
+            .chain([&args.out])
             .map(|p| p.display().to_string())
             .collect::<Vec<_>>()
-            .join(" "),
-        args.out.display()
+            .join(" ")
     );
     Ok(())
 }
