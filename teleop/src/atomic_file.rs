@@ -26,7 +26,9 @@ fn part_path(path: &Path) -> PathBuf {
 
 /// Write `bytes` to `path` atomically: `path.part`, fsync, rename over `path`, fsync of the
 /// directory. Creates the directory if needed. On failure the `.part` is removed and `path`
-/// is untouched.
+/// is untouched. With the test-only slow disk set
+/// ([`SLOW_DISK_ENV`](crate::mcap_log::slow_disk::SLOW_DISK_ENV)), the write takes that much
+/// longer.
 pub fn write_atomically(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), AtomicWriteError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -43,6 +45,7 @@ pub fn write_atomically(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), Atom
     let written = (|| -> std::io::Result<()> {
         let mut file = std::fs::File::create(&part)?;
         file.write_all(bytes.as_ref())?;
+        crate::mcap_log::slow_disk::stall();
         file.sync_all()?;
         drop(file);
         std::fs::rename(&part, path)?;

@@ -11,6 +11,7 @@ pub mod clock;
 pub mod command;
 pub mod console;
 pub mod demo;
+pub mod disk_wait;
 pub mod eval;
 pub mod hand_check;
 pub mod hand_source;

@@ -34,7 +34,10 @@ use crate::calibrate::pose_session::{
 };
 use crate::calibrate::session_events::{POSE_NOT_SENT_EVENT, SESSION_METADATA};
 use crate::clock::StationClock;
-use crate::mcap_log::{FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions};
+use crate::disk_wait::without_holding_the_runtime;
+use crate::mcap_log::{
+    FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions, WriterThread,
+};
 use crate::ros::RosNode;
 use crate::tui::script::ScriptError;
 use crate::tui::terminal::Input;
@@ -127,6 +130,9 @@ pub async fn run_session(
     let prefix = config.output.joint_name_prefix.as_deref();
     let names = station::ros_tools::published_joint_names(model, prefix);
 
+    // The log first: its creation waits on the disk, and frames queued meanwhile would reach
+    // the session in a burst and inflate the glove's rate measured while the hand settles.
+    let unstarted = UnstartedLog::open(&options, model, timing)?;
     // The glove's keypoints in, the hand's pose out, on the station's topics.
     let mut node = RosNode::join(&config.network, "/", "pomdar_calibration")?;
     let topic = config.input.keypoints_topic.clone();
@@ -156,7 +162,6 @@ pub async fn run_session(
         (config.robot_link).command_wire(&config.output.joint_targets_topic, config.output.qos);
     let joint_pub = node.publisher::<JointState>(&joint_topic, joint_qos)?;
 
-    let writer = open_session_log(&options, model, timing)?;
     let mut run = SessionRun {
         options: &options,
         session: PoseSession::new(
@@ -167,7 +172,7 @@ pub async fn run_session(
             front.policy(),
         ),
         log: SessionLog {
-            writer: Some(writer),
+            writer: unstarted.started(),
             frames: 0,
             path: None,
         },
@@ -282,6 +287,49 @@ async fn joined<T>(
     }
 }
 
+/// Writes still queued for the session log when the fit starts from which the console says
+/// that the disk is slow (half a second of a 100 Hz glove): finishing the log waits for them.
+const SLOW_DISK_QUEUE: usize = 50;
+
+/// The session log until the session's topics are up: written on a thread of its own (a
+/// flush waiting on the disk must not hold the frames back, or they would reach the session
+/// late and in a burst, and be judged by the wrong window); removed if the session cannot
+/// start.
+struct UnstartedLog {
+    writer: Option<WriterThread>,
+    path: PathBuf,
+}
+
+impl UnstartedLog {
+    fn open(
+        options: &SessionOptions,
+        model: &HandModel,
+        timing: SessionTiming,
+    ) -> Result<UnstartedLog, LogError> {
+        let writer = open_session_log(options, model, timing)?;
+        let writer = WriterThread::spawn(writer)
+            .map_err(|e| LogError::io(&options.out, "start the thread that writes", e))?;
+        Ok(UnstartedLog {
+            writer: Some(writer),
+            path: options.out.clone(),
+        })
+    }
+
+    /// The session started: the log is kept.
+    fn started(mut self) -> Option<WriterThread> {
+        self.writer.take()
+    }
+}
+
+impl Drop for UnstartedLog {
+    fn drop(&mut self) {
+        if let Some(w) = self.writer.take() {
+            drop(without_holding_the_runtime(|| w.finish()));
+            std::fs::remove_file(&self.path).ok();
+        }
+    }
+}
+
 /// What happens after a turn of the session's loop.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Next {
@@ -302,7 +350,7 @@ struct Turn {
 /// The session log while it is written.
 struct SessionLog {
     /// The log, until it is finished (for the fit, or at the end).
-    writer: Option<TrialWriter>,
+    writer: Option<WriterThread>,
     /// Keypoint messages logged.
     frames: u64,
     /// The finished log.
@@ -432,10 +480,15 @@ impl SessionRun<'_> {
         source_ns: i64,
     ) -> Result<Vec<Effect>, LogError> {
         let topic = &self.options.station.input.keypoints_topic;
-        if let Some(w) = self.log.writer.as_mut() {
-            match message {
-                KeypointMessage::Array(m) => w.write(topic, now, source_ns, m)?,
-                KeypointMessage::Poses(m) => w.write(topic, now, source_ns, m)?,
+        if let Some(w) = self.log.writer.as_ref() {
+            let topic = topic.clone();
+            match message.clone() {
+                KeypointMessage::Array(m) => {
+                    w.write(move |w| w.write(&topic, now, source_ns, &m))?
+                }
+                KeypointMessage::Poses(m) => {
+                    w.write(move |w| w.write(&topic, now, source_ns, &m))?
+                }
             }
             self.log.frames += 1;
         }
@@ -456,8 +509,9 @@ impl SessionRun<'_> {
             velocity: Vec::new(),
             effort: Vec::new(),
         };
-        if let Some(w) = self.log.writer.as_mut() {
-            w.write(&config.output.joint_targets_topic, now, now, &message)?;
+        if let Some(w) = self.log.writer.as_ref() {
+            let (topic, logged) = (config.output.joint_targets_topic.clone(), message.clone());
+            w.write(move |w| w.write(&topic, now, now, &logged))?;
         }
         Ok(Some(message))
     }
@@ -477,16 +531,17 @@ impl SessionRun<'_> {
     }
 
     /// Finishes the log, after an event counting the poses that could not be sent (if any).
-    fn finish_log(&self, mut w: TrialWriter, now: i64) -> Result<FinishedTrial, LogError> {
+    /// Waits for the log's writes without holding up the simulated user or the station.
+    fn finish_log(&self, w: WriterThread, now: i64) -> Result<FinishedTrial, LogError> {
         if self.hand.not_sent > 0 {
             let event = json!({
                 "event": POSE_NOT_SENT_EVENT,
                 "topic": self.options.station.output.joint_targets_topic,
                 "count": self.hand.not_sent,
             });
-            w.write_event(now, &event)?;
+            w.write(move |w| w.write_event(now, &event))?;
         }
-        w.finish()
+        without_holding_the_runtime(|| w.finish())
     }
 
     /// A key: an action on the session, or Ctrl-C.
@@ -563,8 +618,9 @@ impl SessionRun<'_> {
         if !self.end.interrupted {
             return Ok(None);
         }
-        if let Some(mut w) = self.log.writer.take() {
-            w.write_event(now, &json!({"event": "abort", "reason": "interrupted"}))?;
+        if let Some(w) = self.log.writer.take() {
+            let event = json!({"event": "abort", "reason": "interrupted"});
+            w.write(move |w| w.write_event(now, &event))?;
             let finished = self.finish_log(w, now)?;
             return Err(CalibrateError::Interrupted { log: finished.path });
         }
@@ -602,7 +658,7 @@ impl SessionRun<'_> {
             && self.started.elapsed() > options.glove_wait
         {
             if let Some(w) = self.log.writer.take() {
-                drop(w.finish());
+                drop(without_holding_the_runtime(|| w.finish()));
             }
             std::fs::remove_file(&options.out).ok();
             return Err(CalibrateError::NoGlove {
@@ -637,8 +693,8 @@ impl SessionRun<'_> {
                     self.hand.resend.reset_immediately();
                 }
                 Effect::Log { at_ns, event } => {
-                    if let Some(w) = self.log.writer.as_mut() {
-                        w.write_event(at_ns, &event)?;
+                    if let Some(w) = self.log.writer.as_ref() {
+                        w.write(move |w| w.write_event(at_ns, &event))?;
                     }
                 }
                 Effect::Fit { .. } => {
@@ -660,6 +716,13 @@ impl SessionRun<'_> {
         let Some(w) = self.log.writer.take() else {
             return Ok(());
         };
+        let queued = w.pending();
+        if queued >= SLOW_DISK_QUEUE {
+            self.session.say(format!(
+                "saving the session log: {queued} writes still queued (the disk is slow)"
+            ));
+            self.front.show(&self.session, self.clock.now_ns())?;
+        }
         let finished = self
             .finish_log(w, self.clock.now_ns())
             .map_err(|source| CalibrateError::FinishLog { source })?;
@@ -721,10 +784,11 @@ impl SessionRun<'_> {
     /// session's outcome returned.
     fn finish(mut self) -> Result<SessionReport, CalibrateError> {
         let failure = self.end.failure.take();
-        if let Some(mut w) = self.log.writer.take() {
+        if let Some(w) = self.log.writer.take() {
             let now = self.clock.now_ns();
             if let Some(f) = &failure {
-                w.write_event(now, &json!({"event": "abort", "reason": f.reason()}))?;
+                let event = json!({"event": "abort", "reason": f.reason()});
+                w.write(move |w| w.write_event(now, &event))?;
             }
             let finished = self.finish_log(w, now)?;
             self.log.path = Some(finished.path);

@@ -29,6 +29,7 @@ use super::trial_physics::{PhysicsLink, PhysicsParts, next_progress, progress_ac
 use crate::atomic_file::write_atomically;
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
+use crate::disk_wait::without_holding_the_runtime;
 use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
 use crate::score::report_files::write_report_files;
@@ -731,7 +732,10 @@ impl Session {
         } else if !self.report_written {
             self.report_written = true;
             test_pause("the session complete: writing its report");
-            match write_session_report(&self.dir, &self.flow, &self.inputs) {
+            let written = without_holding_the_runtime(|| {
+                write_session_report(&self.dir, &self.flow, &self.inputs)
+            });
+            match written {
                 Ok(path) => self
                     .flow
                     .say(format!("session complete: report in {}", path.display())),
@@ -872,9 +876,11 @@ impl TrialConsole {
             }
             StationEvent::TrialFinished(path) => {
                 test_pause(&format!("{} finished: scoring it", path.display()));
-                let said = review_lines(&path, &self.session.dir, &self.session.config);
-                effects
-                    .extend(flow.trial_logged(inputs.score_file(&path).map_err(|e| e.to_string())));
+                let (said, scored) = without_holding_the_runtime(|| {
+                    let said = review_lines(&path, &self.session.dir, &self.session.config);
+                    (said, inputs.score_file(&path).map_err(|e| e.to_string()))
+                });
+                effects.extend(flow.trial_logged(scored));
                 for line in said {
                     flow.say(line);
                 }
@@ -901,6 +907,11 @@ impl TrialConsole {
     /// the console shown.
     fn finish_turn(&mut self, mut turn: Turn) -> anyhow::Result<Next> {
         let now = self.clock.now_ns();
+        // The newest status, even when this turn woke for something else: a turn that waited
+        // on the disk must not take the station for silent.
+        if self.station.status_rx.has_changed().unwrap_or(false) {
+            self.status_changed();
+        }
         self.session.health.latest_input_ns = self.station.latest_input.get();
         self.play_script(&mut turn.actions);
         self.act(turn.actions, &mut turn.effects, now);
@@ -973,8 +984,13 @@ impl TrialConsole {
                         }),
                     );
                 }
-                Effect::SaveManifest => self.session.save_manifest(),
-                Effect::SetAside { from, to } => self.session.set_aside(&from, &to),
+                // The disk's waits must not hold up the station this loop has just woken.
+                Effect::SaveManifest => {
+                    without_holding_the_runtime(|| self.session.save_manifest());
+                }
+                Effect::SetAside { from, to } => {
+                    without_holding_the_runtime(|| self.session.set_aside(&from, &to));
+                }
                 Effect::Quit => next = Next::Quit,
             }
         }

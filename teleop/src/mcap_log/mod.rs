@@ -19,6 +19,8 @@
 //! - [`TrialWriter`]: writes `NAME.part`, chunked and zstd-compressed, flushed on every event
 //!   and metadata record and at least once per second of log time; [`TrialWriter::finish`]
 //!   writes the summary and renames it to `NAME`.
+//! - [`WriterThread`]: a [`TrialWriter`] on a thread of its own, for a loop that must not wait
+//!   on the disk.
 //! - [`recover`]: turns an interrupted `.part` into a complete file holding everything up to
 //!   the last flush, and says what was lost ([`RecoveryReport`]).
 //! - [`TrialReader`]: reads a complete file from any tool into memory; messages in log-time
@@ -67,6 +69,7 @@ pub mod slow_disk;
 mod trial_reader;
 mod trial_writer;
 mod writer_options;
+mod writer_thread;
 
 #[cfg(test)]
 mod event_reader_tests;
@@ -91,3 +94,4 @@ pub use recover::{RECOVERY_METADATA_NAME, RecoveryReport, recover};
 pub use trial_reader::{LogStatistics, TopicInfo, TrialReader};
 pub use trial_writer::{FinishedTrial, LIBRARY, TRIAL_EVENTS_QOS, TRIAL_EVENTS_TOPIC, TrialWriter};
 pub use writer_options::{LogCompression, TrialWriterOptions};
+pub use writer_thread::WriterThread;

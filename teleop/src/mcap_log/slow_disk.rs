@@ -2,9 +2,11 @@
 //!
 //! `POMDAR_TEST_SLOW_DISK_MS=N` (1–10000; off when unset, empty, 0 or not a number) makes every
 //! flush of a trial log to the operating system take N ms longer, and so its sync and rename
-//! at the end: what a lab PC's HDD, a network home or a disk busy with something else does to
-//! the writer. Read by [`TrialWriter`](super::TrialWriter) only; no test of the writer's own
-//! output sets it. Used by the station's slow-disk test.
+//! at the end, and every atomic file write (a session's manifest, a profile, a report): what
+//! a lab PC's HDD, a network home or a disk busy with something else does. Read by
+//! [`TrialWriter`](super::TrialWriter) and [`write_atomically`](crate::atomic_file::write_atomically)
+//! only; no test of their own output sets it. Used by the slow-disk tests of the station and
+//! the consoles.
 
 use std::sync::OnceLock;
 use std::time::Duration;
