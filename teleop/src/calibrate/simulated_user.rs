@@ -13,7 +13,7 @@ use calibration::{
     CalibrationSettings, CaptureSchedule, FitInputs, PoseSet, Study, SyntheticUser, human_copies,
 };
 use msgs::{Float32MultiArray, PoseStamped};
-use retarget::human_hand::HandVariation;
+use retarget::human_hand::{HandVariation, SplitMix64, VariationRanges};
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel};
 use tokio::sync::watch;
 
@@ -29,11 +29,13 @@ pub const SIMULATED_NOISE_M: f64 = 0.002;
 /// Publishing rate of the simulated glove, Hz.
 pub const SIMULATED_GLOVE_RATE_HZ: f64 = 100.0;
 
-/// A synthetic user with the flags' values.
+/// A synthetic user with the flags' values: hand size, glove misalignment, noise seed and the
+/// hand's proportions ([`HandVariation::NONE`]: a scaled copy of the average hand).
 pub fn synthetic_user(
     hand_scale: f64,
     glove_rpy_deg: [f64; 3],
     seed: u64,
+    variation: HandVariation,
 ) -> Result<SyntheticUser, CalibrateError> {
     if !(hand_scale.is_finite() && (0.5..=2.0).contains(&hand_scale)) {
         return Err(CalibrateError::HandScale { hand_scale });
@@ -49,8 +51,56 @@ pub fn synthetic_user(
         glove_rpy_rad: glove_rpy_deg.map(f64::to_radians),
         noise_sd_m: SIMULATED_NOISE_M,
         seed,
-        variation: HandVariation::NONE,
+        variation,
     })
+}
+
+/// Allowed range of a named proportion of `--simulate-hand`.
+pub const SIMULATED_PROPORTION_RANGE: (f64, f64) = (0.7, 1.3);
+
+/// The proportions of `--simulate-hand`: `random:SEED` draws a hand within the ranges of
+/// [`VariationRanges::DEFAULT`] (thumb ±15 %, index and middle ±10 %, palm breadth ±10 %,
+/// thumb base ±5 mm and ±5°, tip markers ±5 mm); `thumb=F,index=F,middle=F,palm=F` (any of
+/// them, factors 0.7–1.3) names them, the rest average.
+pub fn parse_simulated_hand(text: &str) -> Result<HandVariation, String> {
+    let text = text.trim();
+    if let Some(seed) = text.strip_prefix("random:") {
+        let seed: u64 = seed
+            .trim()
+            .parse()
+            .map_err(|e| format!("'{text}': the seed after random: is not a whole number ({e})"))?;
+        let mut rng = SplitMix64::new(seed);
+        return Ok(HandVariation::draw(&mut rng, &VariationRanges::DEFAULT));
+    }
+    let mut hand = HandVariation::NONE;
+    for item in text.split(',') {
+        let (name, value) = item.split_once('=').ok_or_else(|| {
+            format!(
+                "'{item}': expected NAME=FACTOR (thumb, index, middle, palm) or random:SEED, \
+                 e.g. thumb=1.12,index=0.95"
+            )
+        })?;
+        let (low, high) = SIMULATED_PROPORTION_RANGE;
+        let factor: f64 = value
+            .trim()
+            .parse()
+            .ok()
+            .filter(|f: &f64| f.is_finite() && (low..=high).contains(f))
+            .ok_or_else(|| format!("'{item}': the factor must be a number in {low}–{high}"))?;
+        let slot = match name.trim() {
+            "thumb" => &mut hand.thumb_length,
+            "index" => &mut hand.index_length,
+            "middle" => &mut hand.middle_length,
+            "palm" => &mut hand.palm_breadth,
+            other => {
+                return Err(format!(
+                    "'{other}': unknown proportion (known: thumb, index, middle, palm)"
+                ));
+            }
+        };
+        *slot = factor;
+    }
+    Ok(hand)
 }
 
 /// The transform that calibrates `user`: the user's hand size and glove misalignment
@@ -198,6 +248,26 @@ pub async fn publish_simulated_user(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_simulated_hand_is_named_by_its_proportions_or_drawn_from_a_seed() {
+        let named = parse_simulated_hand("thumb=1.12, index=0.95").unwrap();
+        assert_eq!((named.thumb_length, named.index_length), (1.12, 0.95));
+        assert_eq!((named.middle_length, named.palm_breadth), (1.0, 1.0));
+        let drawn = parse_simulated_hand("random:7").unwrap();
+        assert_eq!(drawn, parse_simulated_hand("random:7").unwrap());
+        assert_ne!(drawn, parse_simulated_hand("random:8").unwrap());
+        assert_ne!(drawn, HandVariation::NONE);
+        for (bad, named) in [
+            ("thumb=1.5", "0.7–1.3"),
+            ("wrist=1.1", "unknown proportion"),
+            ("thumb", "NAME=FACTOR"),
+            ("random:x", "whole number"),
+        ] {
+            let error = parse_simulated_hand(bad).unwrap_err();
+            assert!(error.contains(named), "{bad}: {error}");
+        }
+    }
 
     #[test]
     fn the_motion_moves_to_the_pose_then_holds_it_for_as_long_as_needed() {

@@ -12,6 +12,7 @@ use anyhow::{Context as _, bail};
 use calibration::{CalibrationProfile, CalibrationSettings, CaptureSchedule, SyntheticUser};
 use clap::Args;
 use retarget::HandModel;
+use retarget::human_hand::HandVariation;
 use tokio::sync::watch;
 
 use super::trial::EXIT_INTERRUPTED;
@@ -22,7 +23,8 @@ use crate::calibrate::ctrl_c::watch_ctrl_c;
 use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
 use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
 use crate::calibrate::simulated_user::{
-    SIMULATED_NOISE_M, loopback, publish_simulated_user, synthetic_user, true_transform,
+    SIMULATED_NOISE_M, loopback, parse_simulated_hand, publish_simulated_user, synthetic_user,
+    true_transform,
 };
 use crate::clock::StationClock;
 use crate::utc_date::{compact_utc, now_unix_s};
@@ -56,6 +58,13 @@ pub struct CalibrateArgs {
     /// is judged bad and captured again.
     #[arg(long, value_name = "POSE", requires = "simulate", value_parser = parse_pose)]
     pub simulate_bad_pose: Option<String>,
+    /// --simulate: a hand unlike the average in proportion, not only in size:
+    /// `thumb=F,index=F,middle=F,palm=F` (any of them, factors 0.7–1.3, e.g. thumb=1.12,index=0.95)
+    /// or `random:SEED` (thumb ±15 %, index and middle ±10 %, palm breadth ±10 %, thumb base
+    /// ±5 mm and ±5°, glove tip markers ±5 mm). No global transform calibrates such a hand
+    /// exactly; the comparison with the truth then says so.
+    #[arg(long, value_name = "SPEC", requires = "simulate", value_parser = parse_simulated_hand)]
+    pub simulate_hand: Option<HandVariation>,
     /// Timed operator actions instead of keys (accept, retry, quit, wait STATE [TIMEOUT_S]);
     /// see `pomdar calibrate --help`.
     #[arg(long, value_name = "FILE", conflicts_with = "from")]
@@ -292,6 +301,7 @@ fn simulated_user(args: &CalibrateArgs) -> anyhow::Result<Option<SyntheticUser>>
             args.hand_scale,
             args.glove_rpy.unwrap_or([0.0; 3]),
             args.seed,
+            args.simulate_hand.unwrap_or(HandVariation::NONE),
         )?))
     } else {
         Ok(None)
@@ -302,12 +312,22 @@ fn simulated_user(args: &CalibrateArgs) -> anyhow::Result<Option<SyntheticUser>>
 fn simulated_source(args: &CalibrateArgs, user: &SyntheticUser, session_out: &Path) -> String {
     let [r, p, y] = args.glove_rpy.unwrap_or([0.0; 3]);
     format!(
-        "simulated user (hand scale {}, glove rpy {r},{p},{y} deg, noise {} m, seed {}), session {}",
+        "simulated user (hand scale {}{}, glove rpy {r},{p},{y} deg, noise {} m, seed {}), session {}",
         user.hand_scale,
+        proportions(user),
         SIMULATED_NOISE_M,
         user.seed,
         session_out.display()
     )
+}
+
+/// `, proportions thumb+12-index-4-middle+0-palm+3` for a hand unlike the average, else empty.
+fn proportions(user: &SyntheticUser) -> String {
+    if user.variation == HandVariation::NONE {
+        String::new()
+    } else {
+        format!(", proportions {}", user.variation.label())
+    }
 }
 
 /// The console's setup pane; says on stderr which kind of session this is.
@@ -327,8 +347,9 @@ fn console_setup(
     match user {
         Some(user) => {
             let intro = format!(
-                "simulated user: hand scale {}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}; loopback DDS, domain {domain}",
+                "simulated user: hand scale {}{}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}; loopback DDS, domain {domain}",
                 user.hand_scale,
+                proportions(user),
                 args.glove_rpy.unwrap_or([0.0; 3]),
                 SIMULATED_NOISE_M,
                 user.seed,
@@ -502,5 +523,11 @@ fn print_recovery(
         "  scale error {:+.1} %, rotation error {rotation_error:.2}° (the acceptance test asks 3 % and 3° for 90 % of users)",
         100.0 * scale_error
     );
+    if user.variation != HandVariation::NONE {
+        println!(
+            "  the hand's proportions differ from the average hand's ({}): no global transform is exact for it, so \"true\" is its size and misalignment only",
+            user.variation.label()
+        );
+    }
     Ok(())
 }
