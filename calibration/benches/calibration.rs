@@ -17,9 +17,13 @@
 
 use std::time::Instant;
 
-use calibration::{BuiltinInputs, Study, SyntheticUser, calibrate};
+use calibration::{
+    BuiltinInputs, CalibrationModel, CalibrationSettings, Study, SyntheticUser, calibrate,
+};
 
 const USERS: u64 = 50;
+/// Users of the model comparison.
+const COMPARED_USERS: u64 = 24;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -60,7 +64,70 @@ fn non_uniform_recovery() {
     );
 }
 
+/// Global against per-digit on the same non-uniform users: held-out joint error and the
+/// calibration poses' pinch-gap error, and how many users each model served better.
+fn model_comparison() {
+    let builtin = BuiltinInputs::orca_v1();
+    let study = Study::new(builtin.inputs()).unwrap();
+    let per_digit = CalibrationSettings {
+        model: CalibrationModel::PerDigit,
+        ..builtin.settings.clone()
+    };
+    let gap_mm = |o: &calibration::UserOutcome| {
+        let gaps: Vec<f64> = o
+            .calibration
+            .after
+            .poses
+            .iter()
+            .filter_map(|p| p.pinch_gap_error_m)
+            .collect();
+        1e3 * gaps.iter().sum::<f64>() / gaps.len() as f64
+    };
+    let (mut g_sq, mut d_sq, mut none_sq, mut d_wins, mut g_gap, mut d_gap) =
+        (0.0, 0.0, 0.0, 0, 0.0, 0.0);
+    for seed in 0..COMPARED_USERS {
+        let user = SyntheticUser::random_non_uniform(1000 + seed);
+        let Ok(g) = study.run_user(&user) else {
+            eprintln!("user {seed}: a capture was refused (too much jitter): left out");
+            continue;
+        };
+        let d = study.run_user_with(&user, &per_digit).unwrap();
+        none_sq += g.held_out_before_rad.powi(2);
+        g_sq += g.held_out_after_rad.powi(2);
+        d_sq += d.held_out_after_rad.powi(2);
+        d_wins += usize::from(d.held_out_after_rad < g.held_out_after_rad);
+        g_gap += gap_mm(&g);
+        d_gap += gap_mm(&d);
+        eprintln!(
+            "user {seed}: {} held-out none {:.3} global {:.3} per-digit {:.3} rad; pinch gap error global {:.1} per-digit {:.1} mm; factors {:?}",
+            user.variation.label(),
+            g.held_out_before_rad,
+            g.held_out_after_rad,
+            d.held_out_after_rad,
+            gap_mm(&g),
+            gap_mm(&d),
+            d.calibration
+                .transform
+                .digit_scale
+                .map(|f| (f * 100.0).round() / 100.0)
+        );
+    }
+    let n = COMPARED_USERS as f64;
+    println!(
+        "{{\"bench\":\"calibration_models_non_uniform\",\"users\":{COMPARED_USERS},\"held_out_none_rad\":{:.3},\"held_out_global_rad\":{:.3},\"held_out_per_digit_rad\":{:.3},\"per_digit_better\":{d_wins},\"pinch_gap_error_global_mm\":{:.2},\"pinch_gap_error_per_digit_mm\":{:.2}}}",
+        (none_sq / n).sqrt(),
+        (g_sq / n).sqrt(),
+        (d_sq / n).sqrt(),
+        g_gap / n,
+        d_gap / n
+    );
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "models") {
+        model_comparison();
+        return;
+    }
     let builtin = BuiltinInputs::orca_v1();
     let (inputs, settings) = (builtin.inputs(), &builtin.settings);
     let study = Study::new(inputs).unwrap();

@@ -3,12 +3,13 @@
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel, RetargetConfig};
 
 use crate::capture::CapturedPose;
+use crate::digit_scales::SEARCH_EVALUATIONS_PER_DIGIT;
 use crate::error::Error;
 use crate::objective::{Evaluation, Objective};
 use crate::optimiser::{Trace, bayesian_optimise, polish};
 use crate::poses::PoseSet;
 use crate::search_space::{Parameters, to_unit, transform};
-use crate::settings::CalibrationSettings;
+use crate::settings::{CalibrationModel, CalibrationSettings};
 
 /// What the fit reports after each evaluation (for a progress bar).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +33,17 @@ pub struct Calibration {
     pub after: Evaluation,
     /// Every evaluation made: the Bayesian optimisation's, then the polish's.
     pub trace: Trace,
+    /// The model fitted.
+    pub model: CalibrationModel,
+    /// Evaluations of the per-digit search (0 for the global model).
+    pub digit_evaluations: usize,
+}
+
+impl Calibration {
+    /// Every objective evaluation the fit made.
+    pub fn evaluations(&self) -> usize {
+        self.trace.evaluations.len() + self.digit_evaluations
+    }
 }
 
 /// Everything a fit needs besides the captures.
@@ -123,7 +135,12 @@ pub fn calibrate(
     not_cancelled()?;
     let before = objective.evaluate(&CalibrationTransform::IDENTITY)?;
     let optimiser = &inputs.settings.optimiser;
-    let budget = optimiser.evaluations + 2 * optimiser.polish_evaluations;
+    let model = inputs.settings.model;
+    let digit_budget = match model {
+        CalibrationModel::Global => 0,
+        CalibrationModel::PerDigit => 5 * SEARCH_EVALUATIONS_PER_DIGIT,
+    };
+    let budget = optimiser.evaluations + 2 * optimiser.polish_evaluations + digit_budget;
     let mut done = 0;
     let mut best = f64::INFINITY;
     let mut f = |x: &Parameters| -> Result<f64, Error> {
@@ -139,14 +156,32 @@ pub fn calibrate(
     let trace = polish_twice(&mut f, bounds, trace, optimiser.polish_evaluations)?;
     not_cancelled()?;
     let (x, _) = trace.best().ok_or_else(no_evaluation)?;
-    let fitted = transform(&x);
-    let after = objective.evaluate(&fitted)?;
+    let mut fitted = transform(&x);
+    let mut after = objective.evaluate(&fitted)?;
+    let mut digit_evaluations = 0;
+    if model == CalibrationModel::PerDigit {
+        not_cancelled()?;
+        let (per_digit, made) = objective.digit_scales_searched(&fitted, cancelled)?;
+        digit_evaluations = made;
+        let with_digits = objective.evaluate(&per_digit)?;
+        if with_digits.value < after.value {
+            (fitted, after) = (per_digit, with_digits);
+        }
+        let best = after.value;
+        progress(FitProgress {
+            done: budget,
+            budget,
+            best,
+        });
+    }
     not_cancelled()?;
     Ok(Calibration {
         transform: fitted,
         before,
         after,
         trace,
+        model,
+        digit_evaluations,
     })
 }
 

@@ -31,6 +31,7 @@
 //! | `synthetic_study.rs` | [`Study`]: recovery and held-out error over synthetic users |
 
 mod capture;
+mod digit_scales;
 mod error;
 mod expected_improvement;
 mod fit;
@@ -49,6 +50,7 @@ mod synthetic_study;
 mod synthetic_user;
 
 pub use capture::{CapturedPose, capture_pose};
+pub use digit_scales::FACTOR_RANGE as DIGIT_FACTOR_RANGE;
 pub use error::Error;
 pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
 pub use human_copy::{human_copies, human_copy};
@@ -58,7 +60,9 @@ pub use poses::{CalibrationPose, ORCA_V1_POSES_TOML, POSE_NAMES, PoseSet};
 pub use profile::{CalibrationProfile, ObjectiveSummary, PoseReport, ProfileHeader};
 pub use schedule::CaptureSchedule;
 pub use search_space::{Parameters, box_bounds, initial_design, parameters, transform};
-pub use settings::{CalibrationSettings, CaptureThresholds, OptimiserSettings, ParameterBounds};
+pub use settings::{
+    CalibrationModel, CalibrationSettings, CaptureThresholds, OptimiserSettings, ParameterBounds,
+};
 pub use synthetic_study::{CAPTURE_RATE_HZ, HELD_OUT_POSES, Study, UserOutcome};
 pub use synthetic_user::{
     POPULATION_ANGLE_DEG, POPULATION_NOISE_M, POPULATION_SCALE, SyntheticUser,

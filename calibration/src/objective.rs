@@ -54,17 +54,17 @@ pub struct Evaluation {
     pub poses: Vec<PoseError>,
 }
 
-struct PoseTarget {
+pub(crate) struct PoseTarget {
     name: String,
-    keypoints: Vec<nalgebra::Point3<f64>>,
-    q_truth: Vec<f64>,
+    pub(crate) keypoints: Vec<nalgebra::Point3<f64>>,
+    pub(crate) q_truth: Vec<f64>,
     pinch: Option<(Finger, f64)>,
 }
 
 /// The objective for one user's captures.
 pub struct Objective {
-    retargeter: Retargeter,
-    targets: Vec<PoseTarget>,
+    pub(crate) retargeter: Retargeter,
+    pub(crate) targets: Vec<PoseTarget>,
     pinch_weight: f64,
 }
 

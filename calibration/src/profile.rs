@@ -8,12 +8,14 @@
 //! model = "orca_v1_right"
 //! layout = "lab22"
 //! source = "calibration_alice.mcap"
+//! calibration_model = "per_digit"   # or "global" (the default when missing)
 //!
 //! [parameters]          # retarget::CalibrationTransform
 //! scale = 1.07
 //! roll_rad = 0.01
 //! pitch_rad = -0.12
 //! yaw_rad = 0.05
+//! digit_scale = [0.88, 1.02, 0.97, 1.0, 0.99]   # per_digit only: thumb, index, middle, ring, little
 //!
 //! [objective]
 //! before_rad = 0.21
@@ -34,6 +36,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::Error;
 use crate::fit::Calibration;
 use crate::poses::POSE_NAMES;
+use crate::settings::CalibrationModel;
 
 /// A user's calibration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,6 +54,10 @@ pub struct CalibrationProfile {
     pub layout: KeypointLayout,
     /// Where the captures came from (a session file, or a simulation's description).
     pub source: String,
+    /// Which transform was fitted: `global` or `per_digit` (missing in older profiles:
+    /// global).
+    #[serde(default)]
+    pub calibration_model: CalibrationModel,
     /// The fitted transform.
     pub parameters: CalibrationTransform,
     /// The objective before and after.
@@ -131,11 +138,12 @@ impl CalibrationProfile {
             model: model.name().to_string(),
             layout,
             source: header.source,
+            calibration_model: calibration.model,
             parameters: calibration.transform,
             objective: ObjectiveSummary {
                 before_rad: calibration.before.value,
                 after_rad: calibration.after.value,
-                evaluations: calibration.trace.evaluations.len(),
+                evaluations: calibration.evaluations(),
             },
             poses,
         }

@@ -33,6 +33,7 @@ pub fn transform(x: &Parameters) -> CalibrationTransform {
         roll_rad: x[1],
         pitch_rad: x[2],
         yaw_rad: x[3],
+        digit_scale: [1.0; 5],
     }
 }
 

@@ -20,6 +20,31 @@ pub struct CalibrationSettings {
     pub pinch_weight_rad_per_m: f64,
     /// When a capture is accepted.
     pub capture: CaptureThresholds,
+    /// Which transform is fitted: `global` (scale and rotation) or `per_digit` (also a length
+    /// factor per digit).
+    pub model: CalibrationModel,
+}
+
+/// The calibration transform's model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum CalibrationModel {
+    /// One scale and one rotation for the whole hand (the paper's).
+    #[default]
+    Global,
+    /// The global fit, then a length factor per digit about its base, by least squares against
+    /// the poses' ground truth; kept only where it lowers the objective.
+    PerDigit,
+}
+
+impl CalibrationModel {
+    /// `global` or `per_digit`: the word in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            CalibrationModel::Global => "global",
+            CalibrationModel::PerDigit => "per_digit",
+        }
+    }
 }
 
 /// Box bounds of the four parameters.
@@ -100,6 +125,7 @@ impl Default for CalibrationSettings {
             optimiser: OptimiserSettings::default(),
             pinch_weight_rad_per_m: 10.0,
             capture: CaptureThresholds::default(),
+            model: CalibrationModel::default(),
         }
     }
 }

@@ -25,6 +25,7 @@ use crate::optimiser::random_search;
 use crate::poses::POSE_NAMES;
 use crate::schedule::CaptureSchedule;
 use crate::search_space::transform;
+use crate::settings::CalibrationSettings;
 use crate::synthetic_user::SyntheticUser;
 
 /// Glove rate of the simulated captures, Hz.
@@ -154,8 +155,22 @@ impl<'a> Study<'a> {
 
     /// Calibrate `user` and measure the outcome.
     pub fn run_user(&self, user: &SyntheticUser) -> Result<UserOutcome, Error> {
+        self.run_user_with(user, self.inputs.settings)
+    }
+
+    /// Calibrate `user` with `settings` (another model or budget; the reference and the
+    /// held-out truth stay the study's) and measure the outcome.
+    pub fn run_user_with(
+        &self,
+        user: &SyntheticUser,
+        settings: &CalibrationSettings,
+    ) -> Result<UserOutcome, Error> {
         let captures = self.captures(user)?;
-        let calibration = calibrate(self.inputs, &captures, &mut |_| {}, &|| false)?;
+        let inputs = FitInputs {
+            settings,
+            ..self.inputs
+        };
+        let calibration = calibrate(inputs, &captures, &mut |_| {}, &|| false)?;
         let truth = user.true_transform(&self.reference);
         let fitted = calibration.transform;
         let held_out_before_rad = self.held_out_error(user, &CalibrationTransform::IDENTITY)?;

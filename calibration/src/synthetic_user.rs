@@ -139,6 +139,7 @@ impl SyntheticUser {
             roll_rad,
             pitch_rad,
             yaw_rad,
+            digit_scale: [1.0; 5],
         }
     }
 }
@@ -156,6 +157,7 @@ mod tests {
             roll_rad: 0.02,
             pitch_rad: -0.03,
             yaw_rad: 0.05,
+            ..CalibrationTransform::IDENTITY
         };
         let truth = user.true_transform(&reference);
         let v = Vector3::new(0.01, 0.08, 0.02);

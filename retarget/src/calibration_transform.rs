@@ -1,6 +1,11 @@
 //! The per-user calibration transform: a global scale and a rotation applied to the human key
-//! vectors in the human palm frame before retargeting (identity by default; the calibration
-//! crate fits it on seven poses).
+//! vectors in the human palm frame before retargeting, and optionally a length factor per
+//! digit (identity by default; the calibration crate fits it on seven poses).
+//!
+//! A digit's factor scales its points about the digit's base keypoint (finger MCP, thumb
+//! CMC), before the global map: a point `p` of digit `i` with base `b` becomes
+//! `s · R · (b + f_i · (p − b))`. The palm's size and the glove's orientation stay global;
+//! a thumb longer than the average hand's, relative to the palm, is what `f_thumb` takes up.
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -20,7 +25,22 @@ pub struct CalibrationTransform {
     pub pitch_rad: f64,
     /// Rotation about the palm z axis, radians.
     pub yaw_rad: f64,
+    /// Length factor per digit about its base (indexed by [`Finger::index`](crate::Finger));
+    /// all 1 for the global model, and then not written to a file. Missing in a file: all 1.
+    #[serde(default = "unit_digits", skip_serializing_if = "is_unit")]
+    pub digit_scale: [f64; 5],
 }
+
+fn unit_digits() -> [f64; 5] {
+    [1.0; 5]
+}
+
+fn is_unit(digits: &[f64; 5]) -> bool {
+    *digits == [1.0; 5]
+}
+
+/// Allowed range of a digit's length factor (exclusive).
+pub const DIGIT_SCALE_RANGE: (f64, f64) = (0.5, 2.0);
 
 impl Default for CalibrationTransform {
     fn default() -> Self {
@@ -35,7 +55,13 @@ impl CalibrationTransform {
         roll_rad: 0.0,
         pitch_rad: 0.0,
         yaw_rad: 0.0,
+        digit_scale: [1.0; 5],
     };
+
+    /// Whether it has a length factor per digit (the per-digit model), not only the global map.
+    pub fn has_digit_scales(&self) -> bool {
+        !is_unit(&self.digit_scale)
+    }
 
     /// Check the values: scale in (0.2, 5), angles within ±π, all finite.
     pub fn validate(&self) -> Result<(), Error> {
@@ -46,6 +72,18 @@ impl CalibrationTransform {
         };
         if !(self.scale.is_finite() && self.scale > 0.2 && self.scale < 5.0) {
             return Err(bad("calibration.scale", self.scale, "must be in (0.2, 5)"));
+        }
+        let (low, high) = DIGIT_SCALE_RANGE;
+        if let Some(&f) = self
+            .digit_scale
+            .iter()
+            .find(|f| !(f.is_finite() && **f > low && **f < high))
+        {
+            return Err(bad(
+                "calibration.digit_scale",
+                f,
+                "each must be in (0.5, 2)",
+            ));
         }
         for (key, value) in [
             ("calibration.roll_rad", self.roll_rad),
@@ -73,6 +111,18 @@ impl CalibrationTransform {
     pub fn apply(&self, v: &Vector3<f64>) -> Vector3<f64> {
         self.rotation() * v * self.scale
     }
+
+    /// Map a point `p` of digit `digit` (index by [`Finger::index`](crate::Finger)) whose base
+    /// is `base`, both in the human palm frame: `s · R · (b + f · (p − b))`.
+    pub fn apply_on_digit(
+        &self,
+        digit: usize,
+        base: &Vector3<f64>,
+        p: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        let f = self.digit_scale.get(digit).copied().unwrap_or(1.0);
+        self.matrix() * (base + f * (p - base))
+    }
 }
 
 #[cfg(test)]
@@ -91,6 +141,35 @@ mod tests {
         let out = t.apply(&Vector3::new(1.0, 0.0, 0.0));
         assert!((out - Vector3::new(0.0, 2.0, 0.0)).norm() < 1e-12);
         assert!((t.matrix() * Vector3::new(1.0, 0.0, 0.0) - out).norm() < 1e-12);
+    }
+
+    #[test]
+    fn a_digit_factor_scales_about_the_base_and_the_global_model_writes_none() {
+        let t = CalibrationTransform {
+            digit_scale: [1.2, 1.0, 1.0, 1.0, 1.0],
+            ..CalibrationTransform::IDENTITY
+        };
+        let (base, tip) = (Vector3::new(0.02, 0.03, 0.0), Vector3::new(0.02, 0.08, 0.0));
+        assert!((t.apply_on_digit(0, &base, &tip) - Vector3::new(0.02, 0.09, 0.0)).norm() < 1e-12);
+        assert_eq!(t.apply_on_digit(1, &base, &tip), tip);
+        assert!(t.has_digit_scales() && !CalibrationTransform::IDENTITY.has_digit_scales());
+        let global = toml::to_string(&CalibrationTransform::IDENTITY).unwrap();
+        assert!(!global.contains("digit_scale"), "{global}");
+        let read: CalibrationTransform = toml::from_str(&global).unwrap();
+        assert_eq!(read, CalibrationTransform::IDENTITY);
+        let per_digit: CalibrationTransform =
+            toml::from_str(&toml::to_string(&t).unwrap()).unwrap();
+        assert_eq!(per_digit, t);
+        let bad = CalibrationTransform {
+            digit_scale: [1.0, 3.0, 1.0, 1.0, 1.0],
+            ..t
+        };
+        assert!(
+            bad.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("digit_scale")
+        );
     }
 
     #[test]

@@ -13,7 +13,8 @@ use crate::palm_frame::PalmFrame;
 /// One frame of human input, reduced to what the energy uses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HumanKeyVectors {
-    /// Fingertips in the human palm frame, after `scale · R`, metres (index by
+    /// Fingertips in the human palm frame, after the calibration transform (each digit's
+    /// length factor about its base, then `scale · R`), metres (index by
     /// [`Finger::index`]). Palm-to-tip key vectors are these; tip-to-tip ones their
     /// differences.
     pub tips: [Vector3<f64>; 5],
@@ -68,9 +69,12 @@ pub fn human_key_vectors(
 ) -> Result<HumanKeyVectors, Error> {
     validate_keypoints(layout, points)?;
     let palm = PalmFrame::from_landmarks(&layout.palm_landmarks(points))?;
-    let map = transform.matrix();
-    let tips = Finger::ALL.map(|f| map * palm.point_to_palm(&points[layout.tip(f)]));
-    let mids = Finger::ALL.map(|f| map * palm.point_to_palm(&points[layout.chain(f)[1]]));
+    let in_palm = |i: usize| palm.point_to_palm(&points[i]);
+    let mapped = |f: Finger, i: usize| {
+        transform.apply_on_digit(f.index(), &in_palm(layout.chain(f)[0]), &in_palm(i))
+    };
+    let tips = Finger::ALL.map(|f| mapped(f, layout.tip(f)));
+    let mids = Finger::ALL.map(|f| mapped(f, layout.chain(f)[1]));
     let thumb = points[layout.tip(Finger::Thumb)];
     let pinch_distances_m = Finger::OPPOSING.map(|f| (points[layout.tip(f)] - thumb).norm());
     Ok(HumanKeyVectors {

@@ -36,11 +36,13 @@ fn profile_text() -> String {
         model: model.name().to_string(),
         layout: KeypointLayout::Lab22,
         source: "profiles/alice-session.mcap".into(),
+        calibration_model: calibration::CalibrationModel::Global,
         parameters: CalibrationTransform {
             scale: 1.08,
             roll_rad: 0.05,
             pitch_rad: -0.1,
             yaw_rad: 0.2,
+            ..CalibrationTransform::IDENTITY
         },
         objective: ObjectiveSummary {
             before_rad: 0.4,

@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use calibration::{
-    CalibrationProfile, CalibrationSettings, CapturedPose, FitInputs, FitProgress, PoseSet,
-    ProfileHeader, calibrate, capture_pose,
+    CalibrationModel, CalibrationProfile, CalibrationSettings, CapturedPose, FitInputs,
+    FitProgress, PoseSet, ProfileHeader, calibrate, capture_pose,
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
@@ -208,6 +208,29 @@ fn table_lines(profile: &CalibrationProfile, captures: &[CapturedPose]) -> Vec<S
         "objective: {:.3} rad before, {:.3} rad after ({} evaluations)",
         profile.objective.before_rad, profile.objective.after_rad, profile.objective.evaluations
     ));
+    let t = &profile.parameters;
+    lines.push(match (profile.calibration_model, t.has_digit_scales()) {
+        (CalibrationModel::Global, _) => format!(
+            "model: global (scale {:.3}, roll/pitch/yaw {:.1}/{:.1}/{:.1}°)",
+            t.scale,
+            t.roll_rad.to_degrees(),
+            t.pitch_rad.to_degrees(),
+            t.yaw_rad.to_degrees()
+        ),
+        (CalibrationModel::PerDigit, true) => format!(
+            "model: per digit (scale {:.3}; digit lengths thumb {:.2}, index {:.2}, middle {:.2}, ring {:.2}, little {:.2})",
+            t.scale,
+            t.digit_scale[0],
+            t.digit_scale[1],
+            t.digit_scale[2],
+            t.digit_scale[3],
+            t.digit_scale[4]
+        ),
+        (CalibrationModel::PerDigit, false) => {
+            "model: per digit, but no digit factor lowered the objective: the global fit is kept"
+                .to_string()
+        }
+    });
     lines
 }
 

@@ -9,7 +9,9 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
-use calibration::{CalibrationProfile, CalibrationSettings, CaptureSchedule, SyntheticUser};
+use calibration::{
+    CalibrationModel, CalibrationProfile, CalibrationSettings, CaptureSchedule, SyntheticUser,
+};
 use clap::Args;
 use retarget::HandModel;
 use retarget::human_hand::HandVariation;
@@ -92,6 +94,11 @@ pub struct CalibrateArgs {
     /// default: 60 Bayesian-optimisation evaluations + 2 × 40 polish, seed 42).
     #[arg(long, value_name = "CALIBRATION.toml")]
     pub settings: Option<PathBuf>,
+    /// The transform to fit: `global` (one scale and one rotation, the paper's) or `per-digit`
+    /// (then a length factor per digit about its base, searched on the objective, 40
+    /// evaluations more; kept only where it lowers it). Overrides the settings file's `model`.
+    #[arg(long, value_name = "MODEL", value_parser = parse_model)]
+    pub model: Option<CalibrationModel>,
     /// ROS domain id of the session (live: default the config's, else ROS_DOMAIN_ID, else 0;
     /// --simulate: default one of 150–229 no other run on this machine holds, on loopback only).
     #[arg(long)]
@@ -112,6 +119,16 @@ fn parse_rpy(text: &str) -> Result<[f64; 3], String> {
         .map_err(|e| format!("'{text}': {e} (expected R,P,Y in degrees, e.g. 10,-5,3)"))?;
     <[f64; 3]>::try_from(values)
         .map_err(|_| format!("'{text}': expected three angles R,P,Y in degrees, e.g. 10,-5,3"))
+}
+
+fn parse_model(text: &str) -> Result<CalibrationModel, String> {
+    match text {
+        "global" => Ok(CalibrationModel::Global),
+        "per-digit" | "per_digit" => Ok(CalibrationModel::PerDigit),
+        other => Err(format!(
+            "unknown model '{other}' (known: global, per-digit)"
+        )),
+    }
 }
 
 fn parse_pose(text: &str) -> Result<String, String> {
@@ -222,6 +239,10 @@ fn fit_options(args: &CalibrateArgs) -> anyhow::Result<FitOptions> {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
             .with_context(|| format!("calibration settings {}", path.display()))?,
         None => CalibrationSettings::default(),
+    };
+    let settings = CalibrationSettings {
+        model: args.model.unwrap_or(settings.model),
+        ..settings
     };
     let out = match &args.out {
         Some(path) => path.clone(),

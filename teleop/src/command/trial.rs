@@ -29,6 +29,7 @@ use super::trial_physics::{PhysicsLink, PhysicsParts, next_progress, progress_ac
 use crate::atomic_file::write_atomically;
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
+use crate::console::message_log::MessageLog;
 use crate::disk_wait::without_holding_the_runtime;
 use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
@@ -313,6 +314,7 @@ pub async fn run_session(
             info,
             inputs,
             manifest_path: dir.join(MANIFEST_FILE),
+            message_log: MessageLog::new(&dir),
             dir,
             report_written: false,
             config: config.clone(),
@@ -681,6 +683,8 @@ struct Session {
     manifest_path: PathBuf,
     /// Whether the complete session's report is written.
     report_written: bool,
+    /// The console's messages, kept in the session directory.
+    message_log: MessageLog,
     /// The station's configuration (the topics and limits each trial is reviewed with).
     config: StationConfig,
 }
@@ -922,6 +926,8 @@ impl TrialConsole {
         if self.done_unattended() {
             next = Next::Quit;
         }
+        let session = &mut self.session;
+        session.message_log.append_new(&mut session.flow);
         self.operator.show(&self.session, now)?;
         Ok(next)
     }

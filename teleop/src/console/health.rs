@@ -32,6 +32,10 @@ impl Default for StartLimits {
 /// station's default hold timeout).
 const NOTED_GAP_MS: f64 = 150.0;
 
+/// A turn of the station's loop at least this long is named when the glove is found stale
+/// (a 100 Hz glove's frames queue behind it).
+const NOTED_TURN_MS: f64 = 50.0;
+
 /// The station's health at one status.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Health {
@@ -48,6 +52,8 @@ pub struct Health {
     pub latest_input_ns: Option<i64>,
     /// The longest gap between new glove frames so far: (as received, as sent), ms.
     pub longest_gap_ms: Option<(f64, f64)>,
+    /// The station loop's longest turn so far: ms and its handler.
+    pub longest_turn: Option<(f64, String)>,
     /// Frame received → command published, ms (the last one).
     pub latency_ms: Option<f64>,
     /// Hand commands per second.
@@ -175,6 +181,12 @@ impl Health {
                     gap.get("sent_ms").and_then(number)?,
                 ))
             }),
+            longest_turn: status.get("longest_turn").and_then(|turn| {
+                Some((
+                    turn.get("ms").and_then(number)?,
+                    turn.get("handler")?.as_str()?.to_string(),
+                ))
+            }),
             latency_ms: status.get("processing_latency_ms").and_then(number),
             output_rate_hz: status.get("output_rate_hz").and_then(number).unwrap_or(0.0),
             rejected,
@@ -226,6 +238,14 @@ impl Health {
         if let Some((received, sent)) = self.longest_gap_ms {
             why.push_str(&format!(
                 "; longest gap so far {received:.0} ms as received, {sent:.0} ms as sent"
+            ));
+        }
+        // A station loop held up in one of its handlers takes no frame meanwhile.
+        if let Some((ms, handler)) = &self.longest_turn
+            && *ms >= NOTED_TURN_MS
+        {
+            why.push_str(&format!(
+                "; the station's longest turn {ms:.0} ms ({handler})"
             ));
         }
         why
@@ -417,6 +437,24 @@ mod tests {
             why.ends_with("longest gap so far 512 ms as received, 10 ms as sent"),
             "{why}"
         );
+    }
+
+    #[test]
+    fn a_stale_input_refusal_names_a_long_turn_of_the_station() {
+        let mut document = status("disengaged", 99.0, Some(500.0));
+        document["longest_turn"] = json!({"ms": 612.0, "handler": "status"});
+        let why = Health::from_status(&document, 0)
+            .refuse_start(&StartLimits::default(), 0)
+            .unwrap();
+        assert!(
+            why.ends_with("the station's longest turn 612 ms (status)"),
+            "{why}"
+        );
+        document["longest_turn"] = json!({"ms": 3.0, "handler": "keypoints"});
+        let why = Health::from_status(&document, 0)
+            .refuse_start(&StartLimits::default(), 0)
+            .unwrap();
+        assert!(!why.contains("longest turn"), "{why}");
     }
 
     #[test]

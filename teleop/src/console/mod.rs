@@ -6,6 +6,7 @@ pub mod error;
 pub mod health;
 pub mod keys;
 pub mod manifest;
+pub mod message_log;
 pub mod plain_output;
 pub mod screen;
 pub mod session_dir;

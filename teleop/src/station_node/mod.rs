@@ -2,6 +2,7 @@
 //! records, steps the station and publishes what it returns.
 
 mod error;
+mod loop_turns;
 pub mod operator;
 pub mod recorder;
 mod recorder_thread;

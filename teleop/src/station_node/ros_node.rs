@@ -34,6 +34,7 @@ use crate::clock::StationClock;
 use crate::ros::{QosConfig, RosNode};
 use crate::samples::Samples;
 use crate::station_node::error::NodeError;
+use crate::station_node::loop_turns::LoopTurns;
 pub use crate::station_node::operator::{LatestInput, OperatorCommand, StationEvent, StationHooks};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 use crate::station_node::recorder_thread::{LogQueue, LogReport};
@@ -144,6 +145,7 @@ pub async fn run_station_observed(
         recorded: Vec::new(),
         keypoint_source: None,
         relay: RelayView::default(),
+        turns: LoopTurns::default(),
     };
     node.send_latched(&endpoints).await;
     loop {
@@ -151,18 +153,36 @@ pub async fn run_station_observed(
             _ = shutdown.changed() => {
                 if *shutdown.borrow() { break; }
             }
-            Some(command) = operator.recv() => node.on_operator(command, &endpoints).await,
-            Some(item) = streams.keypoints.next() => node.on_keypoints(item, &endpoints).await,
+            Some(command) = operator.recv() => {
+                let t = Instant::now();
+                node.on_operator(command, &endpoints).await;
+                node.turns.ended("operator", t);
+            }
+            Some(item) = streams.keypoints.next() => {
+                let t = Instant::now();
+                node.on_keypoints(item, &endpoints).await;
+                node.turns.ended("keypoints", t);
+            }
             Some(item) = streams.wrist.next() => node.on_wrist(item),
             Some(item) = streams.feedback.next() => node.on_feedback(item),
             Some(item) = streams.hand_state.next() => node.on_hand_state(item),
             Some(item) = streams.ingress_status.next() => node.on_ingress_status(item),
-            Some(request) = streams.services.next() => node.on_service(request, &endpoints).await,
+            Some(request) = streams.services.next() => {
+                let t = Instant::now();
+                node.on_service(request, &endpoints).await;
+                node.turns.ended("service", t);
+            }
             Some(report) = log_reports.recv() => node.on_log_report(report),
             _ = streams.tick.tick() => {
+                let t = Instant::now();
                 node.drive(StationInput::Control(ControlInput::Tick), &endpoints).await;
+                node.turns.ended("tick", t);
             }
-            _ = streams.status_tick.tick() => node.on_status_tick(&endpoints).await,
+            _ = streams.status_tick.tick() => {
+                let t = Instant::now();
+                node.on_status_tick(&endpoints).await;
+                node.turns.ended("status", t);
+            }
         }
     }
     Ok(node.finish(log_reports).await)
@@ -401,6 +421,8 @@ struct StationNode {
     keypoint_source: Option<(String, String)>,
     /// What the relay (when commands go through one) last said.
     relay: RelayView,
+    /// The longest turn of the loop so far.
+    turns: LoopTurns,
 }
 
 impl StationNode {
@@ -587,6 +609,7 @@ impl StationNode {
             fields.insert("stamp_ns".into(), json!(now));
             fields.insert("processing_latency_ms".into(), json!(self.last_latency_ms));
             fields.insert("last_step_ms".into(), json!(self.step_time.last()));
+            fields.insert("longest_turn".into(), json!(self.turns));
             if let Some(subscription) = &endpoints.relay_status {
                 self.relay.poll(subscription, now);
             }

@@ -31,6 +31,7 @@ use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
 use teleop::console::manifest::{Manifest, TrialStatus};
+use teleop::console::message_log::MESSAGE_LOG_FILE;
 use teleop::console::test_pause::TEST_PAUSE_ENV;
 use teleop::mcap_log::TrialReader;
 
@@ -623,7 +624,7 @@ fn assert_complete(session: &Session, seen: &Seen) {
     }
     for name in file_names(dir) {
         assert!(!name.ends_with(".part"), "{name} left after the end");
-        if name != "session.json" {
+        if name != "session.json" && name != MESSAGE_LOG_FILE {
             assert!(
                 manifest.trials.iter().any(|t| t.file == name),
                 "{name} is not in the manifest"

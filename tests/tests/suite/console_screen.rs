@@ -23,6 +23,8 @@ const WAIT_S: f64 = 30.0;
 struct Console {
     child: std::process::Child,
     screen: Arc<Mutex<vt100::Parser>>,
+    /// Where the sessions go (their console.log is shown when a wait fails).
+    sessions: std::path::PathBuf,
 }
 
 impl Drop for Console {
@@ -47,10 +49,30 @@ impl Console {
             }
             assert!(
                 start.elapsed().as_secs_f64() < timeout_s,
-                "waited {timeout_s} s for {texts:?}; the screen shows:\n{screen}"
+                "waited {timeout_s} s for {texts:?}; the screen shows:\n{screen}\n{}",
+                self.message_logs()
             );
             std::thread::sleep(Duration::from_millis(50));
         }
+    }
+
+    /// Every console.log under the sessions directory, whole (the screen shows one line of
+    /// each message).
+    fn message_logs(&self) -> String {
+        let mut logs = String::new();
+        let mut dirs = vec![self.sessions.clone()];
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    dirs.push(path);
+                } else if path.file_name().is_some_and(|n| n == "console.log") {
+                    let text = std::fs::read_to_string(&path).unwrap_or_default();
+                    logs.push_str(&format!("--- {}\n{text}", path.display()));
+                }
+            }
+        }
+        logs
     }
 
     fn press(&mut self, keys: &str) {
@@ -102,7 +124,11 @@ impl Console {
                 feed.lock().unwrap().process(&buffer[..n]);
             }
         });
-        Console { child, screen }
+        Console {
+            child,
+            screen,
+            sessions: dir.join("sessions"),
+        }
     }
 }
 

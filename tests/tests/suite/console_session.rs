@@ -129,7 +129,7 @@ fn v1_script() -> String {
 }
 
 /// The V1 session's directory holds every trial's log (the redone one set aside), each
-/// trial's review, its report and its manifest.
+/// trial's review, its report, its manifest and the console's messages.
 fn assert_v1_files(dir: &Path) {
     let mut files: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
@@ -145,10 +145,24 @@ fn assert_v1_files(dir: &Path) {
             "V1-t02-a2.mcap",
             "V1-t02.mcap.redone",
             "V1-t03.mcap",
+            "console.log",
             "report",
             "review",
             "session.json"
         ]
+    );
+    // What the console said, whole and stamped: the redo and the note among it.
+    let said = std::fs::read_to_string(dir.join("console.log")).unwrap();
+    assert!(
+        said.lines().all(|l| l
+            .split(' ')
+            .next()
+            .is_some_and(|t| t.len() == 16 && t.ends_with('Z'))),
+        "{said}"
+    );
+    assert!(
+        said.contains("note added to the session: trial 2 redone"),
+        "{said}"
     );
     for trial in ["V1-p01", "V1-t01", "V1-t02-a2", "V1-t03"] {
         for ext in ["png", "svg", "json"] {
