@@ -240,15 +240,19 @@ impl Health {
                 "; longest gap so far {received:.0} ms as received, {sent:.0} ms as sent"
             ));
         }
-        // A station loop held up in one of its handlers takes no frame meanwhile.
-        if let Some((ms, handler)) = &self.longest_turn
-            && *ms >= NOTED_TURN_MS
-        {
-            why.push_str(&format!(
-                "; the station's longest turn {ms:.0} ms ({handler})"
-            ));
-        }
+        why.push_str(&self.long_turn());
         why
+    }
+
+    /// `; the station's longest turn 612 ms (status)` when its loop once spent
+    /// [`NOTED_TURN_MS`] or more in one handler (taking no frame meanwhile), else empty.
+    fn long_turn(&self) -> String {
+        match &self.longest_turn {
+            Some((ms, handler)) if *ms >= NOTED_TURN_MS => {
+                format!("; the station's longest turn {ms:.0} ms ({handler})")
+            }
+            _ => String::new(),
+        }
     }
 
     /// Why a trial may not start at `now_ns`, if it may not.
@@ -272,8 +276,10 @@ impl Health {
         }
         if self.glove_rate_hz < limits.min_glove_rate_hz {
             return Some(format!(
-                "glove rate {:.1} Hz is below the minimum {:.1} Hz (--min-glove-rate)",
-                self.glove_rate_hz, limits.min_glove_rate_hz
+                "glove rate {:.1} Hz is below the minimum {:.1} Hz (--min-glove-rate){}",
+                self.glove_rate_hz,
+                limits.min_glove_rate_hz,
+                self.long_turn()
             ));
         }
         if limits.drives_robot && !self.engaged() {
@@ -455,6 +461,16 @@ mod tests {
             .refuse_start(&StartLimits::default(), 0)
             .unwrap();
         assert!(!why.contains("longest turn"), "{why}");
+        let mut slow = status("disengaged", 5.0, Some(5.0));
+        slow["longest_turn"] = json!({"ms": 1040.0, "handler": "keypoints"});
+        let why = Health::from_status(&slow, 0)
+            .refuse_start(&StartLimits::default(), 0)
+            .unwrap();
+        assert!(
+            why.starts_with("glove rate 5.0 Hz")
+                && why.ends_with("the station's longest turn 1040 ms (keypoints)"),
+            "{why}"
+        );
     }
 
     #[test]
