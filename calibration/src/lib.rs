@@ -50,7 +50,6 @@ mod synthetic_study;
 mod synthetic_user;
 
 pub use capture::{CapturedPose, capture_pose};
-pub use digit_scales::FACTOR_RANGE as DIGIT_FACTOR_RANGE;
 pub use error::Error;
 pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
 pub use human_copy::{human_copies, human_copy};

@@ -54,17 +54,17 @@ pub struct Evaluation {
     pub poses: Vec<PoseError>,
 }
 
-pub(crate) struct PoseTarget {
+struct PoseTarget {
     name: String,
-    pub(crate) keypoints: Vec<nalgebra::Point3<f64>>,
-    pub(crate) q_truth: Vec<f64>,
+    keypoints: Vec<nalgebra::Point3<f64>>,
+    q_truth: Vec<f64>,
     pinch: Option<(Finger, f64)>,
 }
 
 /// The objective for one user's captures.
 pub struct Objective {
-    pub(crate) retargeter: Retargeter,
-    pub(crate) targets: Vec<PoseTarget>,
+    retargeter: Retargeter,
+    targets: Vec<PoseTarget>,
     pinch_weight: f64,
 }
 

@@ -112,16 +112,17 @@ impl CalibrationTransform {
         self.rotation() * v * self.scale
     }
 
-    /// Map a point `p` of digit `digit` (index by [`Finger::index`](crate::Finger)) whose base
-    /// is `base`, both in the human palm frame: `s · R · (b + f · (p − b))`.
-    pub fn apply_on_digit(
+    /// A point `p` of digit `digit` (index by [`Finger::index`](crate::Finger)) whose base is
+    /// `base`, both in the human palm frame, with the digit's length factor applied:
+    /// `b + f · (p − b)` (the global map [`matrix`](CalibrationTransform::matrix) comes after).
+    pub fn lengthen_digit(
         &self,
         digit: usize,
         base: &Vector3<f64>,
         p: &Vector3<f64>,
     ) -> Vector3<f64> {
         let f = self.digit_scale.get(digit).copied().unwrap_or(1.0);
-        self.matrix() * (base + f * (p - base))
+        base + f * (p - base)
     }
 }
 
@@ -150,8 +151,8 @@ mod tests {
             ..CalibrationTransform::IDENTITY
         };
         let (base, tip) = (Vector3::new(0.02, 0.03, 0.0), Vector3::new(0.02, 0.08, 0.0));
-        assert!((t.apply_on_digit(0, &base, &tip) - Vector3::new(0.02, 0.09, 0.0)).norm() < 1e-12);
-        assert_eq!(t.apply_on_digit(1, &base, &tip), tip);
+        assert!((t.lengthen_digit(0, &base, &tip) - Vector3::new(0.02, 0.09, 0.0)).norm() < 1e-12);
+        assert_eq!(t.lengthen_digit(1, &base, &tip), tip);
         assert!(t.has_digit_scales() && !CalibrationTransform::IDENTITY.has_digit_scales());
         let global = toml::to_string(&CalibrationTransform::IDENTITY).unwrap();
         assert!(!global.contains("digit_scale"), "{global}");

@@ -69,9 +69,11 @@ pub fn human_key_vectors(
 ) -> Result<HumanKeyVectors, Error> {
     validate_keypoints(layout, points)?;
     let palm = PalmFrame::from_landmarks(&layout.palm_landmarks(points))?;
+    let map = transform.matrix();
     let in_palm = |i: usize| palm.point_to_palm(&points[i]);
+    let bases = Finger::ALL.map(|f| in_palm(layout.chain(f)[0]));
     let mapped = |f: Finger, i: usize| {
-        transform.apply_on_digit(f.index(), &in_palm(layout.chain(f)[0]), &in_palm(i))
+        map * transform.lengthen_digit(f.index(), &bases[f.index()], &in_palm(i))
     };
     let tips = Finger::ALL.map(|f| mapped(f, layout.tip(f)));
     let mids = Finger::ALL.map(|f| mapped(f, layout.chain(f)[1]));

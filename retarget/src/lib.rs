@@ -187,5 +187,5 @@ pub use retarget_config::{
     KeyVectorWeights, PinchConfig, QpMethod, Regularisation, RetargetConfig, SmoothingConfig,
     SolverConfig,
 };
-pub use retargeter::{DigitPoints, Retargeter, Solution, SolveStatus};
+pub use retargeter::{Retargeter, Solution, SolveStatus};
 pub use urdf_import::{UrdfImport, spec_from_urdf};

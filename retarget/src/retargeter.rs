@@ -80,9 +80,6 @@ pub struct Solution {
     pub prior_weight: f64,
 }
 
-/// Per digit (indexed by [`Finger::index`](crate::Finger)): fingertips, then mid points.
-pub type DigitPoints = ([Vector3<f64>; 5], [Vector3<f64>; 5]);
-
 /// The retargeter for one hand model, configuration and calibration.
 ///
 /// ```
@@ -346,16 +343,6 @@ impl Retargeter {
     pub fn robot_tips(&mut self, q: &[f64]) -> Result<[Vector3<f64>; 5], Error> {
         let points = self.robot_points(q)?;
         Ok(std::array::from_fn(|i| points[i]))
-    }
-
-    /// Fingertips and mid points (finger PIP, thumb MCP) of the robot at `q`, in the robot
-    /// palm frame, metres.
-    pub fn robot_tips_and_mids(&mut self, q: &[f64]) -> Result<DigitPoints, Error> {
-        let points = self.robot_points(q)?;
-        Ok((
-            std::array::from_fn(|i| points[i]),
-            std::array::from_fn(|i| points[5 + i]),
-        ))
     }
 
     /// The energy's robot points at `q` (fingertips, then mid points), robot palm frame.
