@@ -32,8 +32,8 @@ pub enum CalibrationModel {
     /// One scale and one rotation for the whole hand (the paper's).
     #[default]
     Global,
-    /// The global fit, then a length factor per digit about its base, by least squares against
-    /// the poses' ground truth; kept only where it lowers the objective.
+    /// The global fit, then a length factor per digit about its base, searched on the
+    /// objective one digit at a time; kept only where it lowers the objective.
     PerDigit,
 }
 
