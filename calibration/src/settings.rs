@@ -1,5 +1,5 @@
 //! Calibration settings (TOML, every key optional): the parameter bounds, the optimiser's
-//! budget and seed, the pinch term's weight and the capture thresholds. Validated on load with
+//! budget and seed, the pinch term's weight, the capture thresholds and the transform's model. Validated on load with
 //! errors that name the key and the allowed range.
 
 use serde::{Deserialize, Serialize};
