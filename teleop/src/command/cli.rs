@@ -239,7 +239,10 @@ enum Command {
     ///   --simulate the whole session on loopback DDS with a synthetic user (hand size,
     ///              glove misalignment, 2 mm noise) who copies each pose; prints the
     ///              recovered and true parameters. --simulate-bad-pose POSE makes the user
-    ///              shake through that pose's first capture (to see a retry).
+    ///              shake through that pose's first capture (to see a retry);
+    ///              --simulate-hand gives the user a hand unlike the average in proportion.
+    ///   --model    global (one scale and one rotation, the default) or per-digit (also a
+    ///              length factor per digit, kept only where it lowers the objective).
     ///
     /// The capture-quality meter: jitter (the largest keypoint RMS deviation in the palm
     /// frame, mm), invalid frames (wrong count, non-finite, no palm frame), and frames
