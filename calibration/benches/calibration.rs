@@ -12,6 +12,9 @@
 //!   cannot be exact (the truth is the one for the user's size and glove);
 //! - Bayesian optimisation against random search with the same 60 evaluations: the median
 //!   over users of the best objective each found, and how many users each won.
+//!
+//! `-- models` compares the global and the per-digit model instead; `-- fit_check` measures
+//! the check of the fitted poses (see `fit_check/mod.rs`).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
@@ -23,6 +26,8 @@ use retarget::{CalibrationTransform, QualityRecorder, QualityReport, Retargeter}
 use calibration::{
     BuiltinInputs, CalibrationModel, CalibrationSettings, Study, SyntheticUser, calibrate,
 };
+
+mod fit_check;
 
 const USERS: u64 = 50;
 /// Users of the model comparison.
@@ -200,6 +205,10 @@ fn model_comparison() {
 fn main() {
     if std::env::args().any(|a| a == "models") {
         model_comparison();
+        return;
+    }
+    if std::env::args().any(|a| a == "fit_check") {
+        fit_check::run();
         return;
     }
     let builtin = BuiltinInputs::orca_v1();

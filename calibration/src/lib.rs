@@ -24,6 +24,7 @@
 //! | `expected_improvement.rs` | the acquisition: `ln EI`, maximised by a seeded multistart |
 //! | `nelder_mead.rs` | the downhill simplex in a box (polish, length scales, acquisition) |
 //! | `fit.rs` | [`calibrate`]: before, optimise, after |
+//! | `fit_check.rs` | [`poses_that_do_not_fit`]: the poses the fit could not match, in words |
 //! | `profile.rs` | [`CalibrationProfile`]: the per-user TOML file |
 //! | `settings.rs` | [`CalibrationSettings`]: bounds, budget, thresholds |
 //! | `human_copy.rs` | [`human_copies`]: the human hand model copying each robot pose |
@@ -35,6 +36,7 @@ mod digit_scales;
 mod error;
 mod expected_improvement;
 mod fit;
+mod fit_check;
 mod gaussian_process;
 mod gp_likelihood;
 mod human_copy;
@@ -52,6 +54,7 @@ mod synthetic_user;
 pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;
 pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
+pub use fit_check::{FitCheck, PoseMisfit, poses_that_do_not_fit};
 pub use human_copy::{human_copies, human_copy};
 pub use objective::{Evaluation, Objective, PoseError, cold_solve_config};
 pub use optimiser::{ObjectiveFn, Trace, bayesian_optimise, polish, random_search};

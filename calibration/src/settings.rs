@@ -1,10 +1,12 @@
 //! Calibration settings (TOML, every key optional): the parameter bounds, the optimiser's
-//! budget and seed, the pinch term's weight, the capture thresholds and the transform's model. Validated on load with
-//! errors that name the key and the allowed range.
+//! budget and seed, the pinch term's weight, the capture thresholds, the transform's model and
+//! the check of the fitted poses. Validated on load with errors that name the key and the
+//! allowed range.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::fit_check::FitCheck;
 
 /// Everything the calibration needs besides the model, the retargeting configuration and the
 /// poses.
@@ -23,6 +25,8 @@ pub struct CalibrationSettings {
     /// Which transform is fitted: `global` (scale and rotation) or `per_digit` (also a length
     /// factor per digit).
     pub model: CalibrationModel,
+    /// When a pose counts as not fitted after the fit (the console offers to redo it).
+    pub fit_check: FitCheck,
 }
 
 /// The calibration transform's model.
@@ -126,6 +130,7 @@ impl Default for CalibrationSettings {
             pinch_weight_rad_per_m: 10.0,
             capture: CaptureThresholds::default(),
             model: CalibrationModel::default(),
+            fit_check: FitCheck::default(),
         }
     }
 }
@@ -194,6 +199,18 @@ impl CalibrationSettings {
             0.9,
         )?;
         range("capture.max_point_sd_m", c.max_point_sd_m, 1e-4, 0.05)?;
+        range(
+            "fit_check.pinch_gap_mm",
+            self.fit_check.pinch_gap_mm,
+            0.5,
+            100.0,
+        )?;
+        range(
+            "fit_check.joint_rms_rad",
+            self.fit_check.joint_rms_rad,
+            0.01,
+            2.0,
+        )?;
         Ok(())
     }
 }

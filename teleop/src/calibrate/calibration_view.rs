@@ -236,7 +236,13 @@ fn phase_banner(
             state.banner().to_string()
         }
         Phase::Complete => {
-            detail.push("q quits".to_string());
+            detail.push(match session.redo_offer() {
+                Some(k) => format!(
+                    "r captures {} again and fits again · q keeps this fit and quits",
+                    session.poses()[k].name
+                ),
+                None => "q quits".to_string(),
+            });
             state.banner().to_string()
         }
         _ => state.banner().to_string(),
@@ -282,19 +288,19 @@ fn pose_rows(session: &PoseSession, current: Option<(usize, u32)>) -> Vec<(Strin
         .enumerate()
         .map(|(k, (p, attempts))| {
             let history: Vec<&str> = attempts.iter().map(|a| a.quality.level.name()).collect();
-            let accepted = attempts.iter().find(|a| a.accepted);
+            let accepted = attempts.iter().rev().find(|a| a.accepted);
             let (status, level) = match (accepted, current) {
-                (Some(a), _) => (
-                    format!("accepted ({})", history.join(", ")),
-                    quality_level(a.quality.level),
-                ),
-                (None, Some((c, _))) if c == k => (
+                (_, Some((c, _))) if c == k => (
                     if history.is_empty() {
                         "now".to_string()
                     } else {
                         format!("now (so far: {})", history.join(", "))
                     },
                     Level::Warn,
+                ),
+                (Some(a), _) => (
+                    format!("accepted ({})", history.join(", ")),
+                    quality_level(a.quality.level),
                 ),
                 _ => ("-".to_string(), Level::Ok),
             };

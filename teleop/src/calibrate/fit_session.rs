@@ -8,12 +8,13 @@ use std::path::{Path, PathBuf};
 
 use calibration::{
     CalibrationModel, CalibrationProfile, CalibrationSettings, CapturedPose, FitInputs,
-    FitProgress, PoseSet, ProfileHeader, calibrate, capture_pose,
+    FitProgress, PoseSet, ProfileHeader, calibrate, capture_pose, poses_that_do_not_fit,
 };
 use retarget::{EmbodimentCatalog, HandModel};
 
 use crate::atomic_file::write_atomically;
 use crate::calibrate::CalibrateError;
+use crate::calibrate::pose_session::FitDone;
 use crate::calibrate::progress_bar::ProgressBar;
 use crate::calibrate::session_frames::read_session;
 use crate::mcap_log::TrialReader;
@@ -232,6 +233,46 @@ fn table_lines(profile: &CalibrationProfile, captures: &[CapturedPose]) -> Vec<S
         }
     });
     lines
+}
+
+/// What the session hears of a fit that wrote its profile: where it went, how it changed
+/// from the `previous` fit of the session (after a pose was captured again), and the poses it
+/// could not match (the settings' `fit_check`), worst first.
+pub fn fit_done(
+    outcome: &FitOutcome,
+    previous: Option<&FitOutcome>,
+    options: &FitOptions,
+) -> FitDone {
+    let profile = &outcome.profile;
+    let mut lines = vec![format!(
+        "profile written: {} (user {})",
+        options.out.display(),
+        profile.user
+    )];
+    if let Some(before) = previous.map(|p| &p.profile) {
+        lines.push(format!(
+            "the fit changed: objective {:.3} → {:.3} rad, scale {:.3} → {:.3}, roll/pitch/yaw {:.1}/{:.1}/{:.1}° → {:.1}/{:.1}/{:.1}°",
+            before.objective.after_rad,
+            profile.objective.after_rad,
+            before.parameters.scale,
+            profile.parameters.scale,
+            before.parameters.roll_rad.to_degrees(),
+            before.parameters.pitch_rad.to_degrees(),
+            before.parameters.yaw_rad.to_degrees(),
+            profile.parameters.roll_rad.to_degrees(),
+            profile.parameters.pitch_rad.to_degrees(),
+            profile.parameters.yaw_rad.to_degrees(),
+        ));
+    }
+    let misfits = poses_that_do_not_fit(
+        &profile.poses,
+        &PoseSet::orca_v1(),
+        &options.settings.fit_check,
+    )
+    .into_iter()
+    .map(|m| (m.index, m.sentence()))
+    .collect();
+    FitDone { lines, misfits }
 }
 
 /// `profiles/<user>.toml`, refusing user names that are not a plain file name.

@@ -11,7 +11,13 @@
 //!     good ─▶ accepted ─▶ settling(k+1) … after the 7th: fitting ─▶ complete | failed
 //!     poor/bad ─(operator)─▶ review(k): r retries (settling(k) again), space accepts (poor only)
 //!     bad ─(automatic)─▶ settling(k) again, up to max_attempts
+//! complete ─(operator: r, when a pose did not fit)─▶ settling(k) ─ … ─▶ accepted ─▶ fitting
 //! ```
+//!
+//! After the fit the session names the poses the fit could not match (the node judges them,
+//! [`calibration::poses_that_do_not_fit`]). With an operator, `r` then captures the worst of
+//! them alone again (the log is continued, the pose's new capture supersedes the old) and the
+//! fit runs again on the seven accepted captures; `q` keeps the fit as it is.
 //!
 //! With an operator (the full-screen console or a `--script`), a good capture is accepted at
 //! once, a poor or bad one waits in `review`: `r` captures the pose again, space / Enter
@@ -108,6 +114,18 @@ pub enum Phase {
     Failed(String),
 }
 
+/// A fit that wrote its profile, as the session hears of it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitDone {
+    /// What to say: where the profile went, and how the fit changed after a redo.
+    pub lines: Vec<String>,
+    /// The poses the fit could not match, worst first: (pose index, the sentence naming it).
+    pub misfits: Vec<(usize, String)>,
+}
+
+/// Event logged when a pose is captured again after the fit.
+pub const REDO_EVENT: &str = "calibration_redo";
+
 /// What the session node must do.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Effect {
@@ -120,6 +138,8 @@ pub enum Effect {
         /// The event.
         event: Value,
     },
+    /// Open the finished log again to add to it (a pose is captured again after the fit).
+    ContinueLog,
     /// Every pose is accepted: finish the log at `at_ns` and fit it.
     Fit {
         /// Log time of the session's end.
@@ -167,6 +187,10 @@ pub struct PoseSession {
     last_capture: Option<(usize, usize)>,
     messages: VecDeque<String>,
     said: u64,
+    /// After the fit: the pose the operator may capture again.
+    redo_offer: Option<usize>,
+    /// A pose is being captured again after the fit: its acceptance leads to the fit.
+    redoing: bool,
 }
 
 fn ns(seconds: f64) -> i64 {
@@ -198,6 +222,8 @@ impl PoseSession {
             last_capture: None,
             messages: VecDeque::new(),
             said: 0,
+            redo_offer: None,
+            redoing: false,
         }
     }
 
@@ -229,6 +255,16 @@ impl PoseSession {
     /// The fit's progress, once it runs.
     pub fn fit_progress(&self) -> Option<FitProgress> {
         self.fit_progress
+    }
+
+    /// After the fit, the pose the operator may capture again (`r`).
+    pub fn redo_offer(&self) -> Option<usize> {
+        self.redo_offer
+    }
+
+    /// Pose `k`'s accepted capture: the latest, when the pose was captured again after a fit.
+    pub fn accepted(&self, k: usize) -> Option<&Attempt> {
+        self.attempts[k].iter().rev().find(|a| a.accepted)
     }
 
     /// The capture judged last: (pose, index into its attempts).
@@ -348,6 +384,16 @@ impl PoseSession {
             (CalibrationAction::Quit, Phase::Fitting | Phase::Failed(_)) => {
                 vec![Effect::Quit { completed: false }]
             }
+            (CalibrationAction::Quit, _) if self.redoing => {
+                self.say("quit: the pose is not captured again; the profile of the fit stays");
+                vec![
+                    Effect::Log {
+                        at_ns: now_ns,
+                        event: json!({"event": "abort", "reason": "operator quit the redo"}),
+                    },
+                    Effect::Quit { completed: true },
+                ]
+            }
             (CalibrationAction::Quit, _) => {
                 self.say("quit: the session is abandoned (its log is kept)");
                 vec![
@@ -376,6 +422,7 @@ impl PoseSession {
                 }
                 self.accept(pose, attempt, "operator", now_ns)
             }
+            (CalibrationAction::Retry, Phase::Complete) => self.redo(now_ns),
             (CalibrationAction::Accept | CalibrationAction::Retry, _) => {
                 self.say("nothing to accept or retry now: captures are judged after they end");
                 Vec::new()
@@ -388,11 +435,27 @@ impl PoseSession {
         self.fit_progress = Some(progress);
     }
 
-    /// The fit ended: `Ok` with a line saying where the profile went, or why it failed.
-    pub fn fit_finished(&mut self, outcome: Result<String, String>) -> Vec<Effect> {
+    /// The fit ended: `Ok` with what to say and the poses it could not match, or why it
+    /// failed. With an operator, the worst pose not matched is offered for a redo.
+    pub fn fit_finished(&mut self, outcome: Result<FitDone, String>) -> Vec<Effect> {
         match outcome {
-            Ok(line) => {
-                self.say(line);
+            Ok(done) => {
+                for line in done.lines {
+                    self.say(line);
+                }
+                for (_, sentence) in &done.misfits {
+                    self.say(sentence.clone());
+                }
+                self.redo_offer = match self.policy {
+                    Policy::Operator => done.misfits.first().map(|(k, _)| *k),
+                    Policy::Automatic { .. } => None,
+                };
+                if let Some(k) = self.redo_offer {
+                    self.say(format!(
+                        "r captures {} again and fits again; q keeps this fit",
+                        self.poses[k].name
+                    ));
+                }
                 self.phase = Phase::Complete;
             }
             Err(reason) => {
@@ -406,6 +469,27 @@ impl PoseSession {
             }],
             Policy::Operator => Vec::new(),
         }
+    }
+
+    /// `r` after the fit: the pose offered is captured again (the log continued first).
+    fn redo(&mut self, now_ns: i64) -> Vec<Effect> {
+        let Some(k) = self.redo_offer.take() else {
+            self.say("nothing to capture again: every pose fits; q quits");
+            return Vec::new();
+        };
+        self.redoing = true;
+        let name = self.poses[k].name.clone();
+        let attempt = self.attempts[k].len() as u32 + 1;
+        let mut effects = vec![
+            Effect::ContinueLog,
+            Effect::Log {
+                at_ns: now_ns,
+                event: json!({"event": REDO_EVENT, "pose": name, "attempt": attempt}),
+            },
+        ];
+        self.say(format!("{name} is captured again, then the fit runs again"));
+        effects.extend(self.begin_attempt(k, attempt, now_ns));
+        effects
     }
 
     fn judge(
@@ -456,10 +540,15 @@ impl PoseSession {
         if let Some(last) = self.attempts[pose].last_mut() {
             last.accepted = true;
         }
-        if pose + 1 < self.poses.len() {
+        if pose + 1 < self.poses.len() && !self.redoing {
             effects.extend(self.begin_attempt(pose + 1, 1, now_ns));
         } else {
-            self.say("all poses captured: fitting");
+            self.say(if self.redoing {
+                "captured again: fitting again"
+            } else {
+                "all poses captured: fitting"
+            });
+            self.redoing = false;
             self.phase = Phase::Fitting;
             effects.push(Effect::Log {
                 at_ns: now_ns,
@@ -523,7 +612,7 @@ impl PoseSession {
                 json!({
                     "pose": p.name,
                     "captures": a.len(),
-                    "accepted": a.iter().position(|x| x.accepted).map(|i| i + 1),
+                    "accepted": a.iter().rposition(|x| x.accepted).map(|i| i + 1),
                 })
             })
             .collect();

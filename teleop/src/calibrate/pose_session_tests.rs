@@ -164,12 +164,108 @@ fn steady_captures_are_accepted_pose_by_pose_and_then_the_fit_starts() {
     assert_eq!(stop[0]["summary"]["poses"][6]["accepted"], 1);
 
     // The fit's outcome: complete, and q leaves.
-    let e = run.session.fit_finished(Ok("wrote profiles/u.toml".into()));
+    let e = run.session.fit_finished(Ok(fitted(Vec::new())));
     assert!(e.is_empty(), "an operator's session waits for q: {e:?}");
+    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(run.session.redo_offer(), None);
+    // Nothing to capture again when every pose fits.
+    assert!(
+        run.session
+            .act(CalibrationAction::Retry, run.now)
+            .is_empty()
+    );
     assert_eq!(*run.session.phase(), Phase::Complete);
     assert_eq!(
         run.session.act(CalibrationAction::Quit, run.now),
         vec![Effect::Quit { completed: true }]
+    );
+}
+
+fn fitted(misfits: Vec<(usize, String)>) -> FitDone {
+    FitDone {
+        lines: vec!["profile written: profiles/u.toml (user u)".into()],
+        misfits,
+    }
+}
+
+/// A session of seven steady captures, fitted, with pinch_ring (2) and closed (6) named.
+fn fitted_with_misfits(policy: Policy) -> Run {
+    let mut run = start(policy);
+    for _ in 0..7 {
+        run.hold_pose(0.002);
+    }
+    let e = run.session.fit_finished(Ok(fitted(vec![
+        (
+            2,
+            "pinch_ring: the thumb stays 54 mm off the ring finger".into(),
+        ),
+        (6, "closed: its joints stay 0.51 rad from the pose".into()),
+    ])));
+    run.effects.extend(e);
+    run
+}
+
+#[test]
+fn after_the_fit_the_worst_pose_is_offered_and_captured_again_alone_then_refitted() {
+    let mut run = fitted_with_misfits(Policy::Operator);
+    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(run.session.redo_offer(), Some(2));
+    let said: Vec<&str> = run.session.messages().collect();
+    assert!(said.iter().any(|m| m.starts_with("pinch_ring: the thumb")));
+    assert!(said.iter().any(|m| m.starts_with("closed: its joints")));
+    assert!(
+        said.contains(&"r captures pinch_ring again and fits again; q keeps this fit"),
+        "{said:?}"
+    );
+    run.effects.clear();
+    run.act(CalibrationAction::Retry);
+    // The log is continued before anything is written to it; then pinch_ring, attempt 2.
+    assert_eq!(run.effects[0], Effect::ContinueLog);
+    assert_eq!(run.events(REDO_EVENT)[0]["pose"], "pinch_ring");
+    assert!(run.effects.contains(&Effect::Command(2)));
+    assert!(matches!(
+        run.session.phase(),
+        Phase::Settling {
+            pose: 2,
+            attempt: 2,
+            ..
+        }
+    ));
+    run.hold_pose(0.002);
+    // Accepted: straight to the fit, no other pose captured again.
+    assert_eq!(*run.session.phase(), Phase::Fitting);
+    assert!(matches!(run.effects.last(), Some(Effect::Fit { .. })));
+    let captures: Vec<usize> = run.session.attempts().iter().map(Vec::len).collect();
+    assert_eq!(captures, [1, 1, 2, 1, 1, 1, 1]);
+    assert!(std::ptr::eq(
+        run.session.accepted(2).unwrap(),
+        &run.session.attempts()[2][1]
+    ));
+    let stop = run.events("stop");
+    assert_eq!(stop[0]["summary"]["poses"][2]["accepted"], 2);
+    // The second fit matches every pose: nothing more is offered.
+    run.session.fit_finished(Ok(fitted(Vec::new())));
+    assert_eq!(run.session.redo_offer(), None);
+    assert_eq!(*run.session.phase(), Phase::Complete);
+}
+
+#[test]
+fn quitting_a_redo_keeps_the_fit_and_without_an_operator_nothing_is_offered() {
+    let mut run = fitted_with_misfits(Policy::Operator);
+    run.act(CalibrationAction::Retry);
+    run.effects.clear();
+    run.act(CalibrationAction::Quit);
+    assert_eq!(run.effects.last(), Some(&Effect::Quit { completed: true }));
+    assert_eq!(run.events("abort").len(), 1);
+
+    let run = fitted_with_misfits(Policy::Automatic { max_attempts: 3 });
+    assert_eq!(run.session.redo_offer(), None);
+    assert_eq!(run.effects.last(), Some(&Effect::Quit { completed: true }));
+    // The sentences are said all the same.
+    assert!(
+        run.session
+            .messages()
+            .any(|m| m.starts_with("pinch_ring: the thumb"))
     );
 }
 

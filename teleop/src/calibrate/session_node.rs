@@ -28,7 +28,7 @@ use tokio::time::Instant;
 use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_console::{ConsoleFront, FrontAction};
 use crate::calibrate::calibration_view::CalState;
-use crate::calibrate::fit_session::{FitOptions, FitOutcome, fit_session_with};
+use crate::calibrate::fit_session::{FitOptions, FitOutcome, fit_done, fit_session_with};
 use crate::calibrate::pose_session::{
     CalibrationAction, Effect, Phase, PoseSession, PoseStep, SessionTiming,
 };
@@ -37,6 +37,7 @@ use crate::clock::StationClock;
 use crate::disk_wait::without_holding_the_runtime;
 use crate::mcap_log::{
     FinishedTrial, LogError, OfferedQos, TrialWriter, TrialWriterOptions, WriterThread,
+    continue_finished,
 };
 use crate::ros::RosNode;
 use crate::tui::script::ScriptError;
@@ -565,15 +566,9 @@ impl SessionRun<'_> {
             Ok(Err(e)) => Err(e.to_string()),
             Err(e) => Err(format!("the fit task failed: {e}")),
         };
-        let line = outcome
+        let done = outcome
             .as_ref()
-            .map(|o| {
-                format!(
-                    "profile written: {} (user {})",
-                    fit.out.display(),
-                    o.profile.user
-                )
-            })
+            .map(|o| fit_done(o, self.fit.outcome.as_ref(), fit))
             .map_err(Clone::clone);
         if let Ok(o) = &outcome {
             let mut lines = o.table.clone();
@@ -581,7 +576,7 @@ impl SessionRun<'_> {
             self.front.set_results(lines);
         }
         self.fit.outcome = outcome.ok();
-        self.session.fit_finished(line)
+        self.session.fit_finished(done)
     }
 
     /// The rest of a turn after a wake-up: an interruption or a glove that never came ends
@@ -697,6 +692,7 @@ impl SessionRun<'_> {
                         w.write(move |w| w.write_event(at_ns, &event))?;
                     }
                 }
+                Effect::ContinueLog => self.continue_log()?,
                 Effect::Fit { .. } => {
                     self.hand.current = None;
                     self.start_fit()?;
@@ -742,6 +738,21 @@ impl SessionRun<'_> {
                 &|| cancel.load(Ordering::Relaxed),
             )
         }));
+        Ok(())
+    }
+
+    /// A pose is captured again after the fit: the finished log is copied into a writer that
+    /// replaces it when the next fit starts (the old log stays complete until then).
+    fn continue_log(&mut self) -> Result<(), CalibrateError> {
+        let Some(path) = self.log.path.clone() else {
+            return Ok(());
+        };
+        let writer = without_holding_the_runtime(|| {
+            continue_finished(&path, TrialWriterOptions::default())
+        })?;
+        let writer = WriterThread::spawn(writer)
+            .map_err(|e| LogError::io(&path, "start the thread that writes", e))?;
+        self.log.writer = Some(writer);
         Ok(())
     }
 
@@ -809,7 +820,7 @@ impl SessionRun<'_> {
         let session = &self.session;
         match (self.end.completed, self.fit.outcome, session.phase()) {
             (true, Some(fit), _) => {
-                let accepted = |k: usize| session.attempts()[k].iter().find(|a| a.accepted);
+                let accepted = |k: usize| session.accepted(k);
                 Ok(SessionReport {
                     path,
                     frames_per_pose: (0..session.poses().len())

@@ -4,6 +4,9 @@
 //! sent there and holds it for as long as the session stays (settling, capturing, review,
 //! retries). With `--simulate-bad-pose`, the first capture of that pose is taken with a
 //! shaking hand ([`SHAKING_NOISE_M`]), so the console flags it and the pose is captured again.
+//! With `--simulate-wrong-pose`, the user stays in the previous pose through that pose's first
+//! capture: a steady capture of the wrong pose, which the fit cannot match, so the console
+//! names the pose after the fit and offers to capture it again ([`SimulatedMistakes`]).
 //! The fit then runs on the recording exactly as `--from` would, and the recovered transform
 //! can be compared with the user's true one.
 
@@ -129,6 +132,39 @@ pub fn true_transform(
 /// metres per axis (jitter over 30 mm in the palm frame, far above the 12 mm limit).
 pub const SHAKING_NOISE_M: f64 = 0.008;
 
+/// What the simulated user gets wrong on purpose, so a lab can rehearse the console's answers.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SimulatedMistakes {
+    /// `--simulate-bad-pose`: the user shakes through this pose's first capture.
+    pub shaking: Option<usize>,
+    /// `--simulate-wrong-pose`: the user holds [`held_instead`] of this pose through its first
+    /// capture.
+    pub wrong: Option<usize>,
+}
+
+/// The pose a user who does not follow the hand holds while pose `k` is captured: the
+/// previous one; at the first pose, the open hand (the user has not started yet).
+pub fn held_instead(k: usize) -> usize {
+    match k {
+        0 => calibration::POSE_NAMES
+            .iter()
+            .position(|p| *p == "open")
+            .unwrap_or(0),
+        k => k - 1,
+    }
+}
+
+/// The motion's pose and whether it starts in the hold, for `cue`: a wrongly held pose shows
+/// the pose held instead, from its hold (the user stays where they were).
+fn shown_pose(cue: PoseCue, mistakes: SimulatedMistakes) -> (PoseCue, bool) {
+    if mistakes.wrong == Some(cue.pose) && cue.attempt == 1 {
+        let pose = held_instead(cue.pose);
+        (PoseCue { pose, ..cue }, true)
+    } else {
+        (cue, cue.attempt > 1)
+    }
+}
+
 /// Fraction of a pose's slot the simulated hand takes to move to the pose (the
 /// calibration-poses motion: move 35 %, hold the rest); the hold starts a little later.
 const HOLD_FROM: f64 = 0.4;
@@ -170,12 +206,12 @@ pub struct SimulatedGloveReport {
 }
 
 /// Publish `user`'s glove on the station's keypoint and wrist topics at 100 Hz, copying the
-/// pose the session is at (`cue`); the first capture of pose `bad_pose` (if any) is taken
-/// with a shaking hand. Until the session starts the hand holds the motion's first posture.
+/// pose the session is at (`cue`), with the `mistakes` asked for. Until the session starts
+/// the hand holds the motion's first posture.
 /// Returns what was published, after `stop`.
 pub async fn publish_simulated_user(
     user: SyntheticUser,
-    bad_pose: Option<usize>,
+    mistakes: SimulatedMistakes,
     station: StationConfig,
     network: NetworkConfig,
     clock: StationClock,
@@ -221,8 +257,9 @@ pub async fn publish_simulated_user(
                 let (glove, t_s) = match since {
                     Some((c, at_ns)) => {
                         let elapsed_s = (now - at_ns) as f64 * 1e-9;
-                        let t = motion_time_s(schedule.slot_s, c, elapsed_s, c.attempt > 1);
-                        let shakes = bad_pose == Some(c.pose) && c.attempt == 1;
+                        let (shown, from_hold) = shown_pose(c, mistakes);
+                        let t = motion_time_s(schedule.slot_s, shown, elapsed_s, from_hold);
+                        let shakes = mistakes.shaking == Some(c.pose) && c.attempt == 1;
                         (if shakes { &shaking } else { &glove }, t)
                     }
                     // Before the session starts: the first posture, its noise varying.
@@ -267,6 +304,20 @@ mod tests {
             let error = parse_simulated_hand(bad).unwrap_err();
             assert!(error.contains(named), "{bad}: {error}");
         }
+    }
+
+    #[test]
+    fn a_wrongly_held_pose_shows_the_previous_one_at_its_first_capture_only() {
+        let mistakes = SimulatedMistakes {
+            shaking: None,
+            wrong: Some(2),
+        };
+        let cue = |pose, attempt| PoseCue { pose, attempt };
+        assert_eq!(shown_pose(cue(2, 1), mistakes), (cue(1, 1), true));
+        assert_eq!(shown_pose(cue(2, 2), mistakes), (cue(2, 2), true));
+        assert_eq!(shown_pose(cue(3, 1), mistakes), (cue(3, 1), false));
+        assert_eq!(held_instead(0), 4);
+        assert_eq!(calibration::POSE_NAMES[held_instead(0)], "open");
     }
 
     #[test]

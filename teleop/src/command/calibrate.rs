@@ -25,8 +25,8 @@ use crate::calibrate::ctrl_c::watch_ctrl_c;
 use crate::calibrate::fit_session::{FitOptions, default_profile_path, fit_session};
 use crate::calibrate::session_node::{SessionOptions, SessionReport, run_session};
 use crate::calibrate::simulated_user::{
-    SIMULATED_NOISE_M, loopback, parse_simulated_hand, publish_simulated_user, synthetic_user,
-    true_transform,
+    SIMULATED_NOISE_M, SimulatedMistakes, loopback, parse_simulated_hand, publish_simulated_user,
+    synthetic_user, true_transform,
 };
 use crate::clock::StationClock;
 use crate::utc_date::{compact_utc, now_unix_s};
@@ -60,6 +60,12 @@ pub struct CalibrateArgs {
     /// is judged bad and captured again.
     #[arg(long, value_name = "POSE", requires = "simulate", value_parser = parse_pose)]
     pub simulate_bad_pose: Option<String>,
+    /// --simulate: the simulated user stays in the previous pose (at the first pose, the open
+    /// hand) through the first capture of this pose: a steady capture of the wrong pose, which
+    /// the fit cannot match, so the console names it after the fit and offers to capture it
+    /// again.
+    #[arg(long, value_name = "POSE", requires = "simulate", value_parser = parse_pose)]
+    pub simulate_wrong_pose: Option<String>,
     /// --simulate: a hand unlike the average in proportion, not only in size:
     /// `thumb=F,index=F,middle=F,palm=F` (any of them, factors 0.7–1.3, e.g. thumb=1.12,index=0.95)
     /// or `random:SEED` (thumb ±15 %, index and middle ±10 %, palm breadth ±10 %, thumb base
@@ -198,10 +204,14 @@ fn calibrate_until_interrupted(args: CalibrateArgs) -> anyhow::Result<()> {
         .transpose()?;
     let session = session_options(&args, &fit, &session_out);
     let user = simulated_user(&args)?;
-    let bad_pose = args
-        .simulate_bad_pose
-        .as_deref()
-        .and_then(|name| calibration::POSE_NAMES.iter().position(|p| *p == name));
+    let pose_index = |name: &Option<String>| {
+        name.as_deref()
+            .and_then(|name| calibration::POSE_NAMES.iter().position(|p| *p == name))
+    };
+    let mistakes = SimulatedMistakes {
+        shaking: pose_index(&args.simulate_bad_pose),
+        wrong: pose_index(&args.simulate_wrong_pose),
+    };
     if let Some(user) = &user {
         fit.source = Some(simulated_source(&args, user, &session_out));
     }
@@ -215,7 +225,7 @@ fn calibrate_until_interrupted(args: CalibrateArgs) -> anyhow::Result<()> {
     let run = ConsoleSession {
         session,
         user,
-        bad_pose,
+        mistakes,
         domain,
         fit_in_console,
         ctrl_c,
@@ -368,7 +378,7 @@ fn console_setup(
     match user {
         Some(user) => {
             let intro = format!(
-                "simulated user: hand scale {}{}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}; loopback DDS, domain {domain}",
+                "simulated user: hand scale {}{}, glove roll/pitch/yaw {:?}°, noise {} m, seed {}{}{}; loopback DDS, domain {domain}",
                 user.hand_scale,
                 proportions(user),
                 args.glove_rpy.unwrap_or([0.0; 3]),
@@ -377,6 +387,10 @@ fn console_setup(
                 args.simulate_bad_pose
                     .as_deref()
                     .map(|p| format!(", shaking at the first capture of {p}"))
+                    .unwrap_or_default(),
+                args.simulate_wrong_pose
+                    .as_deref()
+                    .map(|p| format!(", holding the previous pose at the first capture of {p}"))
                     .unwrap_or_default()
             );
             eprintln!("{intro}");
@@ -399,8 +413,8 @@ struct ConsoleSession {
     session: SessionOptions,
     /// `--simulate`: the synthetic user.
     user: Option<SyntheticUser>,
-    /// `--simulate-bad-pose`: the pose the simulated user shakes at first.
-    bad_pose: Option<usize>,
+    /// `--simulate-bad-pose`, `--simulate-wrong-pose`: what the simulated user gets wrong.
+    mistakes: SimulatedMistakes,
     /// The simulated session's loopback domain.
     domain: u16,
     /// The fit, quiet (its progress shows in the console).
@@ -419,7 +433,7 @@ fn run_in_console(
     let ConsoleSession {
         session,
         user,
-        bad_pose,
+        mistakes,
         domain,
         fit_in_console,
         ctrl_c: shutdown,
@@ -436,7 +450,7 @@ fn run_in_console(
                 let (stop_tx, stop_rx) = watch::channel(false);
                 let glove = tokio::spawn(publish_simulated_user(
                     user,
-                    bad_pose,
+                    mistakes,
                     session.station.clone(),
                     network,
                     clock,

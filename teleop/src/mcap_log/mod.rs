@@ -21,6 +21,8 @@
 //!   writes the summary and renames it to `NAME`.
 //! - [`WriterThread`]: a [`TrialWriter`] on a thread of its own, for a loop that must not wait
 //!   on the disk.
+//! - [`continue_finished`]: a finished log copied into a writer that replaces it when
+//!   finished, to add to it.
 //! - [`recover`]: turns an interrupted `.part` into a complete file holding everything up to
 //!   the last flush, and says what was lost ([`RecoveryReport`]).
 //! - [`TrialReader`]: reads a complete file from any tool into memory; messages in log-time
@@ -56,6 +58,7 @@
 //! This module reads no clock: every time is a parameter.
 
 mod background_sync;
+mod continue_log;
 pub mod decompression_budget;
 mod error;
 mod event_reader;
@@ -82,6 +85,7 @@ mod test_dir;
 #[cfg(test)]
 mod trial_writer_tests;
 
+pub use continue_log::continue_finished;
 pub use error::LogError;
 pub use event_reader::{TrialEvents, read_trial_events};
 pub use logged_message::{LoggedMessage, decode};

@@ -7,6 +7,7 @@ mod avp_ingress;
 mod calibrate_cli;
 mod calibrate_console;
 mod calibrate_interrupt;
+mod calibrate_redo;
 mod console_interrupt;
 mod console_random_kills;
 mod console_screen;
