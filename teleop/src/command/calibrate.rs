@@ -96,7 +96,8 @@ pub struct CalibrateArgs {
     /// network (default: the built-in ETH lab preset).
     #[arg(long, value_name = "STATION.toml")]
     pub config: Option<PathBuf>,
-    /// Calibration settings (TOML: [bounds], [optimiser], [capture], pinch_weight_rad_per_m, model;
+    /// Calibration settings (TOML: [bounds], [optimiser], [capture], [fit_check],
+    /// pinch_weight_rad_per_m, model;
     /// default: 60 Bayesian-optimisation evaluations + 2 × 40 polish, seed 42).
     #[arg(long, value_name = "CALIBRATION.toml")]
     pub settings: Option<PathBuf>,

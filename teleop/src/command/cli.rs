@@ -240,6 +240,8 @@ enum Command {
     ///              glove misalignment, 2 mm noise) who copies each pose; prints the
     ///              recovered and true parameters. --simulate-bad-pose POSE makes the user
     ///              shake through that pose's first capture (to see a retry);
+    ///              --simulate-wrong-pose POSE makes the user stay in the previous pose
+    ///              through it (to see the fit name it and a redo);
     ///              --simulate-hand gives the user a hand unlike the average in proportion.
     ///   --model    global (one scale and one rotation, the default) or per-digit (also a
     ///              length factor per digit, kept only where it lowers the objective).
@@ -271,6 +273,11 @@ enum Command {
     /// optimisation, then two Nelder–Mead polishes) with its progress in the console; each
     /// pose's error before and after is shown and printed on stdout, and the profile TOML is
     /// written atomically (nothing is written if a capture is refused or the fit fails).
+    /// Each pose the fit could not match (a pinch gap over 40 mm or joints over 0.38 rad from
+    /// the pose after the fit: [fit_check] in the settings) is then named in words, worst
+    /// first; r captures that pose alone again (the session log is continued) and the fit
+    /// runs again and says how it changed; q keeps the fit. Without an operator the poses
+    /// are only named.
     /// Load the profile with `pomdar station --profile FILE` or `calibration_profile =
     /// "FILE"` in the station configuration.
     ///
@@ -283,6 +290,7 @@ enum Command {
     ///   pomdar calibrate --from profiles/alice-session-20261121T103205Z.mcap --user alice
     ///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
     ///   pomdar calibrate --simulate --simulate-bad-pose pinch_ring --user sim --out /tmp/sim.toml
+    ///   pomdar calibrate --simulate --simulate-wrong-pose pinch_ring --user sim --out /tmp/sim.toml
     #[command(verbatim_doc_comment)]
     Calibrate(command::calibrate::CalibrateArgs),
     /// Check a hand's command conventions on the hand, joint by joint, and write the table
