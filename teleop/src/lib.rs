@@ -11,6 +11,7 @@ pub mod clock;
 pub mod command;
 pub mod console;
 pub mod demo;
+pub mod device_thread;
 pub mod disk_wait;
 pub mod eval;
 pub mod hand_check;

@@ -30,6 +30,7 @@ use crate::atomic_file::write_atomically;
 use crate::clock::StationClock;
 use crate::command::common::{MotionArg, NodeArgs, ViewArgs};
 use crate::console::message_log::MessageLog;
+use crate::device_thread::spawn_device;
 use crate::disk_wait::without_holding_the_runtime;
 use crate::ros::NetworkConfig;
 use crate::ros::default_domain_id;
@@ -1262,13 +1263,14 @@ fn spawn_simulation(
     };
     let glove = glove_config.glove()?;
     let network = config.network.clone();
-    let glove = tokio::spawn({
+    // On a thread of its own, as a real glove is a machine of its own (`device_thread`).
+    let glove = spawn_device("simulated-glove", {
         let shutdown = shutdown.clone();
         async move {
             publish_glove(glove, &glove_config, network, clock, origin, shutdown).await?;
             Ok(())
         }
-    });
+    })?;
     tasks.push(glove);
     Ok((tasks, physics))
 }

@@ -13,6 +13,7 @@ use tokio::task::JoinHandle;
 use crate::clock::StationClock;
 pub mod robot;
 
+use crate::device_thread::spawn_device;
 use crate::ros::NetworkConfig;
 use crate::sim::SimError;
 use crate::sim::mock_franka::MockFrankaReport;
@@ -316,12 +317,11 @@ impl DemoNodes {
             hooks,
         ));
         let (glove_stop, glove_stop_rx) = watch::channel(false);
-        let glove = tokio::spawn(run_sim_glove(
-            options.glove.clone(),
-            network,
-            clock,
-            glove_stop_rx,
-        ));
+        // On a thread of its own, as a real glove is a machine of its own (`device_thread`).
+        let glove = spawn_device(
+            "simulated-glove",
+            run_sim_glove(options.glove.clone(), network, clock, glove_stop_rx),
+        )?;
         Ok(DemoNodes {
             robot,
             robot_stop,

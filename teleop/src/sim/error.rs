@@ -29,6 +29,16 @@ pub enum SimError {
         /// What went wrong.
         message: String,
     },
+    /// The simulated device's own thread or runtime could not start, or the thread ended
+    /// without a result (it panicked).
+    #[error("{device} thread: {source}")]
+    DeviceThread {
+        /// The device.
+        device: String,
+        /// What failed.
+        #[source]
+        source: std::io::Error,
+    },
     /// A glove frame's keypoints do not fit a ROS point matrix.
     #[error(transparent)]
     Keypoints(#[from] msgs::Error),
