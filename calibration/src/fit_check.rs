@@ -9,30 +9,9 @@
 //! what a pose held as the previous one leaves (`cargo bench -p calibration --bench
 //! calibration -- fit_check` measures both on users the limits were not chosen on).
 
-use serde::{Deserialize, Serialize};
-
 use crate::poses::PoseSet;
 use crate::profile::PoseReport;
-
-/// When a pose counts as not fitted, after the fit.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct FitCheck {
-    /// A pinch pose whose robot thumb–finger gap is further than this from the pose's, mm.
-    pub pinch_gap_mm: f64,
-    /// A pose whose joints are further than this from the pose's (RMS over the free joints),
-    /// radians.
-    pub joint_rms_rad: f64,
-}
-
-impl Default for FitCheck {
-    fn default() -> Self {
-        FitCheck {
-            pinch_gap_mm: 40.0,
-            joint_rms_rad: 0.38,
-        }
-    }
-}
+use crate::settings::FitCheck;
 
 /// A pose the fit could not match.
 #[derive(Debug, Clone, PartialEq)]

@@ -54,7 +54,7 @@ mod synthetic_user;
 pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;
 pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
-pub use fit_check::{FitCheck, PoseMisfit, poses_that_do_not_fit};
+pub use fit_check::{PoseMisfit, poses_that_do_not_fit};
 pub use human_copy::{human_copies, human_copy};
 pub use objective::{Evaluation, Objective, PoseError, cold_solve_config};
 pub use optimiser::{ObjectiveFn, Trace, bayesian_optimise, polish, random_search};
@@ -63,7 +63,8 @@ pub use profile::{CalibrationProfile, ObjectiveSummary, PoseReport, ProfileHeade
 pub use schedule::CaptureSchedule;
 pub use search_space::{Parameters, box_bounds, initial_design, parameters, transform};
 pub use settings::{
-    CalibrationModel, CalibrationSettings, CaptureThresholds, OptimiserSettings, ParameterBounds,
+    CalibrationModel, CalibrationSettings, CaptureThresholds, FitCheck, OptimiserSettings,
+    ParameterBounds,
 };
 pub use synthetic_study::{CAPTURE_RATE_HZ, HELD_OUT_POSES, Study, UserOutcome};
 pub use synthetic_user::{

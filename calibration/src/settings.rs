@@ -6,7 +6,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
-use crate::fit_check::FitCheck;
 
 /// Everything the calibration needs besides the model, the retargeting configuration and the
 /// poses.
@@ -89,6 +88,26 @@ pub struct CaptureThresholds {
     /// Largest RMS deviation of any keypoint from its mean, in the palm frame, metres: above
     /// it the hand moved during the capture.
     pub max_point_sd_m: f64,
+}
+
+/// When a pose counts as not fitted, after the fit.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FitCheck {
+    /// A pinch pose whose robot thumb–finger gap is further than this from the pose's, mm.
+    pub pinch_gap_mm: f64,
+    /// A pose whose joints are further than this from the pose's (RMS over the free joints),
+    /// radians.
+    pub joint_rms_rad: f64,
+}
+
+impl Default for FitCheck {
+    fn default() -> Self {
+        FitCheck {
+            pinch_gap_mm: 40.0,
+            joint_rms_rad: 0.38,
+        }
+    }
 }
 
 impl Default for ParameterBounds {
