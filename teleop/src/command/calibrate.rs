@@ -52,7 +52,7 @@ pub struct CalibrateArgs {
     /// axes, degrees, each within ±45 (default 0,0,0).
     #[arg(long, value_name = "R,P,Y", allow_hyphen_values = true, value_parser = parse_rpy, requires = "simulate")]
     pub glove_rpy: Option<[f64; 3]>,
-    /// --simulate: seed of the simulated keypoint noise (2 mm per axis).
+    /// --simulate: seed of the simulated keypoint noise (1.5 mm per axis).
     #[arg(long, value_name = "N", default_value_t = 1, requires = "simulate")]
     pub seed: u64,
     /// --simulate: the simulated user shakes during the first capture of this pose (one of

@@ -237,7 +237,7 @@ enum Command {
     ///   --from     fit a recorded session again (e.g. with other --settings); sessions
     ///              recorded before captures were judged are read as before.
     ///   --simulate the whole session on loopback DDS with a synthetic user (hand size,
-    ///              glove misalignment, 2 mm noise) who copies each pose; prints the
+    ///              glove misalignment, 1.5 mm noise) who copies each pose; prints the
     ///              recovered and true parameters. --simulate-bad-pose POSE makes the user
     ///              shake through that pose's first capture (to see a retry);
     ///              --simulate-wrong-pose POSE makes the user stay in the previous pose
