@@ -169,9 +169,13 @@ fn a_trial_session_on_a_disk_stalling_half_a_second_starts_every_trial_at_once()
     .unwrap();
     let trial = "start\nwait running 30\n+1 mark 1\n+1 stop\n";
     let script = dir.join("v1.script");
+    // The first start a second after the console is ready: the station's glove rate is
+    // counted over its last second, so a start in the glove's first second waits for it
+    // (and says so: "waiting for the station (glove rate 12.0 Hz is below the minimum …)"),
+    // which is the console doing its job at launch, not a wait on the disk.
     std::fs::write(
         &script,
-        format!("engage\nwait ready 30\n{trial}wait summary 30\n{trial}wait complete 30\n"),
+        format!("engage\nwait ready 30\n+1 {trial}wait summary 30\n{trial}wait complete 30\n"),
     )
     .unwrap();
     let domain = test_domain().to_string();
