@@ -353,14 +353,16 @@ impl DemoNodes {
     }
 
     /// Stops the glove first and lets its last frames arrive, then the station, then the
-    /// robot, so that each hears everything the one before it sent.
+    /// robot once it has heard every target the station sent (at most [`ROBOT_HEAR_WAIT`]), so
+    /// that each hears everything the one before it sent.
     async fn stop(self) -> Result<StoppedNodes, DemoError> {
         self.glove_stop.send(true).ok();
         let glove = join("glove task", self.glove).await?;
         tokio::time::sleep(Duration::from_millis(200)).await;
         self.station_shutdown.send(true).ok();
         let station = join("station task", self.station).await?;
-        tokio::time::sleep(Duration::from_millis(100)).await;
+        let sent = (station.totals.hand_commands, station.totals.arm_targets);
+        self.robot.wait_to_hear(sent, ROBOT_HEAR_WAIT).await;
         self.robot_stop.send(true).ok();
         let robot = self.robot.finish().await?;
         Ok(StoppedNodes {
@@ -370,6 +372,9 @@ impl DemoNodes {
         })
     }
 }
+
+/// Longest wait, once the station has stopped, for the robot to hear what it sent last.
+const ROBOT_HEAR_WAIT: Duration = Duration::from_secs(2);
 
 /// The result of the node task `task`, its panic or cancellation a [`DemoError::Task`].
 pub(crate) async fn join<T, E>(

@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 use retarget::HandModel;
 use scoring::{ArmConstraint, Mark, TaskSpec};
@@ -108,6 +109,37 @@ impl DemoRobot {
                 ),
                 Err(_) => String::new(),
             },
+        }
+    }
+
+    /// Targets heard so far: (hand, arm).
+    pub fn heard(&self) -> (u64, u64) {
+        match self {
+            DemoRobot::Mock(robot) => (
+                robot.hand_report.lock().map_or(0, |r| r.targets),
+                robot.arm_report.lock().map_or(0, |r| r.commands),
+            ),
+            #[cfg(feature = "physics")]
+            DemoRobot::Physics(physics) => physics
+                .0
+                .report
+                .lock()
+                .map_or((0, 0), |r| (r.hand_targets, r.arm_targets)),
+        }
+    }
+
+    /// Waits until the robot has heard `sent` (hand, arm) targets, at most `limit`: what the
+    /// station sent last is on its way when the station stops, and a loaded machine can take
+    /// longer to deliver it than any fixed pause. A target lost on the way ends the wait at
+    /// `limit`.
+    pub async fn wait_to_hear(&self, sent: (u64, u64), limit: Duration) {
+        let start = tokio::time::Instant::now();
+        while start.elapsed() < limit {
+            let (hand, arm) = self.heard();
+            if hand >= sent.0 && arm >= sent.1 {
+                return;
+            }
+            tokio::time::sleep(Duration::from_millis(10)).await;
         }
     }
 
