@@ -68,5 +68,5 @@ pub use settings::{
 };
 pub use synthetic_study::{CAPTURE_RATE_HZ, HELD_OUT_POSES, Study, UserOutcome};
 pub use synthetic_user::{
-    POPULATION_ANGLE_DEG, POPULATION_NOISE_M, POPULATION_SCALE, SyntheticUser,
+    POPULATION_ANGLE_DEG, POPULATION_NOISE_M, POPULATION_SCALE, SyntheticUser, wrongly_held_pose,
 };

@@ -44,6 +44,19 @@ pub const POPULATION_ANGLE_DEG: f64 = 20.0;
 /// Keypoint noise of the population, metres.
 pub const POPULATION_NOISE_M: f64 = 0.002;
 
+/// The pose a user who does not follow the hand holds while pose `k` (capture order) is
+/// captured: the previous one; at the first pose, the open hand (the user has not started).
+/// The wrongly held pose of the fit check's benchmark and of `--simulate-wrong-pose`.
+pub fn wrongly_held_pose(k: usize) -> usize {
+    match k {
+        0 => crate::poses::POSE_NAMES
+            .iter()
+            .position(|p| *p == "open")
+            .unwrap_or(0),
+        k => k - 1,
+    }
+}
+
 impl SyntheticUser {
     /// A user drawn from the acceptance population, deterministic in `seed`.
     pub fn random(seed: u64) -> SyntheticUser {

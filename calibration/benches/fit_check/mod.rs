@@ -11,19 +11,13 @@
 
 use calibration::{
     BuiltinInputs, CalibrationProfile, CapturedPose, FitCheck, POSE_NAMES, ProfileHeader, Study,
-    SyntheticUser, calibrate, poses_that_do_not_fit,
+    SyntheticUser, calibrate, poses_that_do_not_fit, wrongly_held_pose,
 };
 
 /// Users per set and kind of hand for the well-held sessions.
 const USERS: u64 = 20;
 /// Users per set and kind of hand for each wrongly held pose.
 const WRONG_USERS: u64 = 6;
-
-/// The pose a user wrongly holds while pose `k` is captured: the previous one, or for the
-/// first pose the open hand.
-fn held_instead(k: usize) -> usize {
-    if k == 0 { 4 } else { k - 1 }
-}
 
 /// The profile of a fit of `captures` with the built-in settings.
 fn profile(builtin: &BuiltinInputs, captures: &[CapturedPose]) -> CalibrationProfile {
@@ -96,7 +90,7 @@ fn wrongly_held(
                 let Ok(mut captures) = study.captures(&user(uniform, seed)) else {
                     continue;
                 };
-                captures[k].keypoints = captures[held_instead(k)].keypoints.clone();
+                captures[k].keypoints = captures[wrongly_held_pose(k)].keypoints.clone();
                 let p = profile(builtin, &captures);
                 let misfits = poses_that_do_not_fit(&p.poses, &builtin.poses, &check);
                 sessions += 1;
@@ -107,7 +101,7 @@ fn wrongly_held(
                     eprintln!(
                         "  {} held as {}, seed {seed}: {}",
                         POSE_NAMES[k],
-                        POSE_NAMES[held_instead(k)],
+                        POSE_NAMES[wrongly_held_pose(k)],
                         first.map_or("nothing named".to_string(), |m| m.sentence())
                     );
                 }

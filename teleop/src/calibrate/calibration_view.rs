@@ -288,7 +288,7 @@ fn pose_rows(session: &PoseSession, current: Option<(usize, u32)>) -> Vec<(Strin
         .enumerate()
         .map(|(k, (p, attempts))| {
             let history: Vec<&str> = attempts.iter().map(|a| a.quality.level.name()).collect();
-            let accepted = attempts.iter().rev().find(|a| a.accepted);
+            let accepted = session.accepted(k);
             let (status, level) = match (accepted, current) {
                 (_, Some((c, _))) if c == k => (
                     if history.is_empty() {

@@ -4,9 +4,9 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `pose_session.rs` | the session pose by pose as a pure state machine: settle, capture, judge, accept or retry, fit |
+//! | `pose_session.rs` | the session pose by pose as a pure state machine: settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone and fitted again |
 //! | `capture_quality.rs` | a capture's jitter, invalid frames and frames vs expected: good / poor / bad |
-//! | `session_node.rs` | the session over ROS 2: the hand is sent to each pose, the glove recorded with every capture window, its quality and the decisions; the fit in a blocking task |
+//! | `session_node.rs` | the session over ROS 2: the hand is sent to each pose, the glove recorded with every capture window, its quality and the decisions; the fit in a blocking task; the finished log continued for a redo |
 //! | `session_events.rs` | the session log's metadata record and events; each pose's accepted capture window |
 //! | `session_frames.rs` | reading a session log back: each pose's frames |
 //! | `fit_session.rs` | session log → captures → fit → table → profile (atomic write) |
@@ -14,7 +14,7 @@
 //! | `calibration_view.rs` | what the console shows, as data; the line console's output |
 //! | `calibration_screen.rs` | drawing the view full-screen (ratatui) |
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
-//! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at |
+//! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at (shaking through a pose, or holding the previous one, when asked) |
 //! | `progress_bar.rs` | the fit's progress on stderr |
 //! | `ctrl_c.rs` | the process's one Ctrl-C handler (installed first, works without an async runtime), as a watch channel |
 //! | `error.rs` | the one error type, [`CalibrateError`] |

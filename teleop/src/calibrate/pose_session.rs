@@ -384,26 +384,7 @@ impl PoseSession {
             (CalibrationAction::Quit, Phase::Fitting | Phase::Failed(_)) => {
                 vec![Effect::Quit { completed: false }]
             }
-            (CalibrationAction::Quit, _) if self.redoing => {
-                self.say("quit: the pose is not captured again; the profile of the fit stays");
-                vec![
-                    Effect::Log {
-                        at_ns: now_ns,
-                        event: json!({"event": "abort", "reason": "operator quit the redo"}),
-                    },
-                    Effect::Quit { completed: true },
-                ]
-            }
-            (CalibrationAction::Quit, _) => {
-                self.say("quit: the session is abandoned (its log is kept)");
-                vec![
-                    Effect::Log {
-                        at_ns: now_ns,
-                        event: json!({"event": "abort", "reason": "operator quit"}),
-                    },
-                    Effect::Quit { completed: false },
-                ]
-            }
+            (CalibrationAction::Quit, _) => self.quit_while_capturing(now_ns),
             (CalibrationAction::Retry, Phase::Review { pose, attempt }) => {
                 let mut effects = vec![self.decision(pose, attempt, "retry", "operator", now_ns)];
                 effects.extend(self.begin_attempt(pose, attempt + 1, now_ns));
@@ -469,6 +450,32 @@ impl PoseSession {
             }],
             Policy::Operator => Vec::new(),
         }
+    }
+
+    /// `q` while a pose is being captured: the session is abandoned, or during a redo after
+    /// the fit only the redo (the profile of that fit stays; the session counts as complete).
+    fn quit_while_capturing(&mut self, now_ns: i64) -> Vec<Effect> {
+        let (said, reason) = if self.redoing {
+            (
+                "quit: the pose is not captured again; the profile of the fit stays",
+                "operator quit the redo",
+            )
+        } else {
+            (
+                "quit: the session is abandoned (its log is kept)",
+                "operator quit",
+            )
+        };
+        self.say(said);
+        vec![
+            Effect::Log {
+                at_ns: now_ns,
+                event: json!({"event": "abort", "reason": reason}),
+            },
+            Effect::Quit {
+                completed: self.redoing,
+            },
+        ]
     }
 
     /// `r` after the fit: the pose offered is captured again (the log continued first).

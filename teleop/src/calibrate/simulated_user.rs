@@ -141,28 +141,16 @@ pub const SHAKING_NOISE_M: f64 = 0.008;
 pub struct SimulatedMistakes {
     /// `--simulate-bad-pose`: the user shakes through this pose's first capture.
     pub shaking: Option<usize>,
-    /// `--simulate-wrong-pose`: the user holds [`held_instead`] of this pose through its first
-    /// capture.
+    /// `--simulate-wrong-pose`: the user holds [`calibration::wrongly_held_pose`] of this pose
+    /// through its first capture.
     pub wrong: Option<usize>,
-}
-
-/// The pose a user who does not follow the hand holds while pose `k` is captured: the
-/// previous one; at the first pose, the open hand (the user has not started yet).
-pub fn held_instead(k: usize) -> usize {
-    match k {
-        0 => calibration::POSE_NAMES
-            .iter()
-            .position(|p| *p == "open")
-            .unwrap_or(0),
-        k => k - 1,
-    }
 }
 
 /// The motion's pose and whether it starts in the hold, for `cue`: a wrongly held pose shows
 /// the pose held instead, from its hold (the user stays where they were).
 fn shown_pose(cue: PoseCue, mistakes: SimulatedMistakes) -> (PoseCue, bool) {
     if mistakes.wrong == Some(cue.pose) && cue.attempt == 1 {
-        let pose = held_instead(cue.pose);
+        let pose = calibration::wrongly_held_pose(cue.pose);
         (PoseCue { pose, ..cue }, true)
     } else {
         (cue, cue.attempt > 1)
@@ -320,8 +308,10 @@ mod tests {
         assert_eq!(shown_pose(cue(2, 1), mistakes), (cue(1, 1), true));
         assert_eq!(shown_pose(cue(2, 2), mistakes), (cue(2, 2), true));
         assert_eq!(shown_pose(cue(3, 1), mistakes), (cue(3, 1), false));
-        assert_eq!(held_instead(0), 4);
-        assert_eq!(calibration::POSE_NAMES[held_instead(0)], "open");
+        assert_eq!(
+            calibration::POSE_NAMES[calibration::wrongly_held_pose(0)],
+            "open"
+        );
     }
 
     #[test]

@@ -258,10 +258,11 @@ pub async fn publish_glove(
     let mut interval = tokio::time::interval(Duration::from_secs_f64(1.0 / config.rate_hz));
     interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let mut report = SimGloveReport::default();
-    // Subscriptions of the status the glove has published to: a station that has just
-    // matched hears it at once, not up to a second later (a trial started meanwhile would
-    // record its keypoint source as unknown).
+    // Subscriptions of the status the glove has published to, looked at every 100 ms: a
+    // station that has just matched hears it then, not up to a second later (a trial started
+    // meanwhile would record its keypoint source as unknown).
     let mut status_heard_by = 0;
+    let mut match_tick = tokio::time::interval(Duration::from_millis(100));
     loop {
         tokio::select! {
             _ = shutdown.changed() => if *shutdown.borrow() { break },
@@ -269,6 +270,15 @@ pub async fn publish_glove(
                 if status_pub.async_publish(glove_status(config, &report)).await.is_err() {
                     report.count_failure(&config.status_topic);
                 }
+            }
+            _ = match_tick.tick() => {
+                let matched = node.matched_subscriptions(&status_pub);
+                if matched > status_heard_by
+                    && status_pub.async_publish(glove_status(config, &report)).await.is_err()
+                {
+                    report.count_failure(&config.status_topic);
+                }
+                status_heard_by = matched;
             }
             _ = interval.tick() => {
                 let now = clock.now_ns();
@@ -291,13 +301,6 @@ pub async fn publish_glove(
                 let pose = PoseStamped { header: header(now, "coil"), pose: isometry_to_pose(&wrist) };
                 let wrist_sent = wrist_pub.async_publish(pose).await.is_ok();
                 report.count(config, now, keypoints_sent, wrist_sent);
-                let matched = node.matched_subscriptions(&status_pub);
-                if matched > status_heard_by
-                    && status_pub.async_publish(glove_status(config, &report)).await.is_err()
-                {
-                    report.count_failure(&config.status_topic);
-                }
-                status_heard_by = matched;
             }
         }
     }
