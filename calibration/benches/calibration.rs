@@ -13,15 +13,13 @@
 //! - Bayesian optimisation against random search with the same 60 evaluations: the median
 //!   over users of the best objective each found, and how many users each won.
 //!
-//! `-- models` compares the global and the per-digit model instead; `-- fit_check` measures
+//! `-- models` compares the global and the per-digit model instead (their held-out motion
+//! through the station: `cargo bench -p teleop --bench calibrated_users`); `-- fit_check` measures
 //! the check of the fitted poses (see `fit_check/mod.rs`).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark fails loudly
 
 use std::time::Instant;
-
-use retarget::human_hand::{Motion, MotionKind, SimGlove};
-use retarget::{CalibrationTransform, QualityRecorder, QualityReport, Retargeter};
 
 use calibration::{
     BuiltinInputs, CalibrationModel, CalibrationSettings, Study, SyntheticUser, calibrate,
@@ -72,44 +70,6 @@ fn non_uniform_recovery() {
     );
 }
 
-/// The user's glove doing the four pinches (held-out motion: the fit saw only the seven
-/// poses) for 30 s at 25 Hz with 1 mm jitter, retargeted with the station's live
-/// configuration under `transform`: the quality report (pinches closed, tip error).
-fn held_out_pinches(
-    builtin: &BuiltinInputs,
-    user: &SyntheticUser,
-    transform: CalibrationTransform,
-) -> QualityReport {
-    let shape = user.shape();
-    let layout = builtin.config.layout;
-    let motion = Motion::new(
-        MotionKind::Pinches,
-        MotionKind::Pinches.default_period_s(),
-        &shape,
-    )
-    .unwrap();
-    let glove = SimGlove::new(shape, motion, layout)
-        .unwrap()
-        .with_misalignment(user.misalignment())
-        .with_jitter(0.001, user.seed ^ 0x5EED)
-        .unwrap();
-    let mut retargeter = Retargeter::new(
-        builtin.model.clone(),
-        builtin.config.clone(),
-        &builtin.catalog,
-    )
-    .unwrap();
-    retargeter.set_calibration(transform).unwrap();
-    let mut recorder = QualityRecorder::new(builtin.model.clone(), layout);
-    for i in 0..750 {
-        let t_s = f64::from(i) / 25.0;
-        let points = glove.frame(t_s).0;
-        let q = retargeter.retarget(&points, 0.04).unwrap().q;
-        recorder.push_at(t_s, &points, &q).unwrap();
-    }
-    recorder.report()
-}
-
 /// Global against per-digit on the same non-uniform users: held-out joint error and the
 /// calibration poses' pinch-gap error, and how many users each model served better.
 fn model_comparison() {
@@ -131,7 +91,6 @@ fn model_comparison() {
     };
     let (mut g_sq, mut d_sq, mut none_sq, mut d_wins, mut g_gap, mut d_gap) =
         (0.0, 0.0, 0.0, 0, 0.0, 0.0);
-    let (mut closed, mut pinch_frames, mut tip_mm) = ([0usize; 3], [0usize; 3], [0.0; 3]);
     let mut users = 0usize;
     for seed in 0..COMPARED_USERS {
         let user = SyntheticUser::random_non_uniform(1000 + seed);
@@ -147,26 +106,6 @@ fn model_comparison() {
         g_gap += gap_mm(&g);
         d_gap += gap_mm(&d);
         users += 1;
-        let live = [
-            CalibrationTransform::IDENTITY,
-            g.calibration.transform,
-            d.calibration.transform,
-        ]
-        .map(|t| held_out_pinches(&builtin, &user, t));
-        for (k, report) in live.iter().enumerate() {
-            closed[k] += report.sustained_pinch_closed_frames;
-            pinch_frames[k] += report.sustained_pinch_frames;
-            tip_mm[k] += report.tip_error_mean_mm;
-        }
-        eprintln!(
-            "  held-out pinches closed (sustained) none {:?} global {:?} per-digit {:?} %; tip error {:.1} / {:.1} / {:.1} mm",
-            live[0].sustained_pinches_closed_pct.map(|p| p.round()),
-            live[1].sustained_pinches_closed_pct.map(|p| p.round()),
-            live[2].sustained_pinches_closed_pct.map(|p| p.round()),
-            live[0].tip_error_mean_mm,
-            live[1].tip_error_mean_mm,
-            live[2].tip_error_mean_mm
-        );
         eprintln!(
             "user {seed}: {} held-out none {:.3} global {:.3} per-digit {:.3} rad; pinch gap error global {:.1} per-digit {:.1} mm; factors {:?}",
             user.variation.label(),
@@ -189,16 +128,6 @@ fn model_comparison() {
         (d_sq / n).sqrt(),
         g_gap / n,
         d_gap / n
-    );
-    let pct = |k: usize| 100.0 * closed[k] as f64 / pinch_frames[k].max(1) as f64;
-    println!(
-        "{{\"bench\":\"calibration_models_held_out_pinches\",\"users\":{users},\"sustained_pinches_closed_pct\":{{\"none\":{:.1},\"global\":{:.1},\"per_digit\":{:.1}}},\"tip_error_mean_mm\":{{\"none\":{:.1},\"global\":{:.1},\"per_digit\":{:.1}}}}}",
-        pct(0),
-        pct(1),
-        pct(2),
-        tip_mm[0] / n,
-        tip_mm[1] / n,
-        tip_mm[2] / n
     );
 }
 

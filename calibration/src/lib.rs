@@ -39,6 +39,7 @@ mod fit;
 mod fit_check;
 mod gaussian_process;
 mod gp_likelihood;
+mod held_out_motion;
 mod human_copy;
 mod nelder_mead;
 mod objective;
@@ -55,6 +56,9 @@ pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;
 pub use fit::{BuiltinInputs, Calibration, FitInputs, FitProgress, calibrate};
 pub use fit_check::{PoseMisfit, poses_that_do_not_fit};
+pub use held_out_motion::{
+    HELD_OUT_DURATION_S, HELD_OUT_JITTER_M, HELD_OUT_RATE_HZ, HeldOutFrame, held_out_pinches,
+};
 pub use human_copy::{human_copies, human_copy};
 pub use objective::{Evaluation, Objective, PoseError, cold_solve_config};
 pub use optimiser::{ObjectiveFn, Trace, bayesian_optimise, polish, random_search};

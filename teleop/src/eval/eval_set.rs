@@ -84,7 +84,7 @@ pub enum SetError {
 
 /// Writes `frames` as a recording at `path`: one `Float32MultiArray` per frame on `topic`,
 /// logged and published at the frame's time.
-fn write_recording(path: &Path, topic: &str, frames: &[TimedFrame]) -> Result<(), SetError> {
+pub fn write_recording(path: &Path, topic: &str, frames: &[TimedFrame]) -> Result<(), SetError> {
     let write = |source: LogError| SetError::Write {
         path: path.to_path_buf(),
         source: Box::new(source),

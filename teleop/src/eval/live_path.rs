@@ -4,6 +4,7 @@
 //! retargeter alone. Where the two differ, the station's control loop (a tick beating against
 //! the glove, a rejected frame) costs what the figures say.
 
+use std::collections::BTreeMap;
 use std::time::Instant;
 
 use nalgebra::Point3;
@@ -37,9 +38,15 @@ pub struct LivePathReport {
     pub step_us_p99: Option<f64>,
 }
 
+/// The hand each frame is scored against, by the frame's stamp (ns): for a synthetic user, the
+/// hand as held (no glove misalignment, tip-marker offset or jitter), which a calibration
+/// should make the robot copy. A frame without one is scored against what the glove reported.
+pub type HandAsHeld = BTreeMap<i64, Vec<Point3<f64>>>;
+
 /// Scores what the station commands at each distinct frame of a log.
-struct LivePathScore {
+struct LivePathScore<'a> {
     recorder: QualityRecorder,
+    as_held: Option<&'a HandAsHeld>,
     previous: Option<Vec<Point3<f64>>>,
     without_command: usize,
     not_measured: usize,
@@ -47,7 +54,7 @@ struct LivePathScore {
     step_us: Samples,
 }
 
-impl LivePathScore {
+impl LivePathScore<'_> {
     fn after_step(
         &mut self,
         input: &StationInput,
@@ -68,11 +75,11 @@ impl LivePathScore {
                 // A frame the recorder cannot measure (collapsed palm) is left out, as the
                 // retargeter-alone figures leave it out, and counted.
                 let t_s = now_ns as f64 * 1e-9;
-                if self
-                    .recorder
-                    .push_at(t_s, &frame.points, &command.q)
-                    .is_err()
-                {
+                let human = self
+                    .as_held
+                    .and_then(|held| held.get(&frame.source_ns))
+                    .unwrap_or(&frame.points);
+                if self.recorder.push_at(t_s, human, &command.q).is_err() {
                     self.not_measured += 1;
                 }
             }
@@ -87,10 +94,21 @@ pub fn live_path(
     config: &StationConfig,
     model: HandModel,
 ) -> Result<LivePathReport, EvalError> {
+    live_path_against(reader, config, model, None)
+}
+
+/// The same, each frame scored against the hand as held where `as_held` has it.
+pub fn live_path_against(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+    as_held: Option<&HandAsHeld>,
+) -> Result<LivePathReport, EvalError> {
     let log: LogInputs = log_inputs(reader, config)?;
     let (mut station, _) = build_station(&log.config, model.clone())?;
     let mut score = LivePathScore {
         recorder: QualityRecorder::new(model, log.config.retarget.layout),
+        as_held,
         previous: None,
         without_command: 0,
         not_measured: 0,
