@@ -23,6 +23,7 @@ use retarget::{Finger, KeypointLayout};
 use serde::{Deserialize, Serialize};
 
 use crate::config_error::ConfigError;
+use crate::outlier_check;
 
 /// Limits of a plausible human hand frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,6 +50,12 @@ pub struct GateConfig {
     /// off: at 0.02 it holds every injected outlier of the shared recordings, but also real
     /// frames of a glove with 2 mm of noise that drops frames (README, "The evaluation set").
     pub outlier_jump_m: f64,
+    /// Where `outlier_jump_m` is set: a point off its prediction by `outlier_jump_m` itself
+    /// (not scaled with the time since the last accepted frame) whose move also stretched or
+    /// shrank a bone of its digit by this much is an outlier too. Bones keep their length, so
+    /// this test holds a tracker's outlier that arrives after a gap in the frames, where the
+    /// scaled threshold has grown past it. Metres; 0 turns this part off.
+    pub outlier_stretch_m: f64,
 }
 
 impl Default for GateConfig {
@@ -60,6 +67,7 @@ impl Default for GateConfig {
             jump_interval_ms: 50,
             reorder_window_ms: 250,
             outlier_jump_m: 0.0,
+            outlier_stretch_m: 0.01,
         }
     }
 }
@@ -93,6 +101,13 @@ impl GateConfig {
             return Err(ConfigError::out_of_range(
                 "gate.outlier_jump_m",
                 self.outlier_jump_m,
+                "in [0, 1] (0: off)",
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.outlier_stretch_m) {
+            return Err(ConfigError::out_of_range(
+                "gate.outlier_stretch_m",
+                self.outlier_stretch_m,
                 "in [0, 1] (0: off)",
             ));
         }
@@ -240,9 +255,12 @@ impl FrameGate {
             return false;
         }
         let scale = self.jump_allowance_m(since_last_ns) / self.config.max_jump_m;
-        let min_jump_m = self.config.outlier_jump_m * scale;
+        let (jump_m, stretch_m) = (self.config.outlier_jump_m, self.config.outlier_stretch_m);
         let leapt = |from: &[Point3<f64>]| {
-            crate::outlier_check::isolated_leap(self.layout, points, from, min_jump_m).is_some()
+            outlier_check::isolated_leap(self.layout, points, from, jump_m * scale).is_some()
+                || (stretch_m > 0.0
+                    && outlier_check::stretching_leap(self.layout, points, from, jump_m, stretch_m)
+                        .is_some())
         };
         leapt(last) && self.before_last.as_deref().is_none_or(leapt)
     }
@@ -372,6 +390,36 @@ mod tests {
         assert!((allowance(None) - 0.12).abs() < 1e-12);
         assert!((allowance(Some(100 * MS)) - 0.24).abs() < 1e-12);
         assert!((allowance(Some(10_000 * MS)) - 1.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn an_outlier_after_a_gap_is_held_when_it_stretches_a_bone() {
+        let layout = KeypointLayout::Lab22;
+        let config = |stretch_m| GateConfig {
+            outlier_jump_m: 0.02,
+            outlier_stretch_m: stretch_m,
+            ..GateConfig::default()
+        };
+        let frame = hand();
+        let (tip, joint) = (layout.tip(Finger::Index), layout.chain(Finger::Index)[2]);
+        // 3 cm straight out along the last bone, 100 ms after the last frame: the scaled
+        // threshold has grown to 4 cm, past the leap; the bone is 3 cm longer.
+        let mut outlier = frame.clone();
+        outlier[tip] += (frame[tip] - frame[joint]).normalize() * 0.03;
+        for (stretch_m, expected) in [
+            (0.01, Verdict::Rejected(Rejection::Outlier)),
+            (0.0, Verdict::New),
+        ] {
+            let mut gate = FrameGate::new(layout, config(stretch_m));
+            assert_eq!(gate.judge(&frame), Verdict::New);
+            assert_eq!(gate.judge_after(&outlier, Some(100_000_000)), expected);
+        }
+        let bad = GateConfig {
+            outlier_stretch_m: -0.01,
+            ..GateConfig::default()
+        };
+        let error = bad.validate().unwrap_err().to_string();
+        assert!(error.contains("gate.outlier_stretch_m"), "{error}");
     }
 
     #[test]

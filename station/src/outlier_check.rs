@@ -28,6 +28,40 @@ pub fn isolated_leap(
     last: &[Point3<f64>],
     min_jump_m: f64,
 ) -> Option<usize> {
+    first_leap(layout, points, last, |off_m, _| off_m >= min_jump_m)
+}
+
+/// The first point that leapt alone by at least `min_jump_m` and stretched or shrank a bone
+/// of its digit's chain (to the point before or after it) by at least `min_stretch_m`, or
+/// None. A hand's bones keep their length however far apart two frames are, so this test
+/// need not grow with the time between them as [`isolated_leap`]'s threshold does: a
+/// tracker's outlier seen after a gap in the frames is still one.
+pub fn stretching_leap(
+    layout: KeypointLayout,
+    points: &[Point3<f64>],
+    last: &[Point3<f64>],
+    min_jump_m: f64,
+    min_stretch_m: f64,
+) -> Option<usize> {
+    let stretch =
+        |a: usize, b: usize| ((points[a] - points[b]).norm() - (last[a] - last[b]).norm()).abs();
+    first_leap(layout, points, last, |off_m, (digit, k)| {
+        let before = stretch(digit[k], digit[k - 1]);
+        let after = digit
+            .get(k + 1)
+            .map_or(0.0, |&next| stretch(digit[k], next));
+        off_m >= min_jump_m && before.max(after) >= min_stretch_m
+    })
+}
+
+/// The first point of a digit chain (wrist, base, joints, tip) whose motion relative to the
+/// wrist is off what its neighbours predict by `off_m` for which `leapt(off_m, (chain, k))`.
+fn first_leap(
+    layout: KeypointLayout,
+    points: &[Point3<f64>],
+    last: &[Point3<f64>],
+    leapt: impl Fn(f64, ([usize; 5], usize)) -> bool,
+) -> Option<usize> {
     let wrist = layout.wrist();
     let moved = |i: usize| -> Vector3<f64> {
         if i == wrist {
@@ -44,7 +78,7 @@ pub fn isolated_leap(
                 Some(next) => (moves[k - 1] + next) / 2.0,
                 None => moves[k - 1] * 2.0 - moves[k - 2],
             };
-            if (moves[k] - predicted).norm() >= min_jump_m {
+            if leapt((moves[k] - predicted).norm(), (digit, k)) {
                 return Some(digit[k]);
             }
         }
@@ -78,6 +112,34 @@ mod tests {
         // Under the jump, it is not one.
         after[tip] = before[tip] + Vector3::new(0.0, 0.015, 0.0);
         assert_eq!(isolated_leap(LAYOUT, &after, &before, 0.02), None);
+    }
+
+    #[test]
+    fn a_leap_that_stretches_a_bone_is_named_and_a_swing_about_the_joint_is_not() {
+        let before = hand(0.3);
+        let tip = LAYOUT.tip(Finger::Index);
+        let joint = LAYOUT.chain(Finger::Index)[2];
+        // 3 cm straight away from the joint before it: the last bone 3 cm longer.
+        let bone = (before[tip] - before[joint]).normalize();
+        let mut stretched = before.clone();
+        stretched[tip] += bone * 0.03;
+        assert_eq!(
+            stretching_leap(LAYOUT, &stretched, &before, 0.02, 0.01),
+            Some(tip)
+        );
+        // The same 3 cm across the bone, swinging about the joint: the bone keeps its length
+        // to first order (under 1 cm), so the stretch test lets it be.
+        let across = bone.cross(&Vector3::z()).normalize();
+        let radius = (before[tip] - before[joint]).norm();
+        let turned = nalgebra::Rotation3::from_axis_angle(
+            &nalgebra::Unit::new_normalize(bone.cross(&across)),
+            0.03 / radius,
+        );
+        let mut swung = before.clone();
+        swung[tip] = before[joint] + turned * (before[tip] - before[joint]);
+        assert!((swung[tip] - before[tip]).norm() > 0.025);
+        assert_eq!(stretching_leap(LAYOUT, &swung, &before, 0.02, 0.01), None);
+        assert_eq!(isolated_leap(LAYOUT, &swung, &before, 0.02), Some(tip));
     }
 
     #[test]
