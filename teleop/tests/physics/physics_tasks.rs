@@ -9,7 +9,12 @@ use std::path::Path;
 use std::process::Command;
 
 /// Task, its script under launch_configs/sim/.
-const SCRIPTS: [(&str, &str); 2] = [("G4", "grasp_place.toml"), ("C4", "tasks/C4.toml")];
+const SCRIPTS: [(&str, &str); 4] = [
+    ("G1", "tasks/G1.toml"),
+    ("G3", "tasks/G3.toml"),
+    ("G4", "grasp_place.toml"),
+    ("C4", "tasks/C4.toml"),
+];
 const RUNS: u32 = 20;
 
 /// The number of runs of `script` on `task` that scored correctness 1, and the summary line.
