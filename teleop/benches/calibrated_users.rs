@@ -60,6 +60,10 @@ fn live(recording: &Path, profile: Option<&Path>, as_held: &HandAsHeld) -> [Qual
     let model = HandModel::orca_v1_right();
     let held = live_path_against(&reader, &config, model.clone(), Some(as_held)).unwrap();
     let reported = live_path_against(&reader, &config, model, None).unwrap();
+    assert_eq!(
+        held.frames_not_measured, 0,
+        "a frame without the hand as held"
+    );
     [held.quality, reported.quality]
 }
 

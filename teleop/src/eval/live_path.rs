@@ -28,7 +28,8 @@ pub struct LivePathReport {
     pub frames_without_command: usize,
     /// Distinct glove frames with a command in force that the metrics cannot measure (malformed
     /// keypoints, as the retargeter-alone figures' rejected frames; the station's gate rejects
-    /// them too): left out of the metrics.
+    /// them too), or, scored against the hand as held, that have no such hand: left out of the
+    /// metrics.
     pub frames_not_measured: usize,
     /// Hand commands computed from a new frame.
     pub fresh_commands: u64,
@@ -40,7 +41,7 @@ pub struct LivePathReport {
 
 /// The hand each frame is scored against, by the frame's stamp (ns): for a synthetic user, the
 /// hand as held (no glove misalignment, tip-marker offset or jitter), which a calibration
-/// should make the robot copy. A frame without one is scored against what the glove reported.
+/// should make the robot copy. A frame without one is left out and counted as not measured.
 pub type HandAsHeld = BTreeMap<i64, Vec<Point3<f64>>>;
 
 /// Scores what the station commands at each distinct frame of a log.
@@ -75,13 +76,13 @@ impl LivePathScore<'_> {
                 // A frame the recorder cannot measure (collapsed palm) is left out, as the
                 // retargeter-alone figures leave it out, and counted.
                 let t_s = now_ns as f64 * 1e-9;
-                let human = self
-                    .as_held
-                    .and_then(|held| held.get(&frame.source_ns))
-                    .unwrap_or(&frame.points);
-                if self.recorder.push_at(t_s, human, &command.q).is_err() {
-                    self.not_measured += 1;
-                }
+                let human = match self.as_held {
+                    Some(held) => held.get(&frame.source_ns),
+                    None => Some(&frame.points),
+                };
+                let measured =
+                    human.is_some_and(|h| self.recorder.push_at(t_s, h, &command.q).is_ok());
+                self.not_measured += usize::from(!measured);
             }
             None => self.without_command += 1,
         }
@@ -97,7 +98,7 @@ pub fn live_path(
     live_path_against(reader, config, model, None)
 }
 
-/// The same, each frame scored against the hand as held where `as_held` has it.
+/// The same, each frame scored against the hand as held in `as_held` when it is given.
 pub fn live_path_against(
     reader: &TrialReader,
     config: &StationConfig,
