@@ -179,6 +179,20 @@ mod tests {
     }
 
     #[test]
+    fn the_wrongly_held_pose_is_the_previous_one_or_the_open_hand_first() {
+        let open = crate::poses::POSE_NAMES
+            .iter()
+            .position(|p| *p == "open")
+            .unwrap();
+        assert_eq!(wrongly_held_pose(0), open);
+        assert_eq!(crate::poses::POSE_NAMES[wrongly_held_pose(0)], "open");
+        assert_eq!(open, 4, "the capture order's open hand");
+        for k in 1..crate::poses::POSE_NAMES.len() {
+            assert_eq!(wrongly_held_pose(k), k - 1);
+        }
+    }
+
+    #[test]
     fn the_population_spans_its_ranges() {
         let users: Vec<_> = (0..200).map(SyntheticUser::random).collect();
         let scales: Vec<f64> = users.iter().map(|u| u.hand_scale).collect();

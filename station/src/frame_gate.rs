@@ -256,11 +256,15 @@ impl FrameGate {
         }
         let scale = self.jump_allowance_m(since_last_ns) / self.config.max_jump_m;
         let (jump_m, stretch_m) = (self.config.outlier_jump_m, self.config.outlier_stretch_m);
+        let limits = outlier_check::LeapLimits {
+            min_jump_m: jump_m * scale,
+            stretch: (stretch_m > 0.0).then_some(outlier_check::StretchLimits {
+                min_jump_m: jump_m,
+                min_stretch_m: stretch_m,
+            }),
+        };
         let leapt = |from: &[Point3<f64>]| {
-            outlier_check::isolated_leap(self.layout, points, from, jump_m * scale).is_some()
-                || (stretch_m > 0.0
-                    && outlier_check::stretching_leap(self.layout, points, from, jump_m, stretch_m)
-                        .is_some())
+            outlier_check::leapt_point(self.layout, points, from, limits).is_some()
         };
         leapt(last) && self.before_last.as_deref().is_none_or(leapt)
     }

@@ -18,6 +18,29 @@
 use nalgebra::{Point3, Vector3};
 use retarget::{Finger, KeypointLayout};
 
+/// When a point has leapt alone: off its prediction by `min_jump_m`, or, with `stretch`, off
+/// it by that part's own jump and stretching or shrinking a bone of its digit's chain (to the
+/// point before or after it) by its `min_stretch_m`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeapLimits {
+    /// Off the prediction by this much, metres.
+    pub min_jump_m: f64,
+    /// The bone test, if any.
+    pub stretch: Option<StretchLimits>,
+}
+
+/// A leap that stretches a bone. A hand's bones keep their length however far apart two
+/// frames are, so these limits need not grow with the time between them as
+/// [`LeapLimits::min_jump_m`] does: a tracker's outlier seen after a gap in the frames is still
+/// one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StretchLimits {
+    /// Off the prediction by this much, metres.
+    pub min_jump_m: f64,
+    /// A bone longer or shorter by this much, metres.
+    pub min_stretch_m: f64,
+}
+
 /// The first point (layout index) that leapt alone from `last` to `points` by at least
 /// `min_jump_m`, or None.
 ///
@@ -28,29 +51,32 @@ pub fn isolated_leap(
     last: &[Point3<f64>],
     min_jump_m: f64,
 ) -> Option<usize> {
-    first_leap(layout, points, last, |off_m, _| off_m >= min_jump_m)
+    let limits = LeapLimits {
+        min_jump_m,
+        stretch: None,
+    };
+    leapt_point(layout, points, last, limits)
 }
 
-/// The first point that leapt alone by at least `min_jump_m` and stretched or shrank a bone
-/// of its digit's chain (to the point before or after it) by at least `min_stretch_m`, or
-/// None. A hand's bones keep their length however far apart two frames are, so this test
-/// need not grow with the time between them as [`isolated_leap`]'s threshold does: a
-/// tracker's outlier seen after a gap in the frames is still one.
-pub fn stretching_leap(
+/// The first point that leapt alone from `last` to `points` under `limits`, or None, in one
+/// pass over the digits.
+pub fn leapt_point(
     layout: KeypointLayout,
     points: &[Point3<f64>],
     last: &[Point3<f64>],
-    min_jump_m: f64,
-    min_stretch_m: f64,
+    limits: LeapLimits,
 ) -> Option<usize> {
     let stretch =
         |a: usize, b: usize| ((points[a] - points[b]).norm() - (last[a] - last[b]).norm()).abs();
     first_leap(layout, points, last, |off_m, (digit, k)| {
-        let before = stretch(digit[k], digit[k - 1]);
-        let after = digit
-            .get(k + 1)
-            .map_or(0.0, |&next| stretch(digit[k], next));
-        off_m >= min_jump_m && before.max(after) >= min_stretch_m
+        off_m >= limits.min_jump_m
+            || limits.stretch.is_some_and(|s| {
+                let after = digit
+                    .get(k + 1)
+                    .map_or(0.0, |&next| stretch(digit[k], next));
+                off_m >= s.min_jump_m
+                    && stretch(digit[k], digit[k - 1]).max(after) >= s.min_stretch_m
+            })
     })
 }
 
@@ -123,10 +149,14 @@ mod tests {
         let bone = (before[tip] - before[joint]).normalize();
         let mut stretched = before.clone();
         stretched[tip] += bone * 0.03;
-        assert_eq!(
-            stretching_leap(LAYOUT, &stretched, &before, 0.02, 0.01),
-            Some(tip)
-        );
+        let limits = LeapLimits {
+            min_jump_m: 0.05,
+            stretch: Some(StretchLimits {
+                min_jump_m: 0.02,
+                min_stretch_m: 0.01,
+            }),
+        };
+        assert_eq!(leapt_point(LAYOUT, &stretched, &before, limits), Some(tip));
         // The same 3 cm across the bone, swinging about the joint: the bone keeps its length
         // to first order (under 1 cm), so the stretch test lets it be.
         let across = bone.cross(&Vector3::z()).normalize();
@@ -138,7 +168,7 @@ mod tests {
         let mut swung = before.clone();
         swung[tip] = before[joint] + turned * (before[tip] - before[joint]);
         assert!((swung[tip] - before[tip]).norm() > 0.025);
-        assert_eq!(stretching_leap(LAYOUT, &swung, &before, 0.02, 0.01), None);
+        assert_eq!(leapt_point(LAYOUT, &swung, &before, limits), None);
         assert_eq!(isolated_leap(LAYOUT, &swung, &before, 0.02), Some(tip));
     }
 
