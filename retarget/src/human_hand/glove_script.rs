@@ -4,12 +4,20 @@
 //! performs a task once: the wrist moves down to an object, the hand closes, the wrist lifts,
 //! carries and lowers it, the hand opens. Keyframe `i` gives a time `tᵢ`, a wrist offset `wᵢ`
 //! (metres, glove frame, from the wrist's placement at `t = 0`) and a key pose
-//! `Pᵢ = lerp(open, named poseᵢ, closureᵢ)`. Between two keyframes (`tᵢ ≤ t < tᵢ₊₁`):
+//! `Pᵢ = lerp(open, named poseᵢ, closureᵢ)`, and optionally a wrist turn `rᵢ` (a rotation
+//! vector, axis × angle, degrees, glove frame, about the wrist itself). Between two keyframes
+//! (`tᵢ ≤ t < tᵢ₊₁`):
 //!
 //! ```text
 //! v = (t − tᵢ) / (tᵢ₊₁ − tᵢ),    s = 10v³ − 15v⁴ + 6v⁵          (minimum jerk)
 //! wrist(t) = wᵢ + s · (wᵢ₊₁ − wᵢ),    pose(t) = lerp(Pᵢ, Pᵢ₊₁, s)
+//! turn(t) = exp(rᵢ + s · (rᵢ₊₁ − rᵢ))
 //! ```
+//!
+//! The turn is applied to the hand's placement at the start, about the wrist: a turn about +z
+//! is a twist of the wrist about the vertical, which the station passes to the arm where the
+//! task's constraint and the orientation policy allow it (`twist_about_axis` on an axis
+//! task). Between two turns about one axis the interpolation is exact.
 //!
 //! The minimum-jerk profile has zero velocity and acceleration at both ends, so the path
 //! passes every keyframe exactly and at rest and is twice continuously differentiable (C²)
@@ -29,6 +37,7 @@
 //! wrist_m = [0.0, 0.0, -0.2]
 //! pose = "cylinder_grasp"
 //! closure = 0.8               # optional, default 1: 0 open … 1 the named pose
+//! wrist_turn_deg = [0.0, 0.0, 30.0]   # optional, default none: 30° about +z (vertical)
 //! ```
 //!
 //! A script may also name dropouts, windows of script time in which the simulated glove
@@ -45,7 +54,7 @@
 //! shape (as [`Motion::new`](super::Motion::new) does, with the same [`PINCH_GAP_M`] gap)
 //! and gives the [`ResolvedScript`] that samples the script.
 
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::motion::PINCH_GAP_M;
@@ -57,6 +66,9 @@ use crate::finger::Finger;
 
 /// Largest wrist offset per axis accepted, metres.
 pub const MAX_WRIST_OFFSET_M: f64 = 1.0;
+
+/// Largest wrist turn per rotation-vector component accepted, degrees.
+pub const MAX_WRIST_TURN_DEG: f64 = 180.0;
 
 /// The named hand poses a keyframe can ask for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -136,6 +148,15 @@ pub struct ScriptKeyframe {
     /// How far from open towards `pose` the hand is: 0 open, 1 (the default) the named pose.
     #[serde(default = "full_closure")]
     pub closure: f64,
+    /// The wrist's turn from its placement at the start: a rotation vector (axis × angle),
+    /// degrees, glove frame, about the wrist. Default none.
+    #[serde(default, skip_serializing_if = "is_no_turn")]
+    pub wrist_turn_deg: [f64; 3],
+}
+
+/// Whether a turn is none (so that a script without turns writes no turn).
+fn is_no_turn(turn: &[f64; 3]) -> bool {
+    *turn == [0.0; 3]
 }
 
 /// The default closure: the named pose itself.
@@ -151,6 +172,7 @@ impl ScriptKeyframe {
             wrist_m,
             pose,
             closure: 1.0,
+            wrist_turn_deg: [0.0; 3],
         }
     }
 }
@@ -244,6 +266,18 @@ fn check_values(index: usize, keyframe: &ScriptKeyframe) -> Result<(), Error> {
             format!("every component must be finite and within ±{MAX_WRIST_OFFSET_M} m"),
         ));
     }
+    let turn_ok = keyframe
+        .wrist_turn_deg
+        .iter()
+        .all(|v| v.is_finite() && v.abs() <= MAX_WRIST_TURN_DEG);
+    if !turn_ok {
+        return Err(keyframe_error(
+            index,
+            "wrist_turn_deg",
+            format!("{:?}", keyframe.wrist_turn_deg),
+            format!("every component must be finite and within ±{MAX_WRIST_TURN_DEG}°"),
+        ));
+    }
     if !(0.0..=1.0).contains(&keyframe.closure) {
         return Err(keyframe_error(
             index,
@@ -307,6 +341,11 @@ impl GloveScript {
                 .iter()
                 .map(|k| Vector3::from(k.wrist_m))
                 .collect(),
+            turns_rad: self
+                .keyframes
+                .iter()
+                .map(|k| Vector3::from(k.wrist_turn_deg.map(f64::to_radians)))
+                .collect(),
             poses,
             dropouts: self.dropouts.clone(),
         })
@@ -318,6 +357,8 @@ impl GloveScript {
 pub struct ScriptSample {
     /// The wrist's offset from its placement at the start, glove frame, metres.
     pub wrist_m: Vector3<f64>,
+    /// The wrist's turn from its placement at the start, glove frame, about the wrist.
+    pub wrist_turn: UnitQuaternion<f64>,
     /// The hand's joint angles.
     pub pose: HumanHandPose,
 }
@@ -328,6 +369,7 @@ pub struct ScriptSample {
 pub struct ResolvedScript {
     times_s: Vec<f64>,
     wrists_m: Vec<Vector3<f64>>,
+    turns_rad: Vec<Vector3<f64>>,
     poses: Vec<HumanHandPose>,
     dropouts: Vec<ScriptDropout>,
 }
@@ -365,6 +407,14 @@ impl ResolvedScript {
         self.wrists_m[i] + (self.wrists_m[j] - self.wrists_m[i]) * s
     }
 
+    /// The wrist's turn from its start at `t_s`, glove frame, about the wrist.
+    pub fn wrist_turn(&self, t_s: f64) -> UnitQuaternion<f64> {
+        let (i, j, s) = self.segment(t_s);
+        UnitQuaternion::from_scaled_axis(
+            self.turns_rad[i] + (self.turns_rad[j] - self.turns_rad[i]) * s,
+        )
+    }
+
     /// The hand's joint angles at `t_s`.
     pub fn pose(&self, t_s: f64) -> HumanHandPose {
         let (i, j, s) = self.segment(t_s);
@@ -383,6 +433,7 @@ impl ResolvedScript {
     pub fn sample(&self, t_s: f64) -> ScriptSample {
         ScriptSample {
             wrist_m: self.wrist_offset(t_s),
+            wrist_turn: self.wrist_turn(t_s),
             pose: self.pose(t_s),
         }
     }
@@ -501,6 +552,40 @@ closure = 0.5
     }
 
     #[test]
+    fn a_wrist_turn_about_one_axis_is_hit_at_its_keyframes_and_smooth_between() {
+        let text = concat!(
+            "[[keyframes]]\nt_s = 0.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\n",
+            "[[keyframes]]\nt_s = 1.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\n",
+            "wrist_turn_deg = [0.0, 0.0, 40.0]\n",
+            "[[keyframes]]\nt_s = 2.0\nwrist_m = [0.0, 0.0, 0.0]\npose = \"open\"\n",
+            "wrist_turn_deg = [0.0, 0.0, -20.0]\n",
+        );
+        let script = GloveScript::from_toml_str(text).unwrap();
+        assert_eq!(
+            script.keyframes[0].wrist_turn_deg, [0.0; 3],
+            "default: none"
+        );
+        let resolved = script.resolve(&HumanHandShape::average()).unwrap();
+        let yaw_deg = |t: f64| {
+            let q = resolved.wrist_turn(t);
+            q.scaled_axis().z.to_degrees()
+        };
+        assert!(yaw_deg(0.0).abs() < 1e-12);
+        assert!((yaw_deg(1.0) - 40.0).abs() < 1e-9);
+        assert!(
+            (yaw_deg(1.5) - 10.0).abs() < 1e-9,
+            "half way by minimum jerk"
+        );
+        assert!((yaw_deg(2.0) + 20.0).abs() < 1e-9);
+        assert!((yaw_deg(9.0) + 20.0).abs() < 1e-9, "held after the end");
+        let axis = resolved.wrist_turn(1.3).axis().unwrap();
+        assert!((axis.z.abs() - 1.0).abs() < 1e-12, "about +z only");
+        let monotone = (0..=100).map(|k| yaw_deg(1.0 + f64::from(k) / 100.0));
+        let values: Vec<f64> = monotone.collect();
+        assert!(values.windows(2).all(|w| w[1] <= w[0] + 1e-12));
+    }
+
+    #[test]
     fn after_the_last_keyframe_it_holds_and_before_the_first_too() {
         let resolved = example();
         let end = resolved.sample(5.0);
@@ -575,6 +660,12 @@ closure = 0.5
         assert_eq!(
             error_key(check(script(vec![open(0.0), far]))),
             "keyframes[1].wrist_m"
+        );
+        let mut turned = open(1.0);
+        turned.wrist_turn_deg = [0.0, 0.0, 200.0];
+        assert_eq!(
+            error_key(check(script(vec![open(0.0), turned]))),
+            "keyframes[1].wrist_turn_deg"
         );
         let mut over = open(1.0);
         over.closure = 1.5;

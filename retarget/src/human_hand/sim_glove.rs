@@ -241,7 +241,10 @@ impl SimGlove {
             None => self.hand_in_glove,
         };
         match &self.script {
-            Some(script) => Translation3::from(script.wrist_offset(t_s)) * placed,
+            Some(script) => Isometry3::from_parts(
+                Translation3::from(placed.translation.vector + script.wrist_offset(t_s)),
+                script.wrist_turn(t_s) * placed.rotation,
+            ),
             None => placed,
         }
     }
@@ -386,6 +389,30 @@ mod tests {
             dropouts: Vec::new(),
         };
         assert!(glove().with_script(&bad).is_err());
+    }
+
+    #[test]
+    fn a_scripted_wrist_turn_turns_the_hand_about_the_wrist_in_place() {
+        use crate::human_hand::glove_script::{GloveScript, ScriptKeyframe, ScriptPose};
+        let mut turned = ScriptKeyframe::new(1.0, [0.0; 3], ScriptPose::Open);
+        turned.wrist_turn_deg = [0.0, 0.0, 30.0];
+        let script = GloveScript {
+            keyframes: vec![ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open), turned],
+            dropouts: Vec::new(),
+        };
+        let placement = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.0, 0.0, 0.4));
+        let g = glove()
+            .with_hand_in_glove(placement)
+            .with_script(&script)
+            .unwrap();
+        let wrist = g.wrist_pose(5.0);
+        assert!((wrist.translation.vector - placement.translation.vector).norm() < 1e-15);
+        let turn = wrist.rotation * placement.rotation.inverse();
+        assert!((turn.angle() - 30f64.to_radians()).abs() < 1e-12);
+        assert!((turn.axis().unwrap().z - 1.0).abs() < 1e-12, "about +z");
+        let (points, at) = g.frame(5.0);
+        let expected = g.shape().keypoints_in(&g.pose_at(5.0), g.layout(), &at);
+        assert_eq!(points, expected, "the keypoints turn with the wrist");
     }
 
     #[test]
