@@ -7,7 +7,7 @@
 //! | `pinch_misses_min` | 1 | "index pinch did not close in 4 of 6 attempts (robot 18 mm apart)" |
 //! | `wrist_at_limit_share` | 0.10 | "wrist at its limit 22 % of the time" |
 //! | `stall_before_drop_s` | 2.0 | "2.4 s without progress before the drop at 9.1 s" |
-//! | `rejected_frames_min` | 5 | "7 glove frames rejected (jump, outlier)" |
+//! | `rejected_frames_min` | 5 | "7 glove frames rejected (jump, bone_length)" |
 //! | `tracking_error_deg` | 5.0 | "ring 7° off its commands on average" |
 //! | `arm_refusals_min` | 1 | "arm refused 2× (workspace)" |
 

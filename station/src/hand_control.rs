@@ -86,6 +86,9 @@ pub struct Counters {
     pub frames_new: u64,
     /// Repeated frames (same keypoints as the last accepted one).
     pub frames_repeated: u64,
+    /// New frames in which one point leapt alone (a tracker's outlier) and was put back where
+    /// the rest of the hand predicts it; also counted in `frames_new`.
+    pub frames_repaired: u64,
     /// Rejected frames by reason.
     pub rejected: BTreeMap<String, u64>,
     /// Frames whose sender's clock had jumped (back beyond the reorder window, or ahead beyond
@@ -207,8 +210,15 @@ impl HandControl {
         }
         let since_ns = self.since_gate_reference(&frame, stamp, received_ns);
         let verdict = self.gate.judge_after(&frame.points, since_ns);
+        let mut frame = frame;
+        if verdict == Verdict::Repaired {
+            self.counters.frames_repaired += 1;
+            if let Some(fixed) = self.gate.last_accepted() {
+                frame.points = fixed.to_vec();
+            }
+        }
         match verdict {
-            Verdict::New => {
+            Verdict::New | Verdict::Repaired => {
                 self.count_stalled_stamp(&frame, stamp);
                 self.accept_stamp(&frame, stamp, received_ns);
                 self.gate_reference = Some((

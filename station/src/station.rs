@@ -282,7 +282,7 @@ impl Station {
             ..StationOutputs::default()
         };
         match verdict {
-            Verdict::New => {
+            Verdict::New | Verdict::Repaired => {
                 self.meters.input.record(now_ns);
                 self.meters.gaps.record(now_ns, source_ns);
                 if self.auto_engage_pending && self.hand.engage(now_ns) {

@@ -68,6 +68,8 @@ pub struct ResimStats {
     pub frames_new: u64,
     /// Repeated frames.
     pub frames_repeated: u64,
+    /// New frames with one leapt point put back (a tracker's outlier).
+    pub frames_repaired: u64,
     /// Rejected frames by reason.
     pub rejected: BTreeMap<String, u64>,
     /// Hand commands written.
@@ -272,6 +274,7 @@ pub fn resim(
     let counters = station.counters();
     stats.frames_new = counters.frames_new;
     stats.frames_repeated = counters.frames_repeated;
+    stats.frames_repaired = counters.frames_repaired;
     stats.rejected.clone_from(&counters.rejected);
     stats.step_ms_p50 = step_ms.percentile(0.5);
     stats.step_ms_p99 = step_ms.percentile(0.99);

@@ -93,8 +93,12 @@ impl Checker {
             return;
         };
         match outputs.verdict {
-            Some(Verdict::New) => {
-                tally.count("verdict.new");
+            Some(verdict @ (Verdict::New | Verdict::Repaired)) => {
+                tally.count(if verdict == Verdict::New {
+                    "verdict.new"
+                } else {
+                    "verdict.repaired"
+                });
                 self.hand
                     .new_frame(frame.source_ns, now_ns, (jumps, jumped));
             }

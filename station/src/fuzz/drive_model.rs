@@ -57,7 +57,9 @@ impl DriveModel {
     ) -> Transition {
         let was = self.disengaged;
         match input {
-            StationInput::Keypoints(_) if outputs.verdict == Some(Verdict::New) => {
+            StationInput::Keypoints(_)
+                if matches!(outputs.verdict, Some(Verdict::New | Verdict::Repaired)) =>
+            {
                 self.last_new_ns = Some(now_ns);
                 if self.auto_engage_pending {
                     self.auto_engage_pending = false;

@@ -63,7 +63,7 @@ pub struct EvalArgs {
     /// recording (one point of a digit leaping 3-6 cm for one frame, 20 times, drawn from
     /// --outlier-seed) and the station re-simulated with the frame gate's outlier check and
     /// without it: the largest joint change toward the outliers, the extra frames before the
-    /// robot closes each sustained pinch, and the clean frames the check held back.
+    /// robot closes each sustained pinch, and the clean frames the check caught (a point put back).
     #[arg(long, conflicts_with_all = ["commands", "reach", "profile_scales"])]
     pub outlier_study: bool,
     /// Seed of the outliers of --outlier-study.
@@ -144,17 +144,17 @@ fn eval_outlier_study(args: &EvalArgs, config: &station::StationConfig) -> anyho
         .map_err(|e| in_file(path, &e))?;
         if !args.json {
             println!(
-                "{}: {} one-frame outliers, {} held back; largest joint move toward them {:.3} rad \
+                "{}: {} one-frame outliers, {} caught; largest joint move toward them {:.3} rad \
                  with the outlier check, {:.3} rad without; {} sustained pinches compared, closed \
-                 at most {} frame(s) later with the check; {} clean frame(s) held back",
+                 at most {} frame(s) later with the check; {} clean frame(s) caught",
                 path.display(),
                 study.outliers,
-                study.outlier_frames_held,
+                study.outlier_frames_caught,
                 study.toward_outliers_rad,
                 study.toward_outliers_unchecked_rad,
                 study.pinches_compared,
                 study.closure_delay_max_frames,
-                study.clean_frames_held,
+                study.clean_frames_caught,
             );
         }
         outputs.push(serde_json::json!({ "input": path.display().to_string(), "study": study }));

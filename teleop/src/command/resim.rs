@@ -53,10 +53,11 @@ pub fn resim(args: ResimArgs) -> anyhow::Result<()> {
         eprintln!("{profile}");
     }
     eprintln!(
-        "re-simulated {}: {} frames ({} new, {} repeated, rejected {:?}), {} joint targets, layout {}, control step p50 {} ms, p99 {} ms → {}",
+        "re-simulated {}: {} frames ({} new of which {} with an outlier put back, {} repeated, rejected {:?}), {} joint targets, layout {}, control step p50 {} ms, p99 {} ms → {}",
         args.input.display(),
         stats.frames_read,
         stats.frames_new,
+        stats.frames_repaired,
         stats.frames_repeated,
         stats.rejected,
         stats.joint_targets,

@@ -9,13 +9,13 @@
 //! - **toward the outliers**: how far the command in force with outliers went beyond the clean
 //!   run's path on the side each outlier pulls each joint (the side the unchecked command
 //!   moved to), at an outlier frame and the two after it: per joint, the distance beyond the
-//!   span of the clean commands at that frame and the one before (a command held back one
-//!   frame stays inside it); the largest;
+//!   span of the clean commands at that frame and the one before (a command held one frame
+//!   stays inside it); the largest;
 //! - **pinch closure delay**: per sustained human pinch of the clean recording
 //!   ([`retarget::quality::sustained_pinch_runs`]), the frames from its start until the robot
 //!   closes it (thumb-tip to fingertip under 15 mm), with the check against without it;
-//! - how many frames the check held back on the clean recording (its false alarms on real
-//!   motion).
+//! - how many frames the check caught (a point put back) on the clean recording: its false
+//!   alarms on real motion, each of which makes that point one frame late.
 
 use retarget::quality::{PINCH_CLOSED_M, human_pinch, sustained_pinch_runs};
 use retarget::{Finger, HandModel, KeypointLayout};
@@ -55,10 +55,10 @@ pub struct OutlierStudy {
     pub pinches_compared: usize,
     /// Largest extra delay of a pinch's closure with the check, frames (0: none).
     pub closure_delay_max_frames: i64,
-    /// Frames of the clean recording the check held back.
-    pub clean_frames_held: usize,
-    /// Outlier frames the check held back.
-    pub outlier_frames_held: usize,
+    /// Frames of the clean recording in which the check put a point back.
+    pub clean_frames_caught: usize,
+    /// Outlier frames the check caught (the leapt point put back).
+    pub outlier_frames_caught: usize,
 }
 
 /// The study on `reader`'s recording, outliers drawn from `seed`.
@@ -83,9 +83,9 @@ pub fn outlier_study(
         .collect();
     let injected = with_frames(&clean, &frames, &injected_frames);
     let run = |log: &LogInputs, checked: bool| commands_in_force(log, model, checked);
-    let (clean_on, clean_held) = run(&clean, true)?;
+    let (clean_on, clean_caught) = run(&clean, true)?;
     let (clean_off, _) = run(&clean, false)?;
-    let (injected_on, injected_held) = run(&injected, true)?;
+    let (injected_on, injected_caught) = run(&injected, true)?;
     let (injected_off, _) = run(&injected, false)?;
     // Which way each outlier pulls each joint: the unchecked run's command against the clean.
     let pulls: Vec<Vec<f64>> = outlier_at
@@ -107,10 +107,10 @@ pub fn outlier_study(
         ),
         pinches_compared: pinches.len(),
         closure_delay_max_frames: pinches.into_iter().max().unwrap_or(0),
-        clean_frames_held: clean_held.len(),
-        outlier_frames_held: outlier_at
+        clean_frames_caught: clean_caught.len(),
+        outlier_frames_caught: outlier_at
             .iter()
-            .filter(|k| injected_held.contains(k))
+            .filter(|k| injected_caught.contains(k))
             .count(),
     })
 }
@@ -150,7 +150,7 @@ fn with_frames(log: &LogInputs, frames: &[TimedFrame], replaced: &[TimedFrame]) 
 }
 
 /// The command in force when each distinct frame has been taken (None before the first), and
-/// the distinct frames the outlier check held back, with the check on or off.
+/// the distinct frames the outlier check caught, with the check on or off.
 fn commands_in_force(
     log: &LogInputs,
     model: &HandModel,
@@ -191,15 +191,9 @@ fn commands_in_force(
     Ok((commands, held))
 }
 
-/// Frames the station's outlier check has held back so far.
+/// Frames the station's outlier check has caught so far.
 fn station_outliers(station: &station::Station) -> u64 {
-    let outlier = station::frame_gate::Rejection::Outlier.name();
-    station
-        .counters()
-        .rejected
-        .get(outlier)
-        .copied()
-        .unwrap_or(0)
+    station.counters().frames_repaired
 }
 
 /// How far `commands` moved toward the outliers, at each outlier frame and the
