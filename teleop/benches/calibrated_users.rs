@@ -39,10 +39,18 @@ use teleop::station_setup::load_station_config;
 const FIRST_SEED: u64 = 5000;
 /// Users by default.
 const USERS: u64 = 24;
-/// The models compared, in the order of the reports: no profile, the two fitted models, and
-/// the global transform that is exact for the user's size and glove (`true_transform`; not
-/// a fit: what the global model aims at).
-const MODELS: [&str; 4] = ["none", "global", "per_digit", "exact_global"];
+/// The models compared, in the order of the reports: no profile, the two fitted models, the
+/// global transform that is exact for the user's size and glove (`true_transform`; not a fit:
+/// what the global model aims at), and that transform with each digit's length factor undone
+/// exactly (thumb, index, middle from the user's hand; not a fit: what the per-digit model
+/// aims at).
+const MODELS: [&str; 5] = [
+    "none",
+    "global",
+    "per_digit",
+    "exact_global",
+    "exact_per_digit",
+];
 
 fn arg(name: &str, default: u64) -> u64 {
     let args: Vec<String> = std::env::args().collect();
@@ -130,7 +138,7 @@ fn pct(part: usize, whole: usize) -> f64 {
 
 impl Tally {
     /// Adds model `k`'s reports of one user; `held` holds every model's report as held.
-    fn add(&mut self, k: usize, held: &[QualityReport; 4], reported: &QualityReport) {
+    fn add(&mut self, k: usize, held: &[QualityReport; 5], reported: &QualityReport) {
         let (frames, shut, index_frames, index_shut) = closed(&held[k]);
         self.pinch_frames += frames;
         self.pinch_closed += shut;
@@ -191,7 +199,7 @@ fn main() {
         ..builtin.settings.clone()
     };
     floor(&dir, &builtin, &study);
-    let mut tally = [Tally::default(); 4];
+    let mut tally = [Tally::default(); 5];
     let mut users = 0usize;
     for seed in first..first + count {
         let user = SyntheticUser::random_non_uniform(seed);
@@ -206,35 +214,53 @@ fn main() {
             transform: global.truth,
             ..global.calibration.clone()
         };
+        let v = &user.variation;
+        let mut exact_digits = exact.clone();
+        exact_digits.transform.digit_scale = [
+            1.0 / v.thumb_length,
+            1.0 / v.index_length,
+            1.0 / v.middle_length,
+            1.0,
+            1.0,
+        ];
         let profiles = [
             ("global", &global.calibration),
             ("per_digit", &digits.calibration),
             ("exact_global", &exact),
+            ("exact_per_digit", &exact_digits),
         ]
         .map(|(name, calibration)| {
             let path = dir.join(format!("user-{seed}-{name}.toml"));
             write_profile(&path, &builtin, seed, calibration);
             Some(path)
         });
-        let reports = [&None, &profiles[0], &profiles[1], &profiles[2]]
-            .map(|p| live(&recording, p.as_deref(), &as_held));
+        let reports = [
+            &None,
+            &profiles[0],
+            &profiles[1],
+            &profiles[2],
+            &profiles[3],
+        ]
+        .map(|p| live(&recording, p.as_deref(), &as_held));
         let held = reports.each_ref().map(|[held, _]| held.clone());
         for (k, [_, reported]) in reports.iter().enumerate() {
             tally[k].add(k, &held, reported);
         }
         users += 1;
         eprintln!(
-            "user {seed} ({}, {:.2}x): tip error as held none {:.1} global {:.1} per-digit {:.1} exact global {:.1} mm; sustained pinches closed {:.1} / {:.1} / {:.1} / {:.1} %",
+            "user {seed} ({}, {:.2}x): tip error as held none {:.1} global {:.1} per-digit {:.1} exact global {:.1} exact per-digit {:.1} mm; sustained pinches closed {:.1} / {:.1} / {:.1} / {:.1} / {:.1} %",
             user.variation.label(),
             user.hand_scale,
             held[0].tip_error_mean_mm,
             held[1].tip_error_mean_mm,
             held[2].tip_error_mean_mm,
             held[3].tip_error_mean_mm,
+            held[4].tip_error_mean_mm,
             held[0].sustained_pinches_closed_pct.unwrap_or(f64::NAN),
             held[1].sustained_pinches_closed_pct.unwrap_or(f64::NAN),
             held[2].sustained_pinches_closed_pct.unwrap_or(f64::NAN),
             held[3].sustained_pinches_closed_pct.unwrap_or(f64::NAN),
+            held[4].sustained_pinches_closed_pct.unwrap_or(f64::NAN),
         );
     }
     for (k, model) in MODELS.iter().enumerate() {
