@@ -25,15 +25,21 @@
 //!
 //! Hence, keeping the six notches at ±15°, ±30°, ±45°: (1) the grip sits on the handle through
 //! a coupling with two free slides across the handle (an Oldham coupling: it passes the grip's
-//! turn to the shaft whatever the offset), resting 7 cm from the shaft towards the arm, in front
-//! of the palm where the fist closes; a wrist turn then turns the key by the wrist's angle
-//! while the grip follows its circle. (2) The tower stands 11 cm in front of the flange axis,
+//! turn to the shaft whatever the offset), resting 7 cm from the shaft towards the arm (the
+//! stick; the wheel and the sphere 5.5 cm, clear of the open palm), in front of the palm where
+//! the fist closes; a wrist turn then turns the key by the wrist's angle while the grip follows
+//! its circle. (2) The tower stands 11 cm in front of the flange axis,
 //! so that the plates' corners stay 3 cm clear of the open fingers and the curling fingers
 //! sweep above them. (3) The stack is lower and tighter (plates 6 mm thick every 22 mm, a key
 //! 6 mm high: 10 mm of free lift between plates), its top 27 mm under the grip, so that the
 //! grip sits at the start where the fist closes, under the thumb. (4) The stick is 14 mm thick
 //! and lies across the palm (along the handle's y): a thinner bar turned 8–16° in the closed
 //! fist and lagged the wrist by that much.
+//!
+//! V1 and V3 are not done by the hand here yet: a fist or a cylinder grasp closed round the
+//! horizontal wheel or the sphere does not hold them against turning (in lock step they spun
+//! in the hand, tens of degrees off the wrist's turn, or were pushed up against the next
+//! plate); a wheel standing on edge, its face to the palm, followed the first three notches.
 
 use std::fmt::Write as _;
 
@@ -63,10 +69,14 @@ const KEY_HALF: [f64; 3] = [0.025, 0.0025, 0.003];
 const KEY_Z: f64 = 0.016;
 /// The shaft's radius, m (inside the slot with 2.5 mm to spare).
 const SHAFT_RADIUS: f64 = 0.0035;
-/// Where the grip rests in the handle's frame, from the shaft's axis (x towards the arm, y),
-/// m, and its centre's height above the key, m: in front of the palm of the hand at its start
-/// pose, 0.235 m below the flange, in the closing fist (see the module documentation).
-const GRIP_REST: [f64; 3] = [-0.07, 0.0, 0.149];
+/// Where the stick rests in the handle's frame, from the shaft's axis (x towards the arm, y),
+/// m, and its centre's height above the key, m: 4 cm in front of the palm of the hand at its
+/// start pose, 0.235 m below the flange, where the closing fist holds it (see the module
+/// documentation).
+const STICK_REST: [f64; 3] = [-0.07, 0.0, 0.149];
+/// Where the wheel and the sphere rest: 1.5 cm further from the palm than the stick, so that
+/// the open hand at its start does not touch them (their near side 4 mm in front of the palm).
+const ROUND_GRIP_REST: [f64; 3] = [-0.055, 0.0, 0.149];
 /// The shaft's top above the key, m: at the top plate, below the grip and the curled fingers.
 const SHAFT_TOP: f64 = 0.119;
 /// How far the grip may slide from its rest along each of the handle's horizontal axes (the
@@ -179,10 +189,18 @@ fn handle_body(handle: Handle) -> String {
         shaft_from = num(KEY_HALF[2]),
         shaft_to = num(SHAFT_TOP),
         shaft = num(SHAFT_RADIUS),
-        grip_pos = nums(&GRIP_REST),
+        grip_pos = nums(&grip_rest(handle)),
         coupling = num(COUPLING_TRAVEL),
         grip = grip_geom(handle),
     )
+}
+
+/// Where the grip rests in the handle's frame.
+fn grip_rest(handle: Handle) -> [f64; 3] {
+    match handle {
+        Handle::Stick => STICK_REST,
+        Handle::Wheel | Handle::Sphere => ROUND_GRIP_REST,
+    }
 }
 
 /// The grip's geom, centred on the grip body.
