@@ -8,16 +8,48 @@
 //! (sizes, masses, damping and friction are guesses): every rotor turns about the vertical on
 //! a hinge whose positive sense is clockwise seen from above (the way a right-hand bolt goes
 //! in); the bolt's hinge stops at the start and after ten turns, the others turn freely.
+//!
+//! Under `vertical_axis` the arm only moves along the vertical through its start position and,
+//! with the orientation policy `twist_about_axis`, turns about it; the hand hangs on that axis
+//! with its palm toward +x. The simulated arm's mount is a MuJoCo mocap body, moved by setting
+//! its pose each step: its motion gives the contact solver no velocity, so a finger that the
+//! wrist turns slides over a part it presses on without dragging it (measured: finger tips
+//! pressing 48 N on the wheel's top while the wrist turned 150° forward turned it 6.5°
+//! backward), and only the push of the fingers' surfaces, the normal force, moves a part. A
+//! normal force on a round part passes through its axis, so the wrist can turn a part only by
+//! pushing a feature that sticks out from its axis, and only about the axis the wrist turns
+//! about. Hence the C1 bolt and the C2 stick stand under the flange (x = 0.45 m, 5 cm nearer
+//! the arm than before), lowered so that the open hand hangs clear of them at the start, and
+//! the bolt carries a wing (a wing bolt, as bolts turned by hand are made): with the round
+//! 24 mm head alone, or a hexagonal one, the curled finger tips (3.6 to 5.2 cm from the axis)
+//! never reached it and the scripted strokes turned it 4 to 10°. The C3 wheel is left as it
+//! was: a round rim gives the fingers nothing to push (README, "The simulated benchmark").
 
 use scoring::PhysicsMapping;
 
 use super::Scaffold;
 use super::mjcf::{num, nums};
 
-/// The post's axis on the table (world x, y), m.
+/// The post's axis on the table (world x, y), m, for the C3 wheel.
 const AXIS_XY: [f64; 2] = [0.5, 0.0];
-/// The post's top, where a rotor's hinge sits, m.
+/// The post's top, where a rotor's hinge sits, m, for the C3 wheel.
 const POST_TOP: f64 = 0.06;
+/// C1's and C2's axis (world x, y), m: under the flange, where the arm's vertical axis meets the
+/// table (the station's start pose, x = 0.45 m). Under `vertical_axis` the arm only moves along
+/// that vertical and, with the orientation policy `twist_about_axis`, turns about it; the
+/// scripted hand turns the stick by pushing it with its curled finger tips while the wrist
+/// turns, which turns the stick about its own axis only when the two axes meet. At the old
+/// place, 5 cm in front of the flange, a turned hand sweeps a circle about the flange axis and
+/// pushes the stick sideways against its hinge instead.
+const UNDER_FLANGE_XY: [f64; 2] = [0.45, 0.0];
+/// C2's post top, m: 3.5 cm lower than the wheel's, so that the stick (its top 29 mm above the
+/// post) lies 14 mm below the open hand's lowest finger tip at the start pose (0.068 m). At
+/// 0.06 m the stick ran through the hanging middle finger at the start and MuJoCo shot it away
+/// (a contact of some 2 kN) before the script began.
+const STICK_POST_TOP: f64 = 0.025;
+/// C1's post top, m: the bolt's wing (its top 45 mm above the post) 11 mm below the open hand's
+/// lowest finger tip at the start pose; the post is a 6 mm boss on the base plate.
+const BOLT_POST_TOP: f64 = 0.012;
 /// C4's spinner axis on the table (world x, y), m, and the top of its post, m: 1 cm nearer
 /// the arm, 3 cm to the hand's right of the rotors' axis and 1.5 cm higher. C4 keeps the arm
 /// fixed at its start pose, where the open fingertips hang 4.5 cm in front of the rotors' axis
@@ -33,12 +65,23 @@ const TEN_TURNS_RAD: f64 = 20.0 * std::f64::consts::PI;
 /// The C1–C3 rotors.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Rotor {
-    /// C1: a bolt, 7 mm shaft, 24 mm head, 15 g; ten turns.
+    /// C1: a wing bolt, 7 mm shaft, 24 mm head with a wing 60 mm across, 21 g; ten turns.
     Bolt,
     /// C2: a T-bar, 8 mm thick, 100 mm long, on a hub, 15 g.
     Stick,
     /// C3: a wheel, 70 mm across, 16 mm thick, 35 g.
     Wheel,
+}
+
+impl Rotor {
+    /// The post's axis (world x, y) and top, m.
+    fn placement(self) -> ([f64; 2], f64) {
+        match self {
+            Rotor::Stick => (UNDER_FLANGE_XY, STICK_POST_TOP),
+            Rotor::Bolt => (UNDER_FLANGE_XY, BOLT_POST_TOP),
+            Rotor::Wheel => (AXIS_XY, POST_TOP),
+        }
+    }
 }
 
 /// The base plate and the post the rotors sit on.
@@ -62,14 +105,15 @@ pub(super) fn rotor_scaffold(rotor: Rotor) -> Scaffold {
         Rotor::Bolt => format!(" range=\"0 {}\"", num(TEN_TURNS_RAD)),
         Rotor::Stick | Rotor::Wheel => String::new(),
     };
+    let (xy, top) = rotor.placement();
     let bodies = format!(
         r#"{base}    <body name="rotor" pos="{xy} {top}">
       <joint name="rotor_hinge" class="pomdar_object" type="hinge" axis="0 0 -1"{range} damping="0.002" frictionloss="0.002"/>
 {geoms}    </body>
 "#,
-        base = base(AXIS_XY, POST_TOP),
-        xy = nums(&AXIS_XY),
-        top = num(POST_TOP),
+        base = base(xy, top),
+        xy = nums(&xy),
+        top = num(top),
         geoms = rotor_geoms(rotor),
     );
     Scaffold {
@@ -84,6 +128,7 @@ fn rotor_geoms(rotor: Rotor) -> &'static str {
         Rotor::Bolt => concat!(
             "      <geom name=\"bolt_shaft\" class=\"pomdar_object\" type=\"cylinder\" size=\"0.0035 0.015\" pos=\"0 0 0.016\" mass=\"0.004\"/>\n",
             "      <geom name=\"bolt_head\" class=\"pomdar_object\" type=\"cylinder\" size=\"0.012 0.006\" pos=\"0 0 0.037\" mass=\"0.011\"/>\n",
+            "      <geom name=\"bolt_wing\" class=\"pomdar_object\" type=\"box\" size=\"0.03 0.003 0.008\" pos=\"0 0 0.037\" mass=\"0.006\"/>\n",
         ),
         Rotor::Stick => concat!(
             "      <geom name=\"stick_hub\" class=\"pomdar_object\" type=\"cylinder\" size=\"0.01 0.01\" pos=\"0 0 0.011\" mass=\"0.005\"/>\n",
