@@ -5,10 +5,21 @@
 //! are the V handles, the C base plate and clutch rotor and the V tower reused. This
 //! project's model (sizes, masses, supports and the target's place are guesses): the object
 //! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
-//! under it (wheel and disk on a pedestal; the small cylinder across two 10 cm posts, set down
-//! in a low bin around the target); the target is a 16 × 18 cm region at (0.7, −0.2), 0.2 m along
-//! +x, drawn on the table (a non-colliding marker).
-//! It counts as relocated when the object's origin rests inside the region no more than 1 cm
+//! under it (wheel and disk on a pedestal; the small and the medium cylinder lying across two
+//! 10 cm posts, each set down in a low bin around the target); the target is a 16 × 18 cm region
+//! at (0.7, −0.2), 0.2 m along +x, drawn on the table (a non-colliding marker).
+//!
+//! The medium cylinder (G5) lies across posts rather than standing on the table because the
+//! ORCA hand as built did not lift it standing in a search in lock step (2026-11), flange down
+//! or with the wrist turned: the thumb is a nearly fixed post some 6.5 cm in front of the palm
+//! and the fingers close onto it. Hanging flange down, the fingers curl in the plane of the
+//! cylinder's axis and only poke it. Turned 90° about +x (palm facing the cylinder, fingers
+//! level, thumb up) so that they would wrap around it, the open little finger reaches 8 cm
+//! below the palm, so the hand must stay high and the thumb meets the cylinder only at its top;
+//! the curling fingers then tip it over or push it past the thumb toward the wrist. Lying across
+//! posts like G4's cylinder, it is wrapped against the palm by the curling fingers.
+//!
+//! An object counts as relocated when the object's origin rests inside the region no more than 1 cm
 //! above the highest it rests stably on the table (a cylinder standing or lying, the wheel
 //! on its face or edge, the disk and the thin cylinder flat), so that it must be set down
 //! rather than held over the region.
@@ -40,7 +51,9 @@ pub(super) enum Object {
     /// (the fingers of a hand coming down from above pass behind it and close around it), to be
     /// set down in a low bin around the target region.
     CylinderSmall,
-    /// G5: a cylinder, 28 mm across, 120 mm tall, 30 g, standing.
+    /// G5: a cylinder, 28 mm across, 120 mm long, 30 g, lying along y across two posts 96 mm
+    /// apart (standing, the hand as built cannot lift it: see the module documentation), to be
+    /// set down in the low bin around the target region.
     CylinderMedium,
     /// G6: a cylinder, 60 mm across, 60 mm tall, 50 g, standing.
     CylinderLarge,
@@ -83,6 +96,14 @@ const TARGET_BIN: &str = concat!(
     "      <geom name=\"bin_right\" class=\"pomdar_fixture\" type=\"box\" size=\"0.08 0.0025 0.03\" pos=\"0.2 -0.0925 0.03\"/>\n",
     "      <geom name=\"bin_left\" class=\"pomdar_fixture\" type=\"box\" size=\"0.08 0.0025 0.03\" pos=\"0.2 0.0925 0.03\"/>\n",
 );
+/// Two posts like [`POSTS`], 96 mm apart along y, for the 120 mm cylinder of G5 lying across
+/// them.
+const POSTS_NARROW: &str = concat!(
+    "      <geom name=\"post_a\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.047\" pos=\"0 0.048 0.047\"/>\n",
+    "      <geom name=\"post_a_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 0.048 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
+    "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.047\" pos=\"0 -0.048 0.047\"/>\n",
+    "      <geom name=\"post_b_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 -0.048 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
+);
 const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
 
 fn layout(object: Object) -> Layout {
@@ -120,12 +141,12 @@ fn layout(object: Object) -> Layout {
             target_max_z: Some(0.075),
         },
         Object::CylinderMedium => Layout {
-            geom: r#"type="cylinder" size="0.014 0.06" mass="0.03""#,
-            support: "",
-            start_z: 0.06,
+            geom: r#"type="cylinder" size="0.014 0.06" quat="0.707107 0.707107 0 0" mass="0.03""#,
+            support: POSTS_NARROW,
+            start_z: 0.114,
             max_rest_z: 0.06,
-            target_support: "",
-            target_max_z: None,
+            target_support: TARGET_BIN,
+            target_max_z: Some(0.075),
         },
         Object::CylinderLarge => Layout {
             geom: r#"type="cylinder" size="0.03 0.03" mass="0.05""#,
