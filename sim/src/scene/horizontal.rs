@@ -15,19 +15,26 @@
 //! mechanism is unverified; this model turns finger strokes into slide with a feed of sprung
 //! flaps (as a ratchet's pawl feeds its wheel): the rod lies along world x, the way the curling
 //! fingers sweep, 4 cm up under the hanging middle finger, and carries a row of flaps 3 cm
-//! apart (the first two 4.5 cm), 18 mm wide and 12 cm high, each hinged on the rod's top
-//! about world y. A flap stands
-//! against its stop when the finger's pad pushes it forward, so closing the hand (a palmar
-//! grasp, H4, or the middle finger's pinch, H5) carries the rod some 5 cm along +x; a flap
-//! the returning finger meets from the front folds back under it (a weak spring stands it up
-//! again), so opening the hand leaves the rod where it is, held by its friction. Each stroke
-//! thus advances the rod by about one pitch or more; seven strokes make 200 mm. Progress is
-//! `rod_slide` (0–210 mm) as before. Measured with MuJoCo (the scripts' strokes replayed in
-//! this scene, both hand models): the full 200 mm with the rod's line anywhere from 12 mm to
-//! the index side of the middle finger's tip to straight under it (the scene takes the middle
-//! of that band), the first flap ±5 mm along the rod, pitches 25–35 mm; fixed pegs instead of
-//! flaps never gained, since the returning finger pushed the next peg back as far as the
-//! closing one had pushed its own.
+//! apart (the first two 4.5 cm), 18 mm wide and 12 cm high, each hinged on the rod's top about
+//! world y. A flap stands against its stop when the finger's pad pushes it forward, so closing
+//! the hand (a palmar grasp, H4, or the middle finger's pinch, H5) carries the rod some 5 cm
+//! along +x; a flap the returning finger meets from the front folds back under it (a weak
+//! spring stands it up again), so opening the hand leaves the rod where it is, held by its
+//! friction. Each stroke thus advances the rod by about one pitch or more (the rod, 60 g held
+//! by 0.2 N of friction, also coasts a few centimetres when a pad slips off a flap's top); two
+//! to ten strokes make 200 mm. Progress is `rod_slide` (0–210 mm) as before.
+//!
+//! Measured with MuJoCo 3.17 (strokes replayed in this scene, both hand models): the full
+//! 200 mm with the rod's line anywhere from 12 mm to the index side of the middle finger's tip
+//! to straight under it (the scene takes the middle of that band), the first flap ±5 mm along
+//! the rod, pitches 25–35 mm; fixed pegs instead of flaps never gained, since the returning
+//! finger pushed the next peg back as far as the closing one had pushed its own. In the lock
+//! step (`launch_configs/sim/tasks/H4.toml`, `H5.toml`; 1 mm of glove noise, moved starts) both
+//! scripts did it for seeds 1–20 and held-out seeds 501–600 with both hand models.
+//!
+//! H1–H3 are unchanged and not yet done by the hand: the rail runs along world y, across the
+//! arm's horizontal axis (world x), and with the flange held at its height only the fingers
+//! can lift the carriage.
 
 use scoring::PhysicsMapping;
 
@@ -264,4 +271,49 @@ fn channel(k: usize, x: f64) -> String {
         wall_a = nums(&[x, ROD_Y + wall_y, floor + wall_half]),
         wall_b = nums(&[x, ROD_Y - wall_y, floor + wall_half]),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::START_OFFSET_MAX_M;
+    use super::*;
+
+    fn floats(text: &str) -> Vec<f64> {
+        text.split(' ').map(|v| v.parse().unwrap()).collect()
+    }
+
+    #[test]
+    fn the_rod_slides_along_x_with_a_flap_in_front_of_the_finger_and_the_next_behind_it() {
+        let xml = format!("<w>{}</w>", rod_scaffold().bodies);
+        let doc = roxmltree::Document::parse(&xml).unwrap();
+        let slide = doc
+            .descendants()
+            .find(|n| n.attribute("name") == Some("rod_slide"))
+            .unwrap();
+        assert_eq!(slide.attribute("axis"), Some("1 0 0"));
+        assert!(floats(slide.attribute("range").unwrap())[1] > 0.2);
+        let flaps: Vec<_> = doc
+            .descendants()
+            .filter(|n| n.tag_name().name() == "geom")
+            .filter(|n| n.attribute("name").is_some_and(|v| v.starts_with("flap_")))
+            .collect();
+        assert_eq!(flaps.len(), flap_count());
+        for geom in &flaps {
+            // Flaps touch the hand and the fixtures, not one another.
+            assert_eq!(geom.attribute("contype"), Some("5"));
+            assert_eq!(geom.attribute("conaffinity"), Some("0"));
+        }
+        // World x at the start: the first flap in front of the hanging middle finger's pad
+        // (x ≈ 0.462), the second 5 mm or more behind its back (x ≈ 0.437) after a 5 mm move.
+        let first = RAIL_X + flap_x(0);
+        let second = RAIL_X + flap_x(1);
+        assert!(first - START_OFFSET_MAX_M > 0.462, "{first}");
+        assert!(
+            second + START_OFFSET_MAX_M <= 0.437 - 0.005 + 1e-9,
+            "{second}"
+        );
+        // Enough flaps that the last is still behind the finger at the end of the travel.
+        let last = RAIL_X + flap_x(flap_count() - 1);
+        assert!(last + ROD_TRAVEL < 0.437, "{last}");
+    }
 }
