@@ -252,32 +252,22 @@ fn check_time(index: usize, t_s: f64, previous_t_s: Option<f64>) -> Result<(), E
     }
 }
 
-/// `Err` unless keyframe `index`'s wrist offset and closure are within their ranges.
+/// `Err` unless keyframe `index`'s wrist offset, turn and closure are within their ranges.
 fn check_values(index: usize, keyframe: &ScriptKeyframe) -> Result<(), Error> {
-    let offset_ok = keyframe
-        .wrist_m
-        .iter()
-        .all(|v| v.is_finite() && v.abs() <= MAX_WRIST_OFFSET_M);
-    if !offset_ok {
-        return Err(keyframe_error(
-            index,
-            "wrist_m",
-            format!("{:?}", keyframe.wrist_m),
-            format!("every component must be finite and within ±{MAX_WRIST_OFFSET_M} m"),
-        ));
-    }
-    let turn_ok = keyframe
-        .wrist_turn_deg
-        .iter()
-        .all(|v| v.is_finite() && v.abs() <= MAX_WRIST_TURN_DEG);
-    if !turn_ok {
-        return Err(keyframe_error(
-            index,
-            "wrist_turn_deg",
-            format!("{:?}", keyframe.wrist_turn_deg),
-            format!("every component must be finite and within ±{MAX_WRIST_TURN_DEG}°"),
-        ));
-    }
+    check_components(
+        index,
+        "wrist_m",
+        &keyframe.wrist_m,
+        MAX_WRIST_OFFSET_M,
+        " m",
+    )?;
+    check_components(
+        index,
+        "wrist_turn_deg",
+        &keyframe.wrist_turn_deg,
+        MAX_WRIST_TURN_DEG,
+        "°",
+    )?;
     if !(0.0..=1.0).contains(&keyframe.closure) {
         return Err(keyframe_error(
             index,
@@ -287,6 +277,26 @@ fn check_values(index: usize, keyframe: &ScriptKeyframe) -> Result<(), Error> {
         ));
     }
     Ok(())
+}
+
+/// `Err` naming keyframe `index`'s `field` unless every component is finite and within
+/// ±`max` (`unit` in the message).
+fn check_components(
+    index: usize,
+    field: &str,
+    values: &[f64; 3],
+    max: f64,
+    unit: &str,
+) -> Result<(), Error> {
+    if values.iter().all(|v| v.is_finite() && v.abs() <= max) {
+        return Ok(());
+    }
+    Err(keyframe_error(
+        index,
+        field,
+        format!("{values:?}"),
+        format!("every component must be finite and within ±{max}{unit}"),
+    ))
 }
 
 impl GloveScript {
