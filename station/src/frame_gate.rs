@@ -231,10 +231,8 @@ impl FrameGate {
         // One frame repaired at most: the frame after a repaired one is accepted whatever it
         // shows (a real flick is then one frame late, not held for good).
         if self.held.is_none()
-            && let Some(flagged) = self.leapt_alone(points)
-            && let Some(last) = &self.last
+            && let Some(fixed) = self.outlier_repaired(points)
         {
-            let fixed = outlier_check::repaired(self.layout, points, last, flagged);
             self.held = Some(points.to_vec());
             self.before_last = self.last.replace(fixed);
             return Verdict::Repaired;
@@ -249,11 +247,12 @@ impl FrameGate {
         self.last.as_deref()
     }
 
-    /// The point that leapt alone since the last accepted frame (as
-    /// [`outlier_check::isolated_leap`] names it), unless the frame is back to where it was
-    /// the frame before (the return from an outlier the check let through is not one:
-    /// repairing it would keep the outlier's command a frame longer).
-    fn leapt_alone(&self, points: &[Point3<f64>]) -> Option<usize> {
+    /// `points` with the point that leapt alone since the last accepted frame (as
+    /// [`outlier_check::isolated_leap`] names it) put back ([`outlier_check::repaired`]), or
+    /// None: no point leapt, or the frame is back to where it was the frame before (the return
+    /// from an outlier the check let through is not one: repairing it would keep the
+    /// outlier's command a frame longer).
+    fn outlier_repaired(&self, points: &[Point3<f64>]) -> Option<Vec<Point3<f64>>> {
         let last = self.last.as_ref()?;
         let jump_m = self.config.outlier_jump_m;
         if jump_m <= 0.0 {
@@ -263,10 +262,10 @@ impl FrameGate {
         let from_before = |before: &[Point3<f64>]| {
             outlier_check::isolated_leap(self.layout, points, before, jump_m).is_some()
         };
-        self.before_last
-            .as_deref()
-            .is_none_or(from_before)
-            .then_some(flagged)
+        if !self.before_last.as_deref().is_none_or(from_before) {
+            return None;
+        }
+        outlier_check::repaired(self.layout, points, last, flagged)
     }
 
     /// The jump allowed for a frame taken `since_last_ns` after the last accepted one, metres.

@@ -47,7 +47,8 @@ pub fn isolated_leap(
 
 /// `points` with one point of the digit that holds point `flagged` (as [`isolated_leap`] names
 /// it) put back where the rest of the hand predicts it from `last`: carried by the palm's
-/// rigid motion since `last` (wrist and digit bases, least squares, without the point), plus,
+/// rigid motion since `last` (wrist and digit bases, least squares, without this digit's
+/// base), plus,
 /// for a joint or tip, what its digit did beyond that motion (the mean of its neighbours'
 /// for a joint, the chain's extrapolated for a tip; a base moves with the palm). After a gap
 /// in the frames the hand may have turned: a prediction from the motion relative to the
@@ -58,56 +59,52 @@ pub fn isolated_leap(
 /// its bone lengths since `last` plus the largest motion still off its prediction. A tip that
 /// leapt also puts the joint before it off its prediction (by half the leap), and the check
 /// may name that joint first; moving the joint halfway to the tip would make the motion
-/// consistent too, but only putting the tip back keeps the bones' lengths. A `flagged` index
-/// on no digit leaves `points` as they are.
+/// consistent too, but only putting the tip back keeps the bones' lengths. None for a
+/// `flagged` index on no digit or a palm whose motion cannot be fitted.
 pub fn repaired(
     layout: KeypointLayout,
     points: &[Point3<f64>],
     last: &[Point3<f64>],
     flagged: usize,
-) -> Vec<Point3<f64>> {
+) -> Option<Vec<Point3<f64>>> {
     let wrist = layout.wrist();
-    let Some(digit) = Finger::ALL
+    let digit = Finger::ALL
         .iter()
         .map(|&f| digit_chain(layout, f))
-        .find(|d| d[1..].contains(&flagged))
-    else {
-        return points.to_vec();
-    };
+        .find(|d| d[1..].contains(&flagged))?;
+    let carried = palm_motion(layout, points, last, digit[1])?;
+    let beyond = digit.map(|i| points[i] - carried * last[i]);
     let candidate = |k: usize| {
+        let own = match k {
+            1 => Vector3::zeros(),
+            _ => predicted_move(&beyond, k),
+        };
         let mut out = points.to_vec();
-        out[digit[k]] = predicted_point(layout, points, last, &digit, k)?;
-        let score = digit_change(&digit, &out, last, wrist);
-        Some((score, out))
+        out[digit[k]] = carried * last[digit[k]] + own;
+        (digit_change(&digit, &out, last, wrist), out)
     };
     (1..digit.len())
-        .filter_map(candidate)
+        .map(candidate)
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map_or_else(|| points.to_vec(), |(_, out)| out)
+        .map(|(_, out)| out)
 }
 
-/// Where the rest of the hand puts chain point `k` of `digit` (see [`repaired`]); None where
-/// the palm's motion cannot be fitted.
-fn predicted_point(
+/// The palm's rigid motion from `last` to `points`: least squares over the wrist and the
+/// digit bases but `left_out` (the flagged digit's base, which may be the leapt point; the
+/// four others and the wrist fit it). None where it cannot be fitted.
+fn palm_motion(
     layout: KeypointLayout,
     points: &[Point3<f64>],
     last: &[Point3<f64>],
-    digit: &[usize; 5],
-    k: usize,
-) -> Option<Point3<f64>> {
+    left_out: usize,
+) -> Option<Isometry3<f64>> {
     let palm: Vec<usize> = std::iter::once(layout.wrist())
         .chain(Finger::ALL.map(|f| layout.base(f)))
-        .filter(|&i| i != digit[k])
+        .filter(|&i| i != left_out)
         .collect();
     let from: Vec<Point3<f64>> = palm.iter().map(|&i| last[i]).collect();
     let to: Vec<Point3<f64>> = palm.iter().map(|&i| points[i]).collect();
-    let carried = rigid_motion(&from, &to)?;
-    let beyond = digit.map(|i| points[i] - carried * last[i]);
-    let own = match k {
-        1 => Vector3::zeros(),
-        _ => predicted_move(&beyond, k),
-    };
-    Some(carried * last[digit[k]] + own)
+    rigid_motion(&from, &to)
 }
 
 /// The rigid motion that best carries `from` onto `to` (least squares over the pairs, no
@@ -215,7 +212,7 @@ mod tests {
         // The check names the joint before the tip (off its prediction by half the leap).
         let flagged = isolated_leap(LAYOUT, &outlier, &before, 0.02).unwrap();
         assert!(LAYOUT.chain(Finger::Index).contains(&flagged));
-        let fixed = repaired(LAYOUT, &outlier, &before, flagged);
+        let fixed = repaired(LAYOUT, &outlier, &before, flagged).unwrap();
         assert_eq!(isolated_leap(LAYOUT, &fixed, &before, 0.02), None);
         assert!(
             (fixed[tip] - moved_on[tip]).norm() < 0.005,
@@ -231,7 +228,7 @@ mod tests {
         let mut off = moved_on.clone();
         off[joint] += Vector3::new(0.04, 0.0, 0.0);
         let flagged = isolated_leap(LAYOUT, &off, &before, 0.02).unwrap();
-        let fixed = repaired(LAYOUT, &off, &before, flagged);
+        let fixed = repaired(LAYOUT, &off, &before, flagged).unwrap();
         let others_kept = (0..fixed.len())
             .filter(|&i| i != joint)
             .all(|i| fixed[i] == off[i]);

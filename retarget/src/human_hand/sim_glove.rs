@@ -296,6 +296,7 @@ pub fn misalign(points: &mut [Point3<f64>], layout: KeypointLayout, rotation: &R
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::human_hand::glove_script::{GloveScript, ScriptKeyframe, ScriptPose};
     use crate::human_hand::motion::MotionKind;
 
     fn glove() -> SimGlove {
@@ -350,15 +351,10 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_script_moves_the_wrist_and_the_hand_along_its_keyframes() {
-        use crate::human_hand::glove_script::{GloveScript, ScriptKeyframe, ScriptPose};
+    /// The test glove placed off the origin and turned, playing a script of `keyframes`.
+    fn placed_with_script(keyframes: Vec<ScriptKeyframe>) -> (SimGlove, Isometry3<f64>) {
         let script = GloveScript {
-            keyframes: vec![
-                ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open),
-                ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::Open),
-                ScriptKeyframe::new(3.0, [0.0, 0.18, -0.25], ScriptPose::CylinderGrasp),
-            ],
+            keyframes,
             dropouts: Vec::new(),
         };
         let placement = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.0, 0.0, 0.4));
@@ -366,6 +362,16 @@ mod tests {
             .with_hand_in_glove(placement)
             .with_script(&script)
             .unwrap();
+        (g, placement)
+    }
+
+    #[test]
+    fn a_script_moves_the_wrist_and_the_hand_along_its_keyframes() {
+        let (g, placement) = placed_with_script(vec![
+            ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open),
+            ScriptKeyframe::new(2.0, [0.0, 0.0, -0.25], ScriptPose::Open),
+            ScriptKeyframe::new(3.0, [0.0, 0.18, -0.25], ScriptPose::CylinderGrasp),
+        ]);
         let offset = |t: f64| g.wrist_pose(t).translation.vector - placement.translation.vector;
         assert_eq!(offset(0.0), Vector3::zeros());
         assert!((offset(2.0) - Vector3::new(0.0, 0.0, -0.25)).norm() < 1e-15);
@@ -393,18 +399,12 @@ mod tests {
 
     #[test]
     fn a_scripted_wrist_turn_turns_the_hand_about_the_wrist_in_place() {
-        use crate::human_hand::glove_script::{GloveScript, ScriptKeyframe, ScriptPose};
         let mut turned = ScriptKeyframe::new(1.0, [0.0; 3], ScriptPose::Open);
         turned.wrist_turn_deg = [0.0, 0.0, 30.0];
-        let script = GloveScript {
-            keyframes: vec![ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open), turned],
-            dropouts: Vec::new(),
-        };
-        let placement = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.0, 0.0, 0.4));
-        let g = glove()
-            .with_hand_in_glove(placement)
-            .with_script(&script)
-            .unwrap();
+        let (g, placement) = placed_with_script(vec![
+            ScriptKeyframe::new(0.0, [0.0; 3], ScriptPose::Open),
+            turned,
+        ]);
         let wrist = g.wrist_pose(5.0);
         assert!((wrist.translation.vector - placement.translation.vector).norm() < 1e-15);
         let turn = wrist.rotation * placement.rotation.inverse();
