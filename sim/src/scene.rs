@@ -1,5 +1,6 @@
 //! The 18 POMDAR task scenes as MuJoCo MJCF, written by this project, each with its progress
-//! mapping; and the world around them (table, light, the hand under the arm's mocap body).
+//! mapping; and the world around them (table, light, the hand on a free body welded to the
+//! arm's mocap body).
 //!
 //! The paper's CAD is not shipped and the lab's own task files carry no licence, so every
 //! scaffold here is a simplified stand-in drawn from the task descriptions: the mechanism
@@ -27,8 +28,8 @@
 //! up with 3 N sank 10 mm into a plate and slipped through a notch 30° off its key, and a
 //! rod pushed with 1 N ran 10 mm past its end stop (measured with MuJoCo 3.17.0); MuJoCo's
 //! `refsafe` keeps the time constant at least twice the time step for larger steps. `solimp`
-//! stays at the default. Elliptic friction cones with `impratio` 10 (MuJoCo's advice for
-//! grasping) and the `implicitfast` integrator are this project's choice.
+//! stays at the default. Elliptic friction cones with `impratio` 10 by default (MuJoCo's advice
+//! for grasping; [`SceneOptions::impratio`]) and the `implicitfast` integrator are this project's choice.
 //!
 //! Reading progress (for the simulator): a slide's or hinge's `qpos`, or for a free joint its
 //! body's world position (`xpos`, the body origin) and the norm of the joint's linear
@@ -61,8 +62,11 @@ pub const TASK_IDS: [&str; 18] = [
 /// The mocap body the simulator moves to the arm's target pose.
 pub const MOUNT_BODY: &str = "pomdar_arm_mount";
 
-/// The body between the mocap body and the hand, at the hand's mount pose.
+/// The free body carrying the hand, welded to the mocap body at the hand's mount pose.
 pub const HAND_MOUNT_BODY: &str = "pomdar_hand_mount";
+
+/// The weld between [`MOUNT_BODY`] and [`HAND_MOUNT_BODY`].
+pub const MOUNT_WELD: &str = "pomdar_hand_mount_weld";
 
 /// The allowed physics time steps, s.
 pub const TIMESTEP_RANGE_S: std::ops::RangeInclusive<f64> = 0.0001..=0.01;
@@ -77,6 +81,33 @@ pub struct SceneOptions {
     pub arm_start: Isometry3<f64>,
     /// How the task's start is moved (default: not at all).
     pub start: StartPerturbation,
+    /// MuJoCo's `impratio` in the elliptic friction cones: how much stiffer friction is than
+    /// the normal force. Default 10.
+    pub impratio: f64,
+    /// How the hand is held to the arm's mocap body.
+    pub mount: MountWeld,
+}
+
+/// The weld holding the hand's free body to the arm's mocap body: stiff, but a constraint the
+/// contacts see, so a finger carried by the arm drags what it presses on (a hand parented to
+/// the mocap body moves by having its pose set, and its fingers slide over what they push).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MountWeld {
+    /// MuJoCo `solref`: time constant (s) and damping ratio. Default `0.005 1`.
+    pub solref: [f64; 2],
+    /// MuJoCo `solimp`: impedance at zero and full violation and the width (m). Default
+    /// `0.97 0.99 0.0005`.
+    pub solimp: [f64; 3],
+}
+
+impl Default for MountWeld {
+    fn default() -> Self {
+        // The benchmark authors' own ORCA scene holds its hand by a weld with these numbers.
+        MountWeld {
+            solref: [0.005, 1.0],
+            solimp: [0.97, 0.99, 0.0005],
+        }
+    }
 }
 
 impl Default for SceneOptions {
@@ -88,6 +119,8 @@ impl Default for SceneOptions {
                 UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI),
             ),
             start: StartPerturbation::NONE,
+            impratio: 10.0,
+            mount: MountWeld::default(),
         }
     }
 }

@@ -47,6 +47,7 @@ pub mod rate_meter;
 pub mod robot_link;
 pub mod ros_tools;
 pub mod ros_tools_config;
+pub mod simulated_physics_config;
 pub mod source_order;
 #[allow(clippy::module_inception)]
 pub mod station;
@@ -60,6 +61,7 @@ pub use frame_gate::{GateConfig, Rejection, Verdict};
 pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
 pub use input_gap::InputGap;
 pub use network_config::{NetworkConfig, QosConfig, Reliability};
+pub use simulated_physics_config::SimulatedPhysicsConfig;
 pub use station::{ArmStatus, Station, StationStatus, Totals};
 pub use station_config::{
     ControlConfig, ControlMode, HUMAN_EMBODIMENT, InputConfig, KeypointFormat, OutputConfig,

@@ -14,6 +14,7 @@ use crate::network_config::{NetworkConfig, QosConfig};
 use crate::policy_output::PolicyOutputConfig;
 use crate::robot_link::RobotLinkConfig;
 use crate::ros_tools_config::RosToolsConfig;
+use crate::simulated_physics_config::SimulatedPhysicsConfig;
 use crate::watchdog::WatchdogConfig;
 
 /// The whole station configuration.
@@ -51,6 +52,9 @@ pub struct StationConfig {
     /// the URDF. In a file, a relative path is relative to the configuration file's directory;
     /// unset: the project's hand. Only the simulator reads it.
     pub simulated_hand_mjcf: Option<PathBuf>,
+    /// The simulated benchmark's contact, actuator and mount settings (unset: the twin's
+    /// defaults). Only the simulator reads them.
+    pub simulated_physics: SimulatedPhysicsConfig,
 }
 
 /// How keypoints arrive.
@@ -159,6 +163,7 @@ impl Default for StationConfig {
             ros_tools: RosToolsConfig::default(),
             calibration_profile: None,
             simulated_hand_mjcf: None,
+            simulated_physics: SimulatedPhysicsConfig::default(),
         }
     }
 }
@@ -272,6 +277,7 @@ impl StationConfig {
         self.ros_tools.validate()?;
         self.retarget.validate()?;
         self.arm.validate()?;
+        self.simulated_physics.validate()?;
         self.network.validate()
     }
 }

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::mjcf::{indent, num, pose_attributes};
-use super::{HAND_MOUNT_BODY, MOUNT_BODY, SceneOptions};
+use super::{HAND_MOUNT_BODY, MOUNT_BODY, MOUNT_WELD, MountWeld, SceneOptions};
 use crate::hand_mjcf::HandMjcf;
 
 /// The task scaffolds' contact and look classes (see the module docs of `scene`).
@@ -47,8 +47,9 @@ pub(super) fn world_xml(
     );
     let _ = writeln!(
         xml,
-        "  <option timestep=\"{}\" gravity=\"0 0 -9.81\" integrator=\"implicitfast\" cone=\"elliptic\" impratio=\"10\"/>",
-        num(options.timestep_s)
+        "  <option timestep=\"{}\" gravity=\"0 0 -9.81\" integrator=\"implicitfast\" cone=\"elliptic\" impratio=\"{}\"/>",
+        num(options.timestep_s),
+        num(options.impratio)
     );
     let _ = writeln!(
         xml,
@@ -62,19 +63,37 @@ pub(super) fn world_xml(
     xml.push_str(scaffold);
     xml.push_str("  </worldbody>\n");
     xml.push_str(&section("contact", &hand.contact_excludes));
-    xml.push_str(&section("equality", &hand.equalities));
+    xml.push_str(&section(
+        "equality",
+        &format!("{}\n{}", mount_weld(&options.mount), hand.equalities),
+    ));
     xml.push_str(&section("actuator", &hand.actuators));
     xml.push_str("</mujoco>\n");
     xml
 }
 
-/// The mocap body at the arm's start pose, holding the hand at its mount pose.
+/// The mocap body at the arm's start pose, and the hand on a free body at its mount pose,
+/// welded to it (see [`mount_weld`]).
 fn arm_mount(hand: &HandMjcf, options: &SceneOptions) -> String {
     format!(
-        "    <body name=\"{MOUNT_BODY}\" mocap=\"true\" {}>\n      <body name=\"{HAND_MOUNT_BODY}\" {}>\n{}\n      </body>\n    </body>\n",
+        "    <body name=\"{MOUNT_BODY}\" mocap=\"true\" {}/>\n    <body name=\"{HAND_MOUNT_BODY}\" {}>\n      <freejoint name=\"pomdar_hand_mount_free\"/>\n{}\n    </body>\n",
         pose_attributes(&options.arm_start),
-        pose_attributes(&hand.mount),
-        indent(&hand.body, 8)
+        pose_attributes(&(options.arm_start * hand.mount)),
+        indent(&hand.body, 6)
+    )
+}
+
+/// The weld that holds the hand to the arm's mocap body at its reference pose.
+fn mount_weld(weld: &MountWeld) -> String {
+    let [timeconst, damping] = weld.solref;
+    let [dmin, dmax, width] = weld.solimp;
+    format!(
+        "<weld name=\"{MOUNT_WELD}\" body1=\"{MOUNT_BODY}\" body2=\"{HAND_MOUNT_BODY}\" solref=\"{} {}\" solimp=\"{} {} {}\"/>",
+        num(timeconst),
+        num(damping),
+        num(dmin),
+        num(dmax),
+        num(width)
     )
 }
 

@@ -117,7 +117,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.write_scene {
         let scene = ProjectScene {
             hand_file,
-            ..ProjectScene::default()
+            ..ProjectScene::for_station(&station)
         };
         let (xml, _) = project_scene_xml(&task, &model, arm_start, scene)?;
         crate::atomic_file::write_atomically(path, xml.as_bytes())
@@ -135,6 +135,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         None => SceneSource::Project(ProjectScene {
             start: start_move(args.perturb_start, seed),
             hand_file,
+            physics: station.simulated_physics,
         }),
     };
     if let Some(script) = &args.lockstep {

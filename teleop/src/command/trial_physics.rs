@@ -74,10 +74,7 @@ pub(crate) fn spawn_physics_robot(
     use crate::physics::setup::{ProjectScene, SceneSource, load_task};
     let source = match scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(ProjectScene {
-            hand_file: config.simulated_hand_mjcf.as_deref(),
-            ..ProjectScene::default()
-        }),
+        None => SceneSource::Project(ProjectScene::for_station(config)),
     };
     let arm_start = config.arm.start_pose_isometry()?;
     let loaded = load_task(task, model, source, arm_start)?;

@@ -177,10 +177,7 @@ fn spawn_physics(
     use crate::physics::setup::{ProjectScene, SceneSource, load_task};
     let source = match &physics.scene {
         Some(path) => SceneSource::LabFile(path),
-        None => SceneSource::Project(ProjectScene {
-            hand_file: station.simulated_hand_mjcf.as_deref(),
-            ..ProjectScene::default()
-        }),
+        None => SceneSource::Project(ProjectScene::for_station(station)),
     };
     let arm_start = station
         .arm

@@ -10,7 +10,8 @@ use scoring::TaskSpec;
 use simulation::hand_mjcf::{HandMjcf, HandMjcfOptions, hand_mjcf};
 use simulation::lab_hand::lab_hand_mjcf;
 use simulation::progress::PhysicsMapping;
-use simulation::scene::{SceneOptions, StartPerturbation, task_scene};
+use simulation::scene::{MountWeld, SceneOptions, StartPerturbation, task_scene};
+use station::{SimulatedPhysicsConfig, StationConfig};
 
 use super::engine::{HandBinding, PhysicsEngine};
 use super::error::PhysicsError;
@@ -33,7 +34,7 @@ pub struct SimulatedTask {
     pub scene_xml: Option<String>,
 }
 
-/// The project's scene of a task: how its start is moved and which hand it holds.
+/// The project's scene of a task: how its start is moved, which hand it holds and how.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ProjectScene<'a> {
     /// How the task's start is moved.
@@ -41,6 +42,20 @@ pub struct ProjectScene<'a> {
     /// The lab's own MJCF of the hand (the manufacturer's model, with its meshes) instead of
     /// the hand the project writes from the URDF.
     pub hand_file: Option<&'a Path>,
+    /// The station file's contact, actuator and mount settings (unset: the twin's defaults).
+    pub physics: SimulatedPhysicsConfig,
+}
+
+impl<'a> ProjectScene<'a> {
+    /// The scene a station configuration asks for: its hand file and physics settings, the
+    /// start as drawn.
+    pub fn for_station(station: &'a StationConfig) -> ProjectScene<'a> {
+        ProjectScene {
+            start: StartPerturbation::NONE,
+            hand_file: station.simulated_hand_mjcf.as_deref(),
+            physics: station.simulated_physics,
+        }
+    }
 }
 
 /// Where the scene comes from.
@@ -53,9 +68,14 @@ pub enum SceneSource<'a> {
     LabFile(&'a Path),
 }
 
-/// The hand the twin simulates: the lab's MJCF `hand_file`, or the project's from `model`.
-pub fn twin_hand(model: &HandModel, hand_file: Option<&Path>) -> Result<HandMjcf, PhysicsError> {
-    let options = HandMjcfOptions::default();
+/// The hand the twin simulates: the lab's MJCF `hand_file`, or the project's from `model`,
+/// with `physics`' contact (and, for the project's hand, actuator) settings.
+pub fn twin_hand(
+    model: &HandModel,
+    hand_file: Option<&Path>,
+    physics: &SimulatedPhysicsConfig,
+) -> Result<HandMjcf, PhysicsError> {
+    let options = hand_options(physics);
     let Some(path) = hand_file else {
         return Ok(hand_mjcf(model, &options));
     };
@@ -81,21 +101,44 @@ pub fn project_scene_xml(
     arm_start: Isometry3<f64>,
     scene: ProjectScene<'_>,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
-    let hand = twin_hand(model, scene.hand_file)?;
-    scene_with_hand(task, &hand, arm_start, scene.start)
+    let hand = twin_hand(model, scene.hand_file, &scene.physics)?;
+    scene_with_hand(task, &hand, arm_start, &scene)
 }
 
-/// The project's scene of `task` holding `hand`, its start moved by `start`.
+/// The twin's hand settings: the defaults, with what `physics` sets.
+fn hand_options(physics: &SimulatedPhysicsConfig) -> HandMjcfOptions {
+    let default = HandMjcfOptions::default();
+    HandMjcfOptions {
+        position_gain: physics.actuator_kp.unwrap_or(default.position_gain),
+        joint_damping: physics.joint_damping.unwrap_or(default.joint_damping),
+        armature: physics.joint_armature.unwrap_or(default.armature),
+        max_torque_nm: physics.actuator_max_torque_nm.unwrap_or(default.max_torque_nm),
+        friction: physics.contact_friction.unwrap_or(default.friction),
+        contact_solref: physics.contact_solref.unwrap_or(default.contact_solref),
+        contact_solimp: physics.contact_solimp.unwrap_or(default.contact_solimp),
+        contact_margin_m: physics.contact_margin_m.unwrap_or(default.contact_margin_m),
+        ..default
+    }
+}
+
+/// The project's scene of `task` holding `hand`, its start and world as `scene` says.
 fn scene_with_hand(
     task: &TaskSpec,
     hand: &HandMjcf,
     arm_start: Isometry3<f64>,
-    start: StartPerturbation,
+    scene: &ProjectScene<'_>,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
+    let default = SceneOptions::default();
+    let weld = MountWeld::default();
     let options = SceneOptions {
         arm_start,
-        start,
-        ..SceneOptions::default()
+        start: scene.start,
+        impratio: scene.physics.impratio.unwrap_or(default.impratio),
+        mount: MountWeld {
+            solref: scene.physics.mount_solref.unwrap_or(weld.solref),
+            solimp: scene.physics.mount_solimp.unwrap_or(weld.solimp),
+        },
+        ..default
     };
     let scene = task_scene(task, hand, &options).map_err(|e| PhysicsError::Load {
         origin: format!("the project's scene for {}", task.id),
@@ -111,16 +154,15 @@ pub fn load_task(
     source: SceneSource<'_>,
     arm_start: Isometry3<f64>,
 ) -> Result<SimulatedTask, PhysicsError> {
-    let hand_file = match source {
-        SceneSource::Project(scene) => scene.hand_file,
-        SceneSource::LabFile(_) => None,
+    let hand = match source {
+        SceneSource::Project(scene) => twin_hand(model, scene.hand_file, &scene.physics)?,
+        SceneSource::LabFile(_) => twin_hand(model, None, &SimulatedPhysicsConfig::default())?,
     };
-    let hand = twin_hand(model, hand_file)?;
     let binding = hand_binding(&hand);
     let (engine, progress, scene_xml) = match source {
         SceneSource::Project(scene) => {
             // The hand read once: it is the scene's and the binding's.
-            let (xml, progress) = scene_with_hand(task, &hand, arm_start, scene.start)?;
+            let (xml, progress) = scene_with_hand(task, &hand, arm_start, &scene)?;
             let origin = format!("the project's scene for {}", task.id);
             let engine = PhysicsEngine::from_xml_str(&xml, &origin, &binding)?;
             (engine, progress, Some(xml))
