@@ -62,26 +62,40 @@ fn the_scenes_are_the_catalogs_18_tasks() {
 }
 
 #[test]
-fn every_scene_parses_and_holds_the_hand_under_the_mocap_body() {
+fn every_scene_parses_and_welds_the_hand_to_the_mocap_body() {
     for scene in all_scenes() {
         let doc = roxmltree::Document::parse(&scene.xml)
             .unwrap_or_else(|e| panic!("{}: {e}", scene.task_id));
-        let mount = doc
-            .descendants()
-            .find(|n| n.attribute("name") == Some(MOUNT_BODY))
-            .unwrap();
+        let named = |name: &str| {
+            doc.descendants()
+                .find(|n| n.attribute("name") == Some(name))
+                .unwrap_or_else(|| panic!("{}: no {name}", scene.task_id))
+        };
+        let mount = named(MOUNT_BODY);
         assert_eq!(mount.attribute("mocap"), Some("true"));
         assert_eq!(mount.attribute("pos"), Some("0.45 0 0.4"));
         assert_eq!(mount.attribute("quat"), Some("0 1 0 0"));
-        assert_eq!(
-            mount.parent().map(|p| p.tag_name().name()),
-            Some("worldbody")
-        );
+        let in_world = |n: roxmltree::Node<'_, '_>| n.parent().map(|p| p.tag_name().name().to_string());
+        assert_eq!(in_world(mount).as_deref(), Some("worldbody"));
+        // The hand hangs on a free body of its own, not inside the mocap body.
         assert!(
-            mount
+            !mount
                 .descendants()
                 .any(|n| n.attribute("name") == Some("tiny_palm"))
         );
+        let hand = named(HAND_MOUNT_BODY);
+        assert_eq!(in_world(hand).as_deref(), Some("worldbody"));
+        assert!(hand.children().any(|n| n.tag_name().name() == "freejoint"));
+        assert!(
+            hand.descendants()
+                .any(|n| n.attribute("name") == Some("tiny_palm"))
+        );
+        let weld = named(MOUNT_WELD);
+        assert_eq!(weld.tag_name().name(), "weld");
+        assert_eq!(weld.attribute("body1"), Some(MOUNT_BODY));
+        assert_eq!(weld.attribute("body2"), Some(HAND_MOUNT_BODY));
+        assert_eq!(weld.attribute("solref"), Some("0.005 1"));
+        assert_eq!(weld.attribute("solimp"), Some("0.97 0.99 0.0005"));
         let root = doc.root_element();
         let sections: Vec<&str> = root
             .children()
@@ -90,7 +104,14 @@ fn every_scene_parses_and_holds_the_hand_under_the_mocap_body() {
             .collect();
         assert_eq!(
             sections,
-            ["compiler", "option", "default", "worldbody", "actuator"],
+            [
+                "compiler",
+                "option",
+                "default",
+                "worldbody",
+                "equality",
+                "actuator"
+            ],
             "{}",
             scene.task_id
         );
