@@ -5,7 +5,7 @@
 //! are the V handles, the C base plate and clutch rotor and the V tower reused. This
 //! project's model (sizes, masses, supports and the target's place are guesses): the object
 //! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
-//! under it (wheel and disk on a pedestal; the small and the medium cylinder lying across two
+//! under it (wheel and disk on a pedestal, 30 and 60 mm high: see [`DISK_PEDESTAL`]; the small and the medium cylinder lying across two
 //! 10 cm posts, each set down in a low bin around the target); the target is a 16 × 18 cm region
 //! at (0.7, −0.2), 0.2 m along +x, drawn on the table (a non-colliding marker).
 //!
@@ -45,7 +45,7 @@ pub(super) enum Object {
     Wheel,
     /// G2: a sphere, 55 mm across, 40 g, on the table.
     Sphere,
-    /// G3: a disk, 120 mm across, 4 mm thick, 40 g, flat on a pedestal.
+    /// G3: a disk, 120 mm across, 4 mm thick, 40 g, flat on a 60 mm pedestal.
     Disk,
     /// G4: a cylinder, 30 mm across, 140 mm long, 40 g, lying along y across two 10 cm posts
     /// (the fingers of a hand coming down from above pass behind it and close around it), to be
@@ -105,6 +105,18 @@ const POSTS_NARROW: &str = concat!(
     "      <geom name=\"post_b_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 -0.048 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
 );
 const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
+/// The disk's pedestal: 30 mm across like [`PEDESTAL`], but 60 mm high (this project's guess, as
+/// the other supports), so that the finger tips of a hand curled to 30 % of a fist pass under the
+/// disk's overhang without touching the table. On the 30 mm pedestal the hand on its welded
+/// (compliant) mount did not lift the disk with the manufacturer's MJCF hand (2026-11, lock step,
+/// seeds 1–2 at approach heights 0.095–0.125 m below the start and approach closures 20–50 % of
+/// a fist): curled to 30 % of a fist its finger tips span 44 mm in height (the middle tip
+/// 19 mm below the index tip, each tip 25–29 mm tall), more than the 30 mm gap, so they pressed
+/// into the table (20–40 N), stuck there by friction while the arm slid in (the wrist joint
+/// yielded from −0.15 to +0.4…+0.6 rad) and never got under the rim. At 50 mm the middle tip
+/// still touched the table (0 of 5 starts with either hand); at 60 mm the rim pinch of the G3
+/// script holds with both hands.
+const DISK_PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.03\" pos=\"0 0 0.03\"/>\n";
 
 fn layout(object: Object) -> Layout {
     match object {
@@ -126,8 +138,8 @@ fn layout(object: Object) -> Layout {
         },
         Object::Disk => Layout {
             geom: r#"type="cylinder" size="0.06 0.002" mass="0.04""#,
-            support: PEDESTAL,
-            start_z: 0.032,
+            support: DISK_PEDESTAL,
+            start_z: 0.062,
             max_rest_z: 0.002,
             target_support: "",
             target_max_z: None,
