@@ -5,7 +5,7 @@
 //! are the V handles, the C base plate and clutch rotor and the V tower reused. This
 //! project's model (sizes, masses, supports and the target's place are guesses): the object
 //! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
-//! under it (wheel and disk on a pedestal, 30 and 60 mm high: see [`DISK_PEDESTAL`]; the small and the medium cylinder lying across two
+//! under it (wheel and disk on a 60 mm pedestal: see [`PEDESTAL`]; the small and the medium cylinder lying across two
 //! 10 cm posts, each set down in a low bin around the target); the target is a 16 × 18 cm region
 //! at (0.7, −0.2), 0.2 m along +x, drawn on the table (a non-colliding marker).
 //!
@@ -41,7 +41,7 @@ const TARGET_SLACK_Z: f64 = 0.01;
 /// The grasp tasks' objects.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Object {
-    /// G1: a wheel, 60 mm across, 16 mm thick, 30 g, flat on a pedestal.
+    /// G1: a wheel, 60 mm across, 16 mm thick, 30 g, flat on a 60 mm pedestal.
     Wheel,
     /// G2: a sphere, 55 mm across, 40 g, on the table.
     Sphere,
@@ -104,26 +104,25 @@ const POSTS_NARROW: &str = concat!(
     "      <geom name=\"post_b\" class=\"pomdar_fixture\" type=\"box\" size=\"0.012 0.006 0.047\" pos=\"0 -0.048 0.047\"/>\n",
     "      <geom name=\"post_b_top\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.006 0.012\" pos=\"0 -0.048 0.094\" quat=\"0.707107 0 0.707107 0\"/>\n",
 );
-const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.015\" pos=\"0 0 0.015\"/>\n";
-/// The disk's pedestal: 30 mm across like [`PEDESTAL`], but 60 mm high (this project's guess, as
-/// the other supports), so that the finger tips of a hand curled to 30 % of a fist pass under the
-/// disk's overhang without touching the table. On the 30 mm pedestal the hand on its welded
-/// (compliant) mount did not lift the disk with the manufacturer's MJCF hand (2026-11, lock step,
-/// seeds 1–2 at approach heights 0.095–0.125 m below the start and approach closures 20–50 % of
-/// a fist): curled to 30 % of a fist its finger tips span 44 mm in height (the middle tip
-/// 19 mm below the index tip, each tip 25–29 mm tall), more than the 30 mm gap, so they pressed
-/// into the table (20–40 N), stuck there by friction while the arm slid in (the wrist joint
-/// yielded from −0.15 to +0.4…+0.6 rad) and never got under the rim. At 50 mm the middle tip
-/// still touched the table (0 of 5 starts with either hand); at 60 mm the rim pinch of the G3
-/// script holds with both hands.
-const DISK_PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.03\" pos=\"0 0 0.03\"/>\n";
+/// The pedestal of the wheel and the disk: 30 mm across and 60 mm high (this project's guess, as
+/// the other supports), so that the finger tips of a hand curled to 30 % of a fist pass under
+/// the object's overhang without touching the table. It was 30 mm high; with the hand on its
+/// welded (compliant) mount neither was lifted there by the manufacturer's MJCF hand (2026-11,
+/// lock step; the disk: seeds 1–2 at approach heights 0.095–0.125 m below the start and approach
+/// closures 20–50 % of a fist): curled to 30 % of a fist its finger tips span 44 mm in height
+/// (the middle tip 19 mm below the index tip, each tip 25–29 mm tall), more than the 30 mm
+/// gap, so they pressed into the table (20–40 N), stuck there by friction while the arm slid in
+/// (the wrist joint yielded from −0.15 to +0.4…+0.6 rad) and never got under the rim. At 50 mm
+/// the middle tip still touched the table (the disk: 0 of 5 starts with either hand); at 60 mm
+/// the G1 and G3 scripts' pinches hold with that hand.
+const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.03\" pos=\"0 0 0.03\"/>\n";
 
 fn layout(object: Object) -> Layout {
     match object {
         Object::Wheel => Layout {
             geom: r#"type="cylinder" size="0.03 0.008" mass="0.03""#,
             support: PEDESTAL,
-            start_z: 0.038,
+            start_z: 0.068,
             max_rest_z: 0.03,
             target_support: "",
             target_max_z: None,
@@ -138,7 +137,7 @@ fn layout(object: Object) -> Layout {
         },
         Object::Disk => Layout {
             geom: r#"type="cylinder" size="0.06 0.002" mass="0.04""#,
-            support: DISK_PEDESTAL,
+            support: PEDESTAL,
             start_z: 0.062,
             max_rest_z: 0.002,
             target_support: "",
