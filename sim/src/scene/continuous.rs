@@ -11,29 +11,39 @@
 //!
 //! Under `vertical_axis` the arm only moves along the vertical through its start position and,
 //! with the orientation policy `twist_about_axis`, turns about it; the hand hangs on that axis
-//! with its palm toward +x. The simulated arm's mount is a MuJoCo mocap body, moved by setting
-//! its pose each step: its motion gives the contact solver no velocity, so a finger that the
-//! wrist turns slides over a part it presses on without dragging it (measured: finger tips
-//! pressing 48 N on the wheel's top while the wrist turned 150° forward turned it 6.5°
-//! backward), and only the push of the fingers' surfaces, the normal force, moves a part. A
-//! normal force on a round part passes through its axis, so the wrist can turn a part only by
-//! pushing a feature that sticks out from its axis, and only about the axis the wrist turns
-//! about. Hence the C1 bolt and the C2 stick stand under the flange (x = 0.45 m, 5 cm nearer
-//! the arm than before), lowered so that the open hand hangs clear of them at the start, and
-//! the bolt carries a wing (a wing bolt, as bolts turned by hand are made): with the round
-//! 24 mm head alone, or a hexagonal one, the curled finger tips (3.6 to 5.2 cm from the axis)
-//! never reached it and the scripted strokes turned it 4 to 10°. The C3 wheel is left as it
-//! was: a round rim gives the fingers nothing to push (README, "The simulated benchmark").
+//! with its palm toward +x. The C1 and C2 layouts were found with the hand parented rigidly to
+//! the arm's mocap body, moved by setting its pose each step: its motion gave the contact
+//! solver no velocity, so a finger that the wrist turned slid over a part it pressed on
+//! without dragging it (measured: finger tips pressing 48 N on the wheel's top while the wrist
+//! turned 150° forward turned it 6.5° backward), and only the push of the fingers' surfaces,
+//! the normal force, moved a part. A normal force on a round part passes through its axis, so
+//! the wrist could turn a part only by pushing a feature that sticks out from its axis, and
+//! only about the axis the wrist turns about. Hence the C1 bolt and the C2 stick stand under
+//! the flange (x = 0.45 m, 5 cm nearer the arm than before), lowered so that the open hand
+//! hangs clear of them at the start, and the bolt carries a wing (a wing bolt, as bolts turned
+//! by hand are made): with the round 24 mm head alone, or a hexagonal one, the curled finger
+//! tips (3.6 to 5.2 cm from the axis) never reached it and the scripted strokes turned it 4 to
+//! 10°.
+//!
+//! The hand now hangs on a free body welded to the mocap body (`world.rs`), whose contacts
+//! carry the arm's motion, so a pressing finger drags what it presses by friction. The C3
+//! wheel, plain and round (70 mm across, as before), stands under the flange too,
+//! its top face 5.6 cm above the table, where the open hand's middle finger tip, a few
+//! millimetres from the flange axis, comes down on it: pressed there while the wrist turns,
+//! the tip drags the wheel round about its own axis. Measured in lock step
+//! (`launch_configs/sim/tasks/C3.toml`, seeds 1–20, 1 mm glove noise, moved starts): two
+//! strokes of 300° each turned the wheel 502° to 638° in all, correctness 1 in 20 of 20 with
+//! both the project's hand and the manufacturer's MJCF. The same script with the wheel where
+//! it stood before (5 cm in front of the flange, on a 6 cm post, above the hanging finger
+//! tips) turned it 212° to 223° with the project's hand and 150° to 156° with the
+//! manufacturer's (seeds 1–5, unmoved starts, 0 of 5 each): there its axis lies 5 cm off the
+//! one the wrist turns about, so the fingers sweep past its rim instead of riding on its face.
 
 use scoring::PhysicsMapping;
 
 use super::Scaffold;
 use super::mjcf::{num, nums};
 
-/// The post's axis on the table (world x, y), m, for the C3 wheel.
-const AXIS_XY: [f64; 2] = [0.5, 0.0];
-/// The post's top, where a rotor's hinge sits, m, for the C3 wheel.
-const POST_TOP: f64 = 0.06;
 /// C1's and C2's axis (world x, y), m: under the flange, where the arm's vertical axis meets the
 /// table (the station's start pose, x = 0.45 m). Under `vertical_axis` the arm only moves along
 /// that vertical and, with the orientation policy `twist_about_axis`, turns about it; the
@@ -50,6 +60,11 @@ const STICK_POST_TOP: f64 = 0.025;
 /// C1's post top, m: the bolt's wing (its top 45 mm above the post) 11 mm below the open hand's
 /// lowest finger tip at the start pose; the post is a 6 mm boss on the base plate.
 const BOLT_POST_TOP: f64 = 0.012;
+/// C3's post top, m: the wheel's top face (31 mm above the post, 0.056 m) lies 12 mm below the
+/// project's open hand's lowest finger tip (the middle one, near the flange axis) at the start
+/// pose and 3 mm below the manufacturer's (its fingers hang 8 mm lower), so that both hang clear
+/// of it at the start. It stood 6 cm high, 5 cm in front of the flange, before.
+const WHEEL_POST_TOP: f64 = 0.025;
 /// C4's spinner axis on the table (world x, y), m, and the top of its post, m: 1 cm nearer
 /// the arm, 3 cm to the hand's right of the rotors' axis and 1.5 cm higher. C4 keeps the arm
 /// fixed at its start pose, where the open fingertips hang 4.5 cm in front of the rotors' axis
@@ -79,7 +94,7 @@ impl Rotor {
         match self {
             Rotor::Stick => (UNDER_FLANGE_XY, STICK_POST_TOP),
             Rotor::Bolt => (UNDER_FLANGE_XY, BOLT_POST_TOP),
-            Rotor::Wheel => (AXIS_XY, POST_TOP),
+            Rotor::Wheel => (UNDER_FLANGE_XY, WHEEL_POST_TOP),
         }
     }
 }
