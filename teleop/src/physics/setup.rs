@@ -112,7 +112,9 @@ fn hand_options(physics: &SimulatedPhysicsConfig) -> HandMjcfOptions {
         position_gain: physics.actuator_kp.unwrap_or(default.position_gain),
         joint_damping: physics.joint_damping.unwrap_or(default.joint_damping),
         armature: physics.joint_armature.unwrap_or(default.armature),
-        max_torque_nm: physics.actuator_max_torque_nm.unwrap_or(default.max_torque_nm),
+        max_torque_nm: physics
+            .actuator_max_torque_nm
+            .unwrap_or(default.max_torque_nm),
         friction: physics.contact_friction.unwrap_or(default.friction),
         contact_solref: physics.contact_solref.unwrap_or(default.contact_solref),
         contact_solimp: physics.contact_solimp.unwrap_or(default.contact_solimp),
