@@ -120,7 +120,11 @@
 //!   range, where the optimum is ill determined and noise moves it most) is pulled toward the
 //!   previous command. The extra pull is released for fast motion: multiplied by
 //!   `1 / (1 + (v / v₀)²)`, `v` the fastest key point's speed as the input filter estimates it
-//!   and `v₀` `smoothing.release_speed_m_s`, so a closing pinch is not held back. The command
+//!   and `v₀` `smoothing.release_speed_m_s`. That speed is low-passed and rises over frames,
+//!   so a quick pinch's first frames would still be held back: the digits of a pinch closing
+//!   within `smoothing.approach_range_m` keep only `1 / (1 + (v_p / v_a)²)` of the extra pull,
+//!   `v_p` the raw thumb–finger distance's fall per frame and `v_a`
+//!   `smoothing.approach_speed_m_s` (the thumb by its fastest pinch; `pinch_approach`). The command
 //!   depends on `q₋`, the frame, `dt` and the input filter's state ([`Retargeter::reset`]
 //!   clears both).
 //!
@@ -163,6 +167,7 @@ mod model_file;
 pub mod model_spec;
 pub mod one_euro;
 mod palm_frame;
+mod pinch_approach;
 pub mod qp_step;
 pub mod quality;
 mod retarget_config;

@@ -103,6 +103,12 @@ pub struct SmoothingConfig {
     /// Speed of the fastest human key point (the input filter's estimate) at which the extra
     /// weight halves, m/s: fast motion is followed without lag. 0 ignores the speed.
     pub release_speed_m_s: f64,
+    /// Thumb–finger distance (the human's) under which a closing pinch frees its two digits
+    /// from the extra weight, metres (see `pinch_approach`).
+    pub approach_range_m: f64,
+    /// Closing speed of a pinch at which its two digits keep half of the extra weight, m/s;
+    /// 0: a closing pinch frees nothing.
+    pub approach_speed_m_s: f64,
 }
 
 /// Per-frame Gauss–Newton settings.
@@ -200,6 +206,8 @@ impl Default for SmoothingConfig {
             previous_command: 0.03,
             residual_m: 0.01,
             release_speed_m_s: 0.3,
+            approach_range_m: 0.06,
+            approach_speed_m_s: 1.0,
         }
     }
 }
@@ -295,6 +303,13 @@ impl RetargetConfig {
         range(
             "smoothing.release_speed_m_s",
             sm.release_speed_m_s,
+            0.0,
+            10.0,
+        )?;
+        range("smoothing.approach_range_m", sm.approach_range_m, 0.0, 0.5)?;
+        range(
+            "smoothing.approach_speed_m_s",
+            sm.approach_speed_m_s,
             0.0,
             10.0,
         )?;

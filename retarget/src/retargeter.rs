@@ -37,6 +37,7 @@ use crate::hand_model::HandModel;
 use crate::hand_model::LinkId;
 use crate::human_key_vectors::{HumanKeyVectors, human_key_vectors};
 use crate::one_euro::KeyPointFilter;
+use crate::pinch_approach::PinchApproach;
 use crate::qp_step::{BoxQp, QpSolver};
 use crate::retarget_config::RetargetConfig;
 
@@ -128,8 +129,13 @@ pub struct Retargeter {
     upper_step: Vec<f64>,
     trial: Vec<f64>,
     qp: BoxQp,
-    /// The pull toward the previous command in this frame's energy (per rad²).
-    prior: f64,
+    /// The pull toward the previous command in this frame's energy, per degree of freedom
+    /// (per rad²).
+    pull: Vec<f64>,
+    /// Per degree of freedom, the digit it moves alone (`None`: shared or none).
+    dof_digits: Vec<Option<crate::finger::Finger>>,
+    /// How fast the human's thumb closes on each finger.
+    approach: PinchApproach,
     /// The previous command, kept for the smoothing's second solve (no allocation per frame).
     previous: Vec<f64>,
     /// The speed-adaptive filter of the human key points.
@@ -206,7 +212,9 @@ impl Retargeter {
             qp: BoxQp::new(n, config.solver.qp_max_iterations, config.solver.qp_method),
             command: neutral.clone(),
             previous: neutral.clone(),
-            prior: config.regularisation.previous_command,
+            pull: vec![config.regularisation.previous_command; dof],
+            dof_digits: model.dof_digits(),
+            approach: PinchApproach::default(),
             filter: KeyPointFilter::new(config.input_filter.clone()),
             neutral,
             free,
@@ -222,6 +230,7 @@ impl Retargeter {
         transform.validate()?;
         self.transform = transform;
         self.filter.reset(); // its history was in the old transform's frame
+        self.approach.reset();
         Ok(())
     }
 
@@ -280,6 +289,7 @@ impl Retargeter {
     pub fn reset(&mut self) {
         self.command.copy_from_slice(&self.neutral);
         self.filter.reset();
+        self.approach.reset();
     }
 
     /// Retarget one frame of keypoints (layout from the configuration, metres), `dt_s`
@@ -297,11 +307,17 @@ impl Retargeter {
         let release_speed = smoothing.release_speed_m_s;
         let filter_on = self.config.input_filter.enabled();
         let targets = key_vector_targets(&raw, &self.config);
+        let shares = self.approach.pull_shares(
+            raw.pinch_distances_m,
+            dt_s,
+            smoothing.approach_range_m,
+            smoothing.approach_speed_m_s,
+        );
         if extra <= 0.0 && !filter_on {
-            return Ok(self.solve(&targets, dt_s, base));
+            return Ok(self.solve(&targets, dt_s, base, [1.0; 5]));
         }
         self.previous.copy_from_slice(&self.command);
-        let first = self.solve(&targets, dt_s, base);
+        let first = self.solve(&targets, dt_s, base, [1.0; 5]);
         // How far the robot is from reproducing the frame: 0 for a reachable one (tracked
         // as it is), toward 1 for one it cannot reproduce (smoothed).
         let x = (first.tip_error_m / residual_m).powi(2);
@@ -318,7 +334,7 @@ impl Retargeter {
         let smoothed = raw.toward(&filtered, self.filter_shares(&raw, blend));
         let targets = key_vector_targets(&smoothed, &self.config);
         self.command.copy_from_slice(&self.previous);
-        let mut second = self.solve(&targets, dt_s, prior);
+        let mut second = self.solve(&targets, dt_s, prior, shares);
         second.steps += first.steps;
         second.qp_iterations += first.qp_iterations;
         second.qp_active_set += first.qp_active_set;
@@ -354,9 +370,20 @@ impl Retargeter {
             .map(|l| palm.point_to_palm(&self.fk.position(l))))
     }
 
-    /// Minimise the energy with pull `prior` toward the previous command, from it.
-    fn solve(&mut self, targets: &[KeyVector; KEY_VECTORS], dt_s: f64, prior: f64) -> Solution {
-        self.prior = prior;
+    /// Minimise the energy with pull `prior` toward the previous command, from it; digit `d`
+    /// keeps `shares[d]` of the pull beyond the configured base (see [`PinchApproach`]).
+    fn solve(
+        &mut self,
+        targets: &[KeyVector; KEY_VECTORS],
+        dt_s: f64,
+        prior: f64,
+        shares: [f64; 5],
+    ) -> Solution {
+        let base = self.config.regularisation.previous_command.min(prior);
+        for (pull, digit) in self.pull.iter_mut().zip(&self.dof_digits) {
+            let share = digit.map_or(1.0, |d| shares[d.index()]);
+            *pull = base + (prior - base) * share;
+        }
         let reach =
             self.config.solver.max_joint_speed_rad_s * dt_s.min(self.config.solver.max_rate_dt_s);
         for (k, &dof) in self.free.iter().enumerate() {
@@ -470,7 +497,7 @@ impl Retargeter {
         let reg = &self.config.regularisation;
         let mut energy = key_vector_energy(targets, &points, self.config.huber_delta_m);
         for &dof in &self.free {
-            energy += 0.5 * self.prior * (q[dof] - self.command[dof]).powi(2);
+            energy += 0.5 * self.pull[dof] * (q[dof] - self.command[dof]).powi(2);
         }
         for &(k, rest) in &self.rest {
             energy += 0.5 * reg.rest_posture * (q[self.free[k]] - rest).powi(2);
@@ -480,7 +507,6 @@ impl Retargeter {
 
     /// Assemble `H` and `g` at `q`.
     fn normal_equations(&mut self, targets: &[KeyVector; KEY_VECTORS], q: &[f64]) {
-        let previous_command = self.prior;
         let (rest_posture, damping) = {
             let r = &self.config.regularisation;
             (r.rest_posture, r.damping)
@@ -488,8 +514,8 @@ impl Retargeter {
         self.H.fill(0.0);
         self.g.fill(0.0);
         for (k, &dof) in self.free.iter().enumerate() {
-            self.H[(k, k)] = previous_command + damping;
-            self.g[k] = previous_command * (q[dof] - self.command[dof]);
+            self.H[(k, k)] = self.pull[dof] + damping;
+            self.g[k] = self.pull[dof] * (q[dof] - self.command[dof]);
         }
         for &(k, rest) in &self.rest {
             self.H[(k, k)] += rest_posture;
