@@ -50,14 +50,15 @@ const fn project_hand_only(row: Row) -> Row {
 /// The station preset under which the wrist's turn about the task's axis reaches the arm.
 const TWIST: Option<&str> = Some("twist_about_axis.toml");
 
-const SCRIPTS: [Row; 10] = [
+const SCRIPTS: [Row; 11] = [
     project_hand_only(twisting("V2", "tasks/V2.toml")),
     row("H4", "tasks/H4.toml"),
     row("H5", "tasks/H5.toml"),
     twisting("C1", "tasks/C1.toml"),
     twisting("C2", "tasks/C2.toml"),
+    twisting("C3", "tasks/C3.toml"),
     row("C4", "tasks/C4.toml"),
-    project_hand_only(row("G1", "tasks/G1.toml")),
+    row("G1", "tasks/G1.toml"),
     row("G3", "tasks/G3.toml"),
     row("G4", "grasp_place.toml"),
     row("G5", "tasks/G5.toml"),
@@ -145,6 +146,7 @@ done_by_the_hand! {
     h5_is_done_by_the_hand => "H5",
     c1_is_done_by_the_hand => "C1",
     c2_is_done_by_the_hand => "C2",
+    c3_is_done_by_the_hand => "C3",
     c4_is_done_by_the_hand => "C4",
     g1_is_done_by_the_hand => "G1",
     g3_is_done_by_the_hand => "G3",
