@@ -200,6 +200,42 @@ impl Default for Regularisation {
     }
 }
 
+impl SmoothingConfig {
+    /// Check every value against its allowed range.
+    fn validate(&self) -> Result<(), Error> {
+        let sm = self;
+        in_range("smoothing.previous_command", sm.previous_command, 0.0, 10.0)?;
+        in_range("smoothing.residual_m", sm.residual_m, 1e-4, 1.0)?;
+        in_range(
+            "smoothing.release_speed_m_s",
+            sm.release_speed_m_s,
+            0.0,
+            10.0,
+        )?;
+        in_range("smoothing.approach_range_m", sm.approach_range_m, 0.0, 0.5)?;
+        in_range(
+            "smoothing.approach_speed_m_s",
+            sm.approach_speed_m_s,
+            0.0,
+            10.0,
+        )?;
+        Ok(())
+    }
+}
+
+/// `key`'s `value` must be finite and in `[lo, hi]`.
+fn in_range(key: &str, value: f64, lo: f64, hi: f64) -> Result<(), Error> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(Error::ConfigRange {
+            key: key.into(),
+            value: value.to_string(),
+            allowed: format!("must be in [{lo}, {hi}]"),
+        })
+    }
+}
+
 impl Default for SmoothingConfig {
     fn default() -> Self {
         SmoothingConfig {
@@ -237,17 +273,7 @@ impl RetargetConfig {
 
     /// Check every value against its allowed range.
     pub fn validate(&self) -> Result<(), Error> {
-        let range = |key: &str, value: f64, lo: f64, hi: f64| {
-            if value.is_finite() && value >= lo && value <= hi {
-                Ok(())
-            } else {
-                Err(Error::ConfigRange {
-                    key: key.into(),
-                    value: value.to_string(),
-                    allowed: format!("must be in [{lo}, {hi}]"),
-                })
-            }
-        };
+        let range = in_range;
         let w = &self.weights;
         range("weights.palm_to_tip", w.palm_to_tip, 0.0, 1e3)?;
         range("weights.tip_to_tip", w.tip_to_tip, 0.0, 1e3)?;
@@ -297,22 +323,7 @@ impl RetargetConfig {
             0.01,
             100.0,
         )?;
-        let sm = &self.smoothing;
-        range("smoothing.previous_command", sm.previous_command, 0.0, 10.0)?;
-        range("smoothing.residual_m", sm.residual_m, 1e-4, 1.0)?;
-        range(
-            "smoothing.release_speed_m_s",
-            sm.release_speed_m_s,
-            0.0,
-            10.0,
-        )?;
-        range("smoothing.approach_range_m", sm.approach_range_m, 0.0, 0.5)?;
-        range(
-            "smoothing.approach_speed_m_s",
-            sm.approach_speed_m_s,
-            0.0,
-            10.0,
-        )?;
+        self.smoothing.validate()?;
         let s = &self.solver;
         range(
             "solver.steps_per_frame",
