@@ -75,7 +75,8 @@ fn every_scene_parses_and_welds_the_hand_to_the_mocap_body() {
         assert_eq!(mount.attribute("mocap"), Some("true"));
         assert_eq!(mount.attribute("pos"), Some("0.45 0 0.4"));
         assert_eq!(mount.attribute("quat"), Some("0 1 0 0"));
-        let in_world = |n: roxmltree::Node<'_, '_>| n.parent().map(|p| p.tag_name().name().to_string());
+        let in_world =
+            |n: roxmltree::Node<'_, '_>| n.parent().map(|p| p.tag_name().name().to_string());
         assert_eq!(in_world(mount).as_deref(), Some("worldbody"));
         // The hand hangs on a free body of its own, not inside the mocap body.
         assert!(
