@@ -3,10 +3,41 @@
 //!
 //! From the paper: H1 scissors (6 curves), H2 chopsticks (3), H3 squeeze (4), the arm moving
 //! along a horizontal axis; H4 palmar and H5 pinch slide a rod 0–200 mm with the arm fixed
-//! (the lab's README: both use the same objects). This project's model (sizes, masses, the
-//! shapes standing in for scissors, chopsticks and the syringe are guesses): each "curve" is
-//! a bump across the rail that the carriage's shoe must be lifted over (`carriage_lift`)
-//! while it travels along world y (`carriage_slide`, the progress).
+//! (the lab's README: both use the same objects). This project's model (sizes, masses and the
+//! mechanism are guesses): each "curve" is a bump across the rail that the carriage's shoe
+//! must be lifted over while the carriage travels along the rail (`carriage_slide`, the
+//! progress, a mark 2 mm past each bump).
+//!
+//! H1–H3, changed from the first model (the rail along world y, 0.33 m of travel for H1, the
+//! shoe on a lift slide under a tool-shaped grip): `horizontal_axis` moves the arm along world
+//! x only and holds the flange's height, so only the fingers could move the carriage along y
+//! (spreading the open hand moves a tip 12 mm across y, a stroke some 7 cm along x; measured on
+//! the project's hand) and only they could lift it. Now the rail runs along world x under the
+//! hanging hand, so the arm carries the carriage (the hand is on a compliant mount, so fingers
+//! carried by the arm push what they press), and the shoe is lifted by a trigger the fingers
+//! press: a lever on the carriage, hinged about world y 3.5 cm up, its paddle standing on the
+//! hinge 1.2 cm in front of the hanging fingers' pads (9 cm wide, index to ring, 15 cm high),
+//! its arm holding the shoe 5 cm behind the hinge, on a track of bumps beside the paddle's
+//! line. A push on the paddle turns the lever (to 0.5 rad: the shoe 24 mm up, over the 15 mm
+//! bumps) before it moves the carriage (0.3 N of friction on the rail, more than the lever
+//! needs); let go, a weak spring and the shoe's weight drop it again. The bumps stand 38 mm
+//! apart, the first 25 mm ahead of the shoe, so that the arm's reach along x (the workspace
+//! ends at x = 0.75 m, the start is 0.45) carries the carriage past the sixth. The three
+//! tasks share the mechanism and differ in the number of bumps; the tools' shapes are not
+//! modelled, and the grip is the script's choice (scissor strokes, a pinch, a squeeze).
+//!
+//! Measured with MuJoCo 3.17: in the lock step (`launch_configs/sim/tasks/H1.toml`, `H2.toml`,
+//! `H3.toml`; 1 mm of glove noise, moved starts) all three scripts cleared every bump for
+//! seeds 1–20 and held-out seeds 501–540 with both hand models. What the model does not ask
+//! of the hand: any push on the paddle lifts the shoe, so the open hand carried along +x did H1
+//! as well (seeds 1–5, both hand models). A fist curls the fingers over the paddle's top (H3 at
+//! 60–70 % of a fist: 0 of 5 seeds on the project's hand, 3–4 of 5 on the manufacturer's).
+//! Two designs that did not hold, replayed with MuJoCo's Python bindings: a handle for the
+//! arm to push in front of the fingers' middle joints with the paddle 1.2 cm further on, so
+//! that only curling fingers reach it — the curling fingers pushed the handle, and with it the
+//! paddle, 17 mm ahead of their tips, the lever turned 0.16–0.29 rad, not enough, and the
+//! carriage stuck at the first bump (both hand models); and a post in front of the thumb for
+//! the arm to push, which did it, but the open hand cleared 5 or 6 of the 6 bumps as well.
 //!
 //! H4/H5, changed from the first model (a plain rod along world y on two U-supports, 8 cm up,
 //! in front of the hand): with the arm fixed at its start pose nothing of the hand reaches
@@ -31,34 +62,54 @@
 //! finger pushed the next peg back as far as the closing one had pushed its own. In the lock
 //! step (`launch_configs/sim/tasks/H4.toml`, `H5.toml`; 1 mm of glove noise, moved starts) both
 //! scripts did it for seeds 1–20 and held-out seeds 501–600 with both hand models.
-//!
-//! H1–H3 are unchanged and not yet done by the hand: the rail runs along world y, across the
-//! arm's horizontal axis (world x), and with the flange held at its height only the fingers
-//! can lift the carriage.
 
 use scoring::PhysicsMapping;
 
 use super::Scaffold;
 use super::mjcf::{num, nums};
 
-/// The rail's line on the table (world x), m.
+/// The rod's reference line on the table (world x), m.
 const RAIL_X: f64 = 0.5;
-/// The carriage's start (world y), m.
-const START_Y: f64 = -0.15;
+
+/// The trigger's hinge above the table's rail line at the start (world x, y, z), m: the
+/// paddle's face 1.2 cm in front of the hanging fingers' pads (x ≈ 0.462, y from −0.05 at the
+/// index to 0.03 at the ring finger) and its hinge 2 cm below their tips.
+const HINGE: [f64; 3] = [0.47, -0.02, 0.035];
 /// The rail floor's top, m.
 const FLOOR_TOP: f64 = 0.01;
-/// The first bump's centre ahead of the carriage's start, m.
-const FIRST_BUMP: f64 = 0.04;
-/// The distance between bumps, m.
-const BUMP_PITCH: f64 = 0.05;
-/// A bump's half extents (across the rail, along it, up), m: 15 mm high.
-const BUMP_HALF: [f64; 3] = [0.02, 0.006, 0.0075];
-/// The shoe's half extents, m.
-const SHOE_HALF: [f64; 3] = [0.012, 0.008, 0.006];
+/// The shoe's place on the lever from the hinge (along the rail, across it), m: behind the
+/// hinge, so that the paddle pushed forward lifts it by 5 cm × sin(lever angle), and beside
+/// the paddle's line so that its track of bumps runs clear of the lever.
+const SHOE_FROM_HINGE: [f64; 2] = [-0.05, 0.04];
+/// The shoe's half extents (along the rail, across it, up), m.
+const SHOE_HALF: [f64; 3] = [0.008, 0.006, 0.006];
+/// The shoe's clearance over the floor at rest, m.
+const SHOE_CLEAR: f64 = 0.0005;
+/// The first bump's centre ahead of the shoe's front at the start, m.
+const FIRST_BUMP: f64 = 0.025;
+/// The distance between bumps, m (the project's guess, short enough that the arm's reach along
+/// x, to 0.75 m, carries the carriage over all six of H1).
+const BUMP_PITCH: f64 = 0.038;
+/// A bump's half extents (along the rail, across it, up), m: 15 mm high.
+const BUMP_HALF: [f64; 3] = [0.006, 0.012, 0.0075];
 /// How far past "cleared" each mark sits, m (2 mm, then the 1 mm band).
 const MARK_PAST_CLEAR: f64 = 0.002;
-/// The travel left after the last bump, m.
-const RUN_OUT: f64 = 0.04;
+/// The carriage's travel past the last mark, m.
+const RUN_OUT: f64 = 0.01;
+/// The paddle: its face's offset in front of the hinge, its half thickness, its half width
+/// across the rail and its top above the table, m.
+const PADDLE_X: f64 = 0.006;
+const PADDLE_HALF_T: f64 = 0.002;
+const PADDLE_HALF_W: f64 = 0.045;
+const PADDLE_TOP: f64 = 0.15;
+/// The lever's travel, rad: at 0.5 rad the shoe is 24 mm up, 9 mm over a bump's top.
+const LEVER_MAX: f64 = 0.5;
+/// The lever's return spring, N·m/rad: with the shoe's weight it drops the shoe again when
+/// the paddle is let go; a push of some 0.2 N at the fingers' height turns it.
+const LEVER_SPRING: f64 = 0.003;
+/// The carriage's friction on its rail, N: more than the push that turns the lever, so that a
+/// push on the paddle lifts the shoe before it moves the carriage.
+const CARRIAGE_FRICTION: f64 = 0.3;
 
 /// The rod's axis: its line across the table (world y) and its height, m. The rod lies along
 /// world x, under the middle finger of the hand hanging at the arm's start pose (its tip at
@@ -98,14 +149,15 @@ const ROD_SUPPORT_X: [f64; 2] = [0.40, 0.58];
 /// The rod's front end ahead of the rail line (world x 0.5 at the start), m.
 const ROD_FRONT: f64 = 0.12;
 
-/// What the rail carriage carries for the operator to hold.
+/// Which tool's task the rail stands for: only the number of bumps differs (the tools' own
+/// shapes are not modelled; the hand works the trigger, see the module docs).
 #[derive(Debug, Clone, Copy)]
 pub(super) enum RailGrip {
-    /// H1: two crossed blades, 120 mm, 40 g (6 bumps).
+    /// H1: scissors (6 bumps).
     Scissors,
-    /// H2: two parallel sticks, 180 mm, 20 g (3 bumps).
+    /// H2: chopsticks (3 bumps).
     Chopsticks,
-    /// H3: a syringe barrel with a flange, 24 mm across, 30 g (4 bumps).
+    /// H3: a syringe squeezed (4 bumps).
     Syringe,
 }
 
@@ -119,75 +171,84 @@ impl RailGrip {
     }
 }
 
-/// The rail with its bumps and the carriage, with a mark past each bump.
+/// Bump `k`'s centre along the rail from the hinge's start, m.
+fn bump_x(k: usize) -> f64 {
+    SHOE_FROM_HINGE[0] + SHOE_HALF[0] + FIRST_BUMP + k as f64 * BUMP_PITCH
+}
+
+/// The carriage's slide at which the dropped shoe's back is [`MARK_PAST_CLEAR`] past bump `k`.
+fn clear_mark(k: usize) -> f64 {
+    bump_x(k) + BUMP_HALF[0] + SHOE_HALF[0] + MARK_PAST_CLEAR - SHOE_FROM_HINGE[0]
+}
+
+/// The rail along world x with its bumps and the carriage with its trigger, a mark past each
+/// bump.
 pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     let n = grip.bumps();
-    let bump_y: Vec<f64> = (0..n).map(|k| FIRST_BUMP + k as f64 * BUMP_PITCH).collect();
-    let travel = bump_y[n - 1] + RUN_OUT;
+    let travel = clear_mark(n - 1) + RUN_OUT;
+    let track_y = SHOE_FROM_HINGE[1];
+    let shoe_back = SHOE_FROM_HINGE[0] - SHOE_HALF[0] - 0.02;
+    let floor_len = travel + bump_x(n - 1) - shoe_back + 0.02;
     let mut bodies = format!(
         "    <body name=\"rail\" pos=\"{}\">\n",
-        nums(&[RAIL_X, START_Y, 0.0])
+        nums(&[HINGE[0], HINGE[1], 0.0])
     );
     bodies.push_str(&format!(
         "      <geom name=\"rail_floor\" class=\"pomdar_fixture\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n",
-        nums(&[0.03, travel / 2.0 + 0.03, FLOOR_TOP / 2.0]),
-        nums(&[0.0, travel / 2.0, FLOOR_TOP / 2.0])
+        nums(&[floor_len / 2.0, 0.02, FLOOR_TOP / 2.0]),
+        nums(&[shoe_back + floor_len / 2.0, track_y, FLOOR_TOP / 2.0])
     ));
-    for (k, y) in bump_y.iter().enumerate() {
+    for k in 0..n {
         bodies.push_str(&format!(
             "      <geom name=\"bump_{k}\" class=\"pomdar_fixture\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n",
             nums(&BUMP_HALF),
-            nums(&[0.0, *y, FLOOR_TOP + BUMP_HALF[2]])
+            nums(&[bump_x(k), track_y, FLOOR_TOP + BUMP_HALF[2]])
         ));
     }
-    bodies.push_str(&carriage_body(grip, travel));
+    bodies.push_str(&carriage_body(travel));
     bodies.push_str("    </body>\n");
-    let marks = bump_y
-        .iter()
-        .map(|y| y + BUMP_HALF[1] + SHOE_HALF[1] + MARK_PAST_CLEAR)
-        .collect();
     Scaffold {
         bodies,
         mapping: PhysicsMapping {
-            marks,
+            marks: (0..n).map(clear_mark).collect(),
             ..PhysicsMapping::joint("carriage_slide")
         },
     }
 }
 
-/// The carriage: shoe, post and grip, sliding along the rail and lifting off it.
-fn carriage_body(grip: RailGrip, travel: f64) -> String {
+/// The carriage: an axle sliding along the rail, carrying the lever (the trigger): the paddle
+/// standing on the hinge in front of the fingers, and an arm back to the shoe. Only the paddle
+/// and the shoe touch anything (the arm and the axle pass through slots).
+fn carriage_body(travel: f64) -> String {
+    let shoe_z = FLOOR_TOP + SHOE_CLEAR + SHOE_HALF[2] - HINGE[2];
+    let [shoe_x, shoe_y] = SHOE_FROM_HINGE;
+    let paddle_half_h = (PADDLE_TOP - HINGE[2]) / 2.0;
     format!(
-        r#"      <body name="carriage" pos="0 0 {z}">
-        <joint name="carriage_slide" class="pomdar_object" type="slide" axis="0 1 0" range="0 {travel}" damping="0.3" frictionloss="0.05"/>
-        <joint name="carriage_lift" class="pomdar_object" type="slide" axis="0 0 1" range="0 0.03" damping="0.3"/>
-        <geom name="carriage_shoe" class="pomdar_object" type="box" size="{shoe}" mass="0.01"/>
-        <geom name="carriage_post" class="pomdar_object" type="capsule" fromto="0 0 0.01 0 0 0.05" size="0.004" mass="0.005"/>
-{grip}      </body>
+        r#"      <body name="carriage" pos="0 0 {hinge_z}">
+        <joint name="carriage_slide" class="pomdar_object" type="slide" axis="1 0 0" range="0 {travel}" damping="0.3" frictionloss="{friction}"/>
+        <geom name="carriage_axle" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{axle}" size="0.003" mass="0.01"/>
+        <body name="trigger">
+          <joint name="trigger_hinge" class="pomdar_object" type="hinge" axis="0 1 0" range="0 {lever_max}" stiffness="{spring}" springref="0" damping="0.002"/>
+          <geom name="trigger_paddle" class="pomdar_object" type="box" size="{paddle_size}" pos="{paddle_pos}" mass="0.004"/>
+          <geom name="trigger_arm" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{arm}" size="0.003" mass="0.004"/>
+          <geom name="trigger_pin" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{pin}" size="0.003" mass="0.002"/>
+          <geom name="carriage_shoe" class="pomdar_object" type="box" size="{shoe}" pos="{shoe_pos}" mass="0.01"/>
+        </body>
+      </body>
 "#,
-        z = num(FLOOR_TOP + SHOE_HALF[2]),
+        hinge_z = num(HINGE[2]),
         travel = num(travel),
+        friction = num(CARRIAGE_FRICTION),
+        axle = nums(&[0.0, -PADDLE_HALF_W, 0.0, 0.0, PADDLE_HALF_W, 0.0]),
+        lever_max = num(LEVER_MAX),
+        spring = num(LEVER_SPRING),
+        paddle_size = nums(&[PADDLE_HALF_T, PADDLE_HALF_W, paddle_half_h]),
+        paddle_pos = nums(&[PADDLE_X, 0.0, paddle_half_h]),
+        arm = nums(&[0.0, 0.0, 0.0, shoe_x, 0.0, shoe_z]),
+        pin = nums(&[shoe_x, 0.0, shoe_z, shoe_x, shoe_y, shoe_z]),
         shoe = nums(&SHOE_HALF),
-        grip = grip_geoms(grip),
+        shoe_pos = nums(&[shoe_x, shoe_y, shoe_z]),
     )
-}
-
-fn grip_geoms(grip: RailGrip) -> String {
-    match grip {
-        RailGrip::Scissors => concat!(
-            "        <geom name=\"scissors_blade_a\" class=\"pomdar_object\" type=\"capsule\" fromto=\"-0.058 -0.015 0.055 0.058 0.015 0.055\" size=\"0.004\" mass=\"0.02\"/>\n",
-            "        <geom name=\"scissors_blade_b\" class=\"pomdar_object\" type=\"capsule\" fromto=\"-0.058 0.015 0.055 0.058 -0.015 0.055\" size=\"0.004\" mass=\"0.02\"/>\n",
-        ),
-        RailGrip::Chopsticks => concat!(
-            "        <geom name=\"chopstick_a\" class=\"pomdar_object\" type=\"capsule\" fromto=\"-0.09 0.006 0.055 0.09 0.006 0.055\" size=\"0.0035\" mass=\"0.01\"/>\n",
-            "        <geom name=\"chopstick_b\" class=\"pomdar_object\" type=\"capsule\" fromto=\"-0.09 -0.006 0.055 0.09 -0.006 0.055\" size=\"0.0035\" mass=\"0.01\"/>\n",
-        ),
-        RailGrip::Syringe => concat!(
-            "        <geom name=\"syringe_barrel\" class=\"pomdar_object\" type=\"cylinder\" size=\"0.012 0.03\" pos=\"0 0 0.08\" mass=\"0.025\"/>\n",
-            "        <geom name=\"syringe_flange\" class=\"pomdar_object\" type=\"cylinder\" size=\"0.02 0.002\" pos=\"0 0 0.112\" mass=\"0.005\"/>\n",
-        ),
-    }
-    .to_string()
 }
 
 /// The rod in two channels, sliding along world x, with its row of sprung flaps.
@@ -315,5 +376,48 @@ mod tests {
         // Enough flaps that the last is still behind the finger at the end of the travel.
         let last = RAIL_X + flap_x(flap_count() - 1);
         assert!(last + ROD_TRAVEL < 0.437, "{last}");
+    }
+
+    #[test]
+    fn the_rail_runs_along_x_and_the_trigger_lifts_the_shoe_over_the_bumps() {
+        for (grip, n) in [
+            (RailGrip::Scissors, 6),
+            (RailGrip::Chopsticks, 3),
+            (RailGrip::Syringe, 4),
+        ] {
+            let scaffold = rail_scaffold(grip);
+            let xml = format!("<w>{}</w>", scaffold.bodies);
+            let doc = roxmltree::Document::parse(&xml).unwrap();
+            let named = |name: &str| {
+                doc.descendants()
+                    .find(|node| node.attribute("name") == Some(name))
+                    .unwrap()
+            };
+            let slide = named("carriage_slide");
+            assert_eq!(slide.attribute("axis"), Some("1 0 0"));
+            let travel = floats(slide.attribute("range").unwrap())[1];
+            let marks = &scaffold.mapping.marks;
+            assert_eq!(marks.len(), n);
+            assert!(marks.windows(2).all(|w| w[1] > w[0]));
+            assert!(marks[n - 1] < travel);
+            assert_eq!(named("trigger_hinge").attribute("axis"), Some("0 1 0"));
+            // The lever at its stop holds the shoe's bottom over the bumps' tops.
+            let lift = -SHOE_FROM_HINGE[0] * LEVER_MAX.sin();
+            assert!(SHOE_CLEAR + lift > 2.0 * BUMP_HALF[2] + 0.005, "{lift}");
+            // The dropped shoe meets the first bump: its front is behind it at the start, and
+            // each mark puts its back past the bump it counts.
+            let shoe_front = SHOE_FROM_HINGE[0] + SHOE_HALF[0];
+            assert!(shoe_front < bump_x(0) - BUMP_HALF[0]);
+            for (k, mark) in marks.iter().enumerate() {
+                let back = SHOE_FROM_HINGE[0] - SHOE_HALF[0] + mark;
+                assert!(back > bump_x(k) + BUMP_HALF[0], "{k}");
+            }
+            // The paddle's face stands in front of the hanging fingers' pads (x ≈ 0.462)
+            // wherever the start is moved, and the arm's reach (to x = 0.75) carries the
+            // carriage past the last mark.
+            let face = HINGE[0] + PADDLE_X - PADDLE_HALF_T;
+            assert!(face - START_OFFSET_MAX_M > 0.462, "{face}");
+            assert!(0.75 - 0.45 > marks[n - 1] + 0.03, "{}", marks[n - 1]);
+        }
     }
 }
