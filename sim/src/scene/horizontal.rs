@@ -14,30 +14,35 @@
 //! (spreading the open hand moves a tip 12 mm across y, a stroke some 7 cm along x; measured on
 //! the project's hand) and only they could lift it. Now the rail runs along world x under the
 //! hanging hand, so the arm carries the carriage (the hand is on a compliant mount, so fingers
-//! carried by the arm push what they press), and the shoe is lifted by a trigger the fingers
-//! press: a lever on the carriage, hinged about world y 3.5 cm up, its paddle standing on the
-//! hinge 1.2 cm in front of the hanging fingers' pads (9 cm wide, index to ring, 15 cm high),
-//! its arm holding the shoe 5 cm behind the hinge, on a track of bumps beside the paddle's
-//! line. A push on the paddle turns the lever (to 0.5 rad: the shoe 24 mm up, over the 15 mm
-//! bumps) before it moves the carriage (0.3 N of friction on the rail, more than the lever
-//! needs); let go, a weak spring and the shoe's weight drop it again. The bumps stand 38 mm
-//! apart, the first 25 mm ahead of the shoe, so that the arm's reach along x (the workspace
-//! ends at x = 0.75 m, the start is 0.45) carries the carriage past the sixth. The three
-//! tasks share the mechanism and differ in the number of bumps; the tools' shapes are not
-//! modelled, and the grip is the script's choice (scissor strokes, a pinch, a squeeze).
+//! carried by the arm pull what they press on), and the fingers lift the shoe with a trigger.
+//! The carriage travels back along −x, drawn by a rear bar across the rail 5 mm behind the
+//! hanging fingers' backs at their middle joints' height (13 cm up). It carries a lever hinged
+//! about world y 3.5 cm up: its paddle stands on the hinge 1.2 cm in front of the hanging
+//! fingers' pads (9 cm wide, index to ring, 15 cm high), and its arm holds the shoe 5 cm
+//! behind the hinge, on a track of bumps beside the paddle's line. Fingers closing onto the
+//! paddle turn the lever (to 0.5 rad: the shoe 24 mm up, over the 15 mm bumps) before they
+//! move the carriage (0.3 N of friction on the rail, more than the lever needs); the arm then
+//! draws the hand back, the fingers' backs pulling the rear bar while their pads hold the
+//! paddle; let go, a weak spring and the shoe's weight drop the shoe again. The open hand drawn
+//! back pulls the rear bar and never touches the paddle, so the shoe stops at the first bump:
+//! the lift is the grip's. The bumps stand 26 mm apart, the first 12 mm behind the shoe, so
+//! that the arm's reach back along x (the workspace ends at x = 0.25 m, the start is 0.45)
+//! carries the carriage past the sixth. The three tasks share the mechanism and differ in the
+//! number of bumps; the tools' shapes are not modelled, and the grip is the script's (scissor
+//! strokes, a pinch, a squeeze).
 //!
 //! Measured with MuJoCo 3.17: in the lock step (`launch_configs/sim/tasks/H1.toml`, `H2.toml`,
-//! `H3.toml`; 1 mm of glove noise, moved starts) all three scripts cleared every bump for
-//! seeds 1–20 and held-out seeds 501–540 with both hand models. What the model does not ask
-//! of the hand: any push on the paddle lifts the shoe, so the open hand carried along +x did H1
-//! as well (seeds 1–5, both hand models). A fist curls the fingers over the paddle's top (H3 at
-//! 60–70 % of a fist: 0 of 5 seeds on the project's hand, 3–4 of 5 on the manufacturer's).
-//! Two designs that did not hold, replayed with MuJoCo's Python bindings: a handle for the
-//! arm to push in front of the fingers' middle joints with the paddle 1.2 cm further on, so
-//! that only curling fingers reach it — the curling fingers pushed the handle, and with it the
-//! paddle, 17 mm ahead of their tips, the lever turned 0.16–0.29 rad, not enough, and the
-//! carriage stuck at the first bump (both hand models); and a post in front of the thumb for
-//! the arm to push, which did it, but the open hand cleared 5 or 6 of the 6 bumps as well.
+//! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts cleared every bump for
+//! seeds 1–20 and held-out seeds 501–540 with both hand models; the open hand drawn back the
+//! same 19.5 cm cleared none (seeds 1–5, both hand models). A fist (50 or 70 %) curls the
+//! fingers over the paddle's top: no bump (replayed, one trace each). Designs that did not hold, replayed with MuJoCo's Python bindings: a handle
+//! in front of the fingers' middle joints for the arm to push along +x, the paddle 1.2 cm
+//! further on — the curling fingers pushed the handle, and with it the paddle, 17 mm ahead of
+//! their tips, the lever turned 0.16–0.29 rad, not enough, and the carriage stuck at the first
+//! bump (both hand models); the paddle alone pushed along +x, or a post in front of the thumb
+//! for the arm to push — both did it, but so did the open hand (5 or 6 of the 6 bumps), since
+//! the arm pushing on kept the fingers on the paddle; a plate lifted by the curling tips from
+//! below — the open fingers' tips slid under it and lifted it too.
 //!
 //! H4/H5, changed from the first model (a plain rod along world y on two U-supports, 8 cm up,
 //! in front of the hand): with the arm fixed at its start pose nothing of the hand reaches
@@ -82,16 +87,17 @@ const FLOOR_TOP: f64 = 0.01;
 /// the paddle's line so that its track of bumps runs clear of the lever.
 const SHOE_FROM_HINGE: [f64; 2] = [-0.05, 0.04];
 /// The shoe's half extents (along the rail, across it, up), m.
-const SHOE_HALF: [f64; 3] = [0.008, 0.006, 0.006];
+const SHOE_HALF: [f64; 3] = [0.006, 0.006, 0.006];
 /// The shoe's clearance over the floor at rest, m.
 const SHOE_CLEAR: f64 = 0.0005;
-/// The first bump's centre ahead of the shoe's front at the start, m.
-const FIRST_BUMP: f64 = 0.025;
-/// The distance between bumps, m (the project's guess, short enough that the arm's reach along
-/// x, to 0.75 m, carries the carriage over all six of H1).
-const BUMP_PITCH: f64 = 0.038;
+/// The first bump's centre behind the shoe's back at the start, m (the carriage travels
+/// along −x).
+const FIRST_BUMP: f64 = 0.012;
+/// The distance between bumps, m (the project's guess, short enough that the arm's reach back
+/// along x, to 0.25 m from the start's 0.45, carries the carriage over all six of H1).
+const BUMP_PITCH: f64 = 0.026;
 /// A bump's half extents (along the rail, across it, up), m: 15 mm high.
-const BUMP_HALF: [f64; 3] = [0.006, 0.012, 0.0075];
+const BUMP_HALF: [f64; 3] = [0.005, 0.012, 0.0075];
 /// How far past "cleared" each mark sits, m (2 mm, then the 1 mm band).
 const MARK_PAST_CLEAR: f64 = 0.002;
 /// The carriage's travel past the last mark, m.
@@ -107,6 +113,11 @@ const LEVER_MAX: f64 = 0.5;
 /// The lever's return spring, N·m/rad: with the shoe's weight it drops the shoe again when
 /// the paddle is let go; a push of some 0.2 N at the fingers' height turns it.
 const LEVER_SPRING: f64 = 0.003;
+/// The rear bar the backs of the hanging fingers pull (from the hinge along x, above the
+/// table), m: 5 mm behind their backs (x ≈ 0.437) wherever the start is moved, at their
+/// middle joints' height; and its half width across the rail (index to ring).
+const REAR_BAR: [f64; 2] = [-0.043, 0.13];
+const REAR_BAR_HALF_W: f64 = 0.055;
 /// The carriage's friction on its rail, N: more than the push that turns the lever, so that a
 /// push on the paddle lifts the shoe before it moves the carriage.
 const CARRIAGE_FRICTION: f64 = 0.3;
@@ -171,14 +182,15 @@ impl RailGrip {
     }
 }
 
-/// Bump `k`'s centre along the rail from the hinge's start, m.
+/// Bump `k`'s centre along world x from the hinge's start, m (behind the shoe).
 fn bump_x(k: usize) -> f64 {
-    SHOE_FROM_HINGE[0] + SHOE_HALF[0] + FIRST_BUMP + k as f64 * BUMP_PITCH
+    SHOE_FROM_HINGE[0] - SHOE_HALF[0] - FIRST_BUMP - k as f64 * BUMP_PITCH
 }
 
-/// The carriage's slide at which the dropped shoe's back is [`MARK_PAST_CLEAR`] past bump `k`.
+/// The carriage's slide (along −x) at which the dropped shoe's front is [`MARK_PAST_CLEAR`]
+/// past bump `k`.
 fn clear_mark(k: usize) -> f64 {
-    bump_x(k) + BUMP_HALF[0] + SHOE_HALF[0] + MARK_PAST_CLEAR - SHOE_FROM_HINGE[0]
+    SHOE_FROM_HINGE[0] - bump_x(k) + BUMP_HALF[0] + SHOE_HALF[0] + MARK_PAST_CLEAR
 }
 
 /// The rail along world x with its bumps and the carriage with its trigger, a mark past each
@@ -187,8 +199,8 @@ pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     let n = grip.bumps();
     let travel = clear_mark(n - 1) + RUN_OUT;
     let track_y = SHOE_FROM_HINGE[1];
-    let shoe_back = SHOE_FROM_HINGE[0] - SHOE_HALF[0] - 0.02;
-    let floor_len = travel + bump_x(n - 1) - shoe_back + 0.02;
+    let floor_front = SHOE_FROM_HINGE[0] + SHOE_HALF[0] + 0.02;
+    let floor_len = floor_front - bump_x(n - 1) + 0.02;
     let mut bodies = format!(
         "    <body name=\"rail\" pos=\"{}\">\n",
         nums(&[HINGE[0], HINGE[1], 0.0])
@@ -196,7 +208,7 @@ pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     bodies.push_str(&format!(
         "      <geom name=\"rail_floor\" class=\"pomdar_fixture\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n",
         nums(&[floor_len / 2.0, 0.02, FLOOR_TOP / 2.0]),
-        nums(&[shoe_back + floor_len / 2.0, track_y, FLOOR_TOP / 2.0])
+        nums(&[floor_front - floor_len / 2.0, track_y, FLOOR_TOP / 2.0])
     ));
     for k in 0..n {
         bodies.push_str(&format!(
@@ -216,17 +228,23 @@ pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     }
 }
 
-/// The carriage: an axle sliding along the rail, carrying the lever (the trigger): the paddle
-/// standing on the hinge in front of the fingers, and an arm back to the shoe. Only the paddle
-/// and the shoe touch anything (the arm and the axle pass through slots).
+/// The carriage: an axle sliding back along the rail with the rear bar the fingers' backs
+/// pull, carrying the lever (the trigger): the paddle standing on the hinge in front of the
+/// fingers, and an arm back to the shoe. Only the rear bar, the paddle and the shoe touch
+/// anything (the arm, the post and the axle pass through slots).
 fn carriage_body(travel: f64) -> String {
     let shoe_z = FLOOR_TOP + SHOE_CLEAR + SHOE_HALF[2] - HINGE[2];
     let [shoe_x, shoe_y] = SHOE_FROM_HINGE;
     let paddle_half_h = (PADDLE_TOP - HINGE[2]) / 2.0;
+    let [rear_x, rear_height] = REAR_BAR;
+    let rear_z = rear_height - HINGE[2];
+    let rear_y0 = -REAR_BAR_HALF_W - 0.005;
     format!(
         r#"      <body name="carriage" pos="0 0 {hinge_z}">
-        <joint name="carriage_slide" class="pomdar_object" type="slide" axis="1 0 0" range="0 {travel}" damping="0.3" frictionloss="{friction}"/>
-        <geom name="carriage_axle" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{axle}" size="0.003" mass="0.01"/>
+        <joint name="carriage_slide" class="pomdar_object" type="slide" axis="-1 0 0" range="0 {travel}" damping="0.3" frictionloss="{friction}"/>
+        <geom name="carriage_axle" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{axle}" size="0.003" mass="0.005"/>
+        <geom name="carriage_rear_bar" class="pomdar_object" type="capsule" fromto="{rear}" size="0.004" mass="0.005"/>
+        <geom name="carriage_rear_post" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{post}" size="0.003" mass="0.002"/>
         <body name="trigger">
           <joint name="trigger_hinge" class="pomdar_object" type="hinge" axis="0 1 0" range="0 {lever_max}" stiffness="{spring}" springref="0" damping="0.002"/>
           <geom name="trigger_paddle" class="pomdar_object" type="box" size="{paddle_size}" pos="{paddle_pos}" mass="0.004"/>
@@ -240,6 +258,15 @@ fn carriage_body(travel: f64) -> String {
         travel = num(travel),
         friction = num(CARRIAGE_FRICTION),
         axle = nums(&[0.0, -PADDLE_HALF_W, 0.0, 0.0, PADDLE_HALF_W, 0.0]),
+        rear = nums(&[
+            rear_x,
+            rear_y0,
+            rear_z,
+            rear_x,
+            rear_y0 + 2.0 * REAR_BAR_HALF_W,
+            rear_z
+        ]),
+        post = nums(&[0.0, -PADDLE_HALF_W, 0.0, rear_x, rear_y0, rear_z]),
         lever_max = num(LEVER_MAX),
         spring = num(LEVER_SPRING),
         paddle_size = nums(&[PADDLE_HALF_T, PADDLE_HALF_W, paddle_half_h]),
@@ -394,7 +421,7 @@ mod tests {
                     .unwrap()
             };
             let slide = named("carriage_slide");
-            assert_eq!(slide.attribute("axis"), Some("1 0 0"));
+            assert_eq!(slide.attribute("axis"), Some("-1 0 0"));
             let travel = floats(slide.attribute("range").unwrap())[1];
             let marks = &scaffold.mapping.marks;
             assert_eq!(marks.len(), n);
@@ -404,20 +431,22 @@ mod tests {
             // The lever at its stop holds the shoe's bottom over the bumps' tops.
             let lift = -SHOE_FROM_HINGE[0] * LEVER_MAX.sin();
             assert!(SHOE_CLEAR + lift > 2.0 * BUMP_HALF[2] + 0.005, "{lift}");
-            // The dropped shoe meets the first bump: its front is behind it at the start, and
-            // each mark puts its back past the bump it counts.
-            let shoe_front = SHOE_FROM_HINGE[0] + SHOE_HALF[0];
-            assert!(shoe_front < bump_x(0) - BUMP_HALF[0]);
+            // The dropped shoe meets the first bump behind it (the carriage travels along
+            // −x), and each mark puts its front past the bump it counts.
+            let shoe_back = SHOE_FROM_HINGE[0] - SHOE_HALF[0];
+            assert!(shoe_back > bump_x(0) + BUMP_HALF[0]);
             for (k, mark) in marks.iter().enumerate() {
-                let back = SHOE_FROM_HINGE[0] - SHOE_HALF[0] + mark;
-                assert!(back > bump_x(k) + BUMP_HALF[0], "{k}");
+                let front = SHOE_FROM_HINGE[0] + SHOE_HALF[0] - mark;
+                assert!(front < bump_x(k) - BUMP_HALF[0], "{k}");
             }
-            // The paddle's face stands in front of the hanging fingers' pads (x ≈ 0.462)
-            // wherever the start is moved, and the arm's reach (to x = 0.75) carries the
-            // carriage past the last mark.
+            // The paddle's face stands in front of the hanging fingers' pads (x ≈ 0.462) and
+            // the rear bar behind their backs (x ≈ 0.437) wherever the start is moved, and the
+            // arm's reach back (to x = 0.25) carries the carriage past the last mark.
             let face = HINGE[0] + PADDLE_X - PADDLE_HALF_T;
             assert!(face - START_OFFSET_MAX_M > 0.462, "{face}");
-            assert!(0.75 - 0.45 > marks[n - 1] + 0.03, "{}", marks[n - 1]);
+            let rear = HINGE[0] + REAR_BAR[0] + 0.004;
+            assert!(rear + START_OFFSET_MAX_M < 0.437, "{rear}");
+            assert!(0.45 - 0.25 > marks[n - 1] + 0.02, "{}", marks[n - 1]);
         }
     }
 }
