@@ -32,17 +32,18 @@
 //! strokes, a pinch, a squeeze).
 //!
 //! Measured with MuJoCo 3.17: in the lock step (`launch_configs/sim/tasks/H1.toml`, `H2.toml`,
-//! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts cleared every bump for
-//! seeds 1–20 and held-out seeds 501–540 with both hand models; the open hand drawn back the
-//! same 19.5 cm cleared none (seeds 1–5, both hand models). A fist (50 or 70 %) curls the
-//! fingers over the paddle's top: no bump (replayed, one trace each). Designs that did not hold, replayed with MuJoCo's Python bindings: a handle
-//! in front of the fingers' middle joints for the arm to push along +x, the paddle 1.2 cm
-//! further on — the curling fingers pushed the handle, and with it the paddle, 17 mm ahead of
-//! their tips, the lever turned 0.16–0.29 rad, not enough, and the carriage stuck at the first
-//! bump (both hand models); the paddle alone pushed along +x, or a post in front of the thumb
-//! for the arm to push — both did it, but so did the open hand (5 or 6 of the 6 bumps), since
-//! the arm pushing on kept the fingers on the paddle; a plate lifted by the curling tips from
-//! below — the open fingers' tips slid under it and lifted it too.
+//! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts cleared every bump for seeds
+//! 1–20 and held-out seeds 501–540 with both hand models; the open hand drawn back the same
+//! 19.5 cm cleared none (seeds 1–5, both hand models). A fist (50 or 70 %) curls the fingers
+//! over the paddle's top: no bump (replayed, one trace each). Designs that did not hold,
+//! replayed with MuJoCo's Python bindings: a handle in front of the fingers' middle joints for
+//! the arm to push along +x, the paddle 1.2 cm further on — the curling fingers pushed the
+//! handle, and with it the paddle, 17 mm ahead of their tips, the lever turned 0.16–0.29 rad,
+//! not enough, and the carriage stuck at the first bump (both hand models); the paddle alone
+//! pushed along +x, or a post in front of the thumb for the arm to push — both did it, but so
+//! did the open hand (5 or 6 of the 6 bumps), since the arm pushing on kept the fingers on the
+//! paddle; a plate lifted by the curling tips from below — the open fingers' tips slid under it
+//! and lifted it too.
 //!
 //! H4/H5, changed from the first model (a plain rod along world y on two U-supports, 8 cm up,
 //! in front of the hand): with the arm fixed at its start pose nothing of the hand reaches
