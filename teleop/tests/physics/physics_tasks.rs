@@ -50,8 +50,11 @@ const fn project_hand_only(row: Row) -> Row {
 /// The station preset under which the wrist's turn about the task's axis reaches the arm.
 const TWIST: Option<&str> = Some("twist_about_axis.toml");
 
-const SCRIPTS: [Row; 11] = [
+const SCRIPTS: [Row; 14] = [
     project_hand_only(twisting("V2", "tasks/V2.toml")),
+    row("H1", "tasks/H1.toml"),
+    row("H2", "tasks/H2.toml"),
+    row("H3", "tasks/H3.toml"),
     row("H4", "tasks/H4.toml"),
     row("H5", "tasks/H5.toml"),
     twisting("C1", "tasks/C1.toml"),
@@ -142,6 +145,9 @@ macro_rules! done_by_the_hand {
 
 done_by_the_hand! {
     v2_is_done_by_the_hand => "V2",
+    h1_is_done_by_the_hand => "H1",
+    h2_is_done_by_the_hand => "H2",
+    h3_is_done_by_the_hand => "H3",
     h4_is_done_by_the_hand => "H4",
     h5_is_done_by_the_hand => "H5",
     c1_is_done_by_the_hand => "C1",
