@@ -36,10 +36,16 @@
 //! and lies across the palm (along the handle's y): a thinner bar turned 8–16° in the closed
 //! fist and lagged the wrist by that much.
 //!
-//! V1 and V3 are not done by the hand here yet: a fist or a cylinder grasp closed round the
-//! horizontal wheel or the sphere does not hold them against turning (in lock step they spun
-//! in the hand, tens of degrees off the wrist's turn, or were pushed up against the next
-//! plate); a wheel standing on edge, its face to the palm, followed the first three notches.
+//! With the hand rigidly on the arm, a fist or a cylinder grasp closed round the horizontal
+//! wheel or the sphere did not hold them against turning (in lock step they spun in the hand,
+//! tens of degrees off the wrist's turn, or were pushed up against the next plate); a wheel
+//! standing on edge, its face to the palm, followed the first three notches. On the welded
+//! mount (measured in lock step, seeds 1–20, moved starts) the round grips still turn in the
+//! fist, the key ending 18° behind to 4° ahead of the wrist at a hold, differently from run to
+//! run, so the V1 and V3 scripts press the key lightly under each plate and sweep the wrist
+//! from 20° short of its notch to 20° past it: 20 of 20 each with the manufacturer's MJCF
+//! hand, 0 of 20 with the project's hand, in whose fist the wheel and the sphere turn further
+//! (a 40° sweep turned the key by 4–17°).
 
 use std::fmt::Write as _;
 
