@@ -7,7 +7,8 @@
 //! starts at (0.5, −0.2) on the table (clear of the hand at the arm's start pose) or on a small support that leaves room for the fingers
 //! under it (wheel and disk on a 60 mm pedestal: see [`PEDESTAL`]; the small and the medium
 //! cylinder lying across two 10 cm posts, each set down in a low bin around the target; the
-//! sphere on a tee, set down in the same bin); the target is a 16 × 18 cm region
+//! sphere and the large cylinder on a tee, set down in the same bin); the target is a 16 × 18
+//! cm region
 //! at (0.7, −0.2), 0.2 m along +x, drawn on the table (a non-colliding marker).
 //!
 //! The medium cylinder (G5) lies across posts rather than standing on the table because the
@@ -27,6 +28,11 @@
 //! 86 mm the tee raises it (or by 6 cm only), lifted the sphere on the table in none of 5 runs
 //! with either hand. Raised on the tee's thin stem, the sphere sits between the hanging fingers
 //! and the thumb, and the fingers close under it beside the stem.
+//!
+//! The large cylinder (G6) stands on the same tee for the same reason: G6's wrap lowered by the
+//! 89.5 mm the tee raises it lifted the cylinder standing on the table in 2 of 5 runs with the
+//! project's hand and 1 of 5 with the manufacturer's and set it down in the target in none (6 cm
+//! lower only: 0 of 5 and 1 of 5).
 //!
 //! An object counts as relocated when the object's origin rests inside the region no more than 1 cm
 //! above the highest it rests stably on the table (a cylinder standing or lying, the wheel
@@ -66,7 +72,9 @@ pub(super) enum Object {
     /// apart (standing, the hand as built cannot lift it: see the module documentation), to be
     /// set down in the low bin around the target region.
     CylinderMedium,
-    /// G6: a cylinder, 60 mm across, 60 mm tall, 50 g, standing.
+    /// G6: a cylinder, 60 mm across, 60 mm tall, 50 g, standing on a tee like the sphere's (on
+    /// the table the hand as built cannot lift it: see the module documentation), to be set
+    /// down in the low bin around the target region.
     CylinderLarge,
 }
 
@@ -128,15 +136,16 @@ const POSTS_NARROW: &str = concat!(
 /// the G1 and G3 scripts' pinches hold with that hand.
 const PEDESTAL: &str = "      <geom name=\"pedestal\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.015 0.03\" pos=\"0 0 0.03\"/>\n";
 
-/// A tee for the sphere of G2: a stem 8 mm across and 87 mm high at the object's start, the
-/// sphere resting on its top (centre 114.5 mm up, at the height of G4's cylinder), and six
-/// spokes from just below the top out to six rests (balls 5 mm across on a ring 28 mm across,
-/// 87 mm up) around it, on which a sphere pushed off the top comes to rest. On the table the
-/// hand as built did not lift the sphere (the module documentation says why); on the tee the
-/// fingers hang beside it and close under it. With a ring of three rests 18 mm across the sphere
-/// started 5 mm off centre rolled off before the hand came (2 of 10 starts); with the wider ring
-/// of six none did.
-const SPHERE_TEE: &str = concat!(
+/// A tee for the sphere of G2 and the large cylinder of G6: a stem 8 mm across and 87 mm high
+/// at the object's start, and six spokes from just below its top out to six rests (balls 5 mm
+/// across on a ring 28 mm across, 87 mm up). The sphere rests on the stem's top (its centre
+/// 114.5 mm up, at the height of G4's cylinder), and on the rests when pushed off it; the
+/// cylinder stands on the rests (its centre 119.5 mm up). On the table the hand as built did not
+/// lift either (the module documentation says why); on the tee the fingers hang beside the
+/// object and close under it. With a ring of three rests 18 mm across the sphere started 5 mm
+/// off centre rolled off before the hand came (2 of 10 starts); with the wider ring of six none
+/// did.
+const TEE: &str = concat!(
     "      <geom name=\"tee_stem\" class=\"pomdar_fixture\" type=\"cylinder\" size=\"0.004 0.0435\" pos=\"0 0 0.0435\"/>\n",
     "      <geom name=\"tee_spoke_a\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.0015\" fromto=\"0 0 0.083 0.014 0 0.087\"/>\n",
     "      <geom name=\"tee_spoke_b\" class=\"pomdar_fixture\" type=\"capsule\" size=\"0.0015\" fromto=\"0 0 0.083 0.007 0.012124 0.087\"/>\n",
@@ -164,7 +173,7 @@ fn layout(object: Object) -> Layout {
         },
         Object::Sphere => Layout {
             geom: r#"type="sphere" size="0.0275" mass="0.04""#,
-            support: SPHERE_TEE,
+            support: TEE,
             start_z: 0.1145,
             max_rest_z: 0.0275,
             target_support: TARGET_BIN,
@@ -196,11 +205,11 @@ fn layout(object: Object) -> Layout {
         },
         Object::CylinderLarge => Layout {
             geom: r#"type="cylinder" size="0.03 0.03" mass="0.05""#,
-            support: "",
-            start_z: 0.03,
+            support: TEE,
+            start_z: 0.1195,
             max_rest_z: 0.03,
-            target_support: "",
-            target_max_z: None,
+            target_support: TARGET_BIN,
+            target_max_z: Some(0.075),
         },
     }
 }
