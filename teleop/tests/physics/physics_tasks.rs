@@ -58,7 +58,7 @@ const fn manufacturers_hand_only(row: Row) -> Row {
 /// The station preset under which the wrist's turn about the task's axis reaches the arm.
 const TWIST: Option<&str> = Some("twist_about_axis.toml");
 
-const SCRIPTS: [Row; 16] = [
+const SCRIPTS: [Row; 18] = [
     manufacturers_hand_only(twisting("V1", "tasks/V1.toml")),
     twisting("V2", "tasks/V2.toml"),
     manufacturers_hand_only(twisting("V3", "tasks/V3.toml")),
@@ -72,9 +72,11 @@ const SCRIPTS: [Row; 16] = [
     twisting("C3", "tasks/C3.toml"),
     row("C4", "tasks/C4.toml"),
     row("G1", "tasks/G1.toml"),
+    row("G2", "tasks/G2.toml"),
     row("G3", "tasks/G3.toml"),
     row("G4", "grasp_place.toml"),
     row("G5", "tasks/G5.toml"),
+    row("G6", "tasks/G6.toml"),
 ];
 const RUNS: u32 = 20;
 
@@ -172,9 +174,11 @@ done_by_the_hand! {
     c3_is_done_by_the_hand => "C3",
     c4_is_done_by_the_hand => "C4",
     g1_is_done_by_the_hand => "G1",
+    g2_is_done_by_the_hand => "G2",
     g3_is_done_by_the_hand => "G3",
     g4_is_done_by_the_hand => "G4",
     g5_is_done_by_the_hand => "G5",
+    g6_is_done_by_the_hand => "G6",
 }
 
 /// Every row is a task of the catalog with its script and preset in place and a test of its
