@@ -36,6 +36,21 @@ pub struct SimulatedPhysicsConfig {
 }
 
 impl SimulatedPhysicsConfig {
+    /// Nothing set: every setting the twin's default.
+    pub const DEFAULTS: SimulatedPhysicsConfig = SimulatedPhysicsConfig {
+        contact_solref: None,
+        contact_solimp: None,
+        contact_margin_m: None,
+        contact_friction: None,
+        impratio: None,
+        mount_solref: None,
+        mount_solimp: None,
+        actuator_kp: None,
+        actuator_max_torque_nm: None,
+        joint_damping: None,
+        joint_armature: None,
+    };
+
     /// Check every value that is set.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_solref("contact_solref", self.contact_solref)?;
@@ -189,6 +204,10 @@ mod tests {
         )
         .unwrap();
         let physics = config.simulated_physics;
+        assert_eq!(
+            StationConfig::default().simulated_physics,
+            super::SimulatedPhysicsConfig::DEFAULTS
+        );
         assert_eq!(physics.contact_solref, Some([0.01, 1.0]));
         assert_eq!(physics.impratio, Some(100.0));
         assert_eq!(physics.mount_solref, None);

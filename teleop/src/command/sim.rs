@@ -135,7 +135,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
         None => SceneSource::Project(ProjectScene {
             start: start_move(args.perturb_start, seed),
             hand_file,
-            physics: station.simulated_physics,
+            physics: &station.simulated_physics,
         }),
     };
     if let Some(script) = &args.lockstep {

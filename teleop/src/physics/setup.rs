@@ -35,7 +35,7 @@ pub struct SimulatedTask {
 }
 
 /// The project's scene of a task: how its start is moved, which hand it holds and how.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct ProjectScene<'a> {
     /// How the task's start is moved.
     pub start: StartPerturbation,
@@ -43,7 +43,17 @@ pub struct ProjectScene<'a> {
     /// the hand the project writes from the URDF.
     pub hand_file: Option<&'a Path>,
     /// The station file's contact, actuator and mount settings (unset: the twin's defaults).
-    pub physics: SimulatedPhysicsConfig,
+    pub physics: &'a SimulatedPhysicsConfig,
+}
+
+impl Default for ProjectScene<'_> {
+    fn default() -> Self {
+        ProjectScene {
+            start: StartPerturbation::NONE,
+            hand_file: None,
+            physics: &SimulatedPhysicsConfig::DEFAULTS,
+        }
+    }
 }
 
 impl<'a> ProjectScene<'a> {
@@ -53,7 +63,7 @@ impl<'a> ProjectScene<'a> {
         ProjectScene {
             start: StartPerturbation::NONE,
             hand_file: station.simulated_hand_mjcf.as_deref(),
-            physics: station.simulated_physics,
+            physics: &station.simulated_physics,
         }
     }
 }
@@ -101,7 +111,7 @@ pub fn project_scene_xml(
     arm_start: Isometry3<f64>,
     scene: ProjectScene<'_>,
 ) -> Result<(String, PhysicsMapping), PhysicsError> {
-    let hand = twin_hand(model, scene.hand_file, &scene.physics)?;
+    let hand = twin_hand(model, scene.hand_file, scene.physics)?;
     scene_with_hand(task, &hand, arm_start, &scene)
 }
 
@@ -157,8 +167,8 @@ pub fn load_task(
     arm_start: Isometry3<f64>,
 ) -> Result<SimulatedTask, PhysicsError> {
     let hand = match source {
-        SceneSource::Project(scene) => twin_hand(model, scene.hand_file, &scene.physics)?,
-        SceneSource::LabFile(_) => twin_hand(model, None, &SimulatedPhysicsConfig::default())?,
+        SceneSource::Project(scene) => twin_hand(model, scene.hand_file, scene.physics)?,
+        SceneSource::LabFile(_) => twin_hand(model, None, &SimulatedPhysicsConfig::DEFAULTS)?,
     };
     let binding = hand_binding(&hand);
     let (engine, progress, scene_xml) = match source {
