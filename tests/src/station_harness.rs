@@ -66,8 +66,8 @@ pub fn lab_tool_node(
 
 /// A station configuration whose joint targets do not depend on when frames arrive: every
 /// frame is retargeted, the joint-speed limit never binds, the input filter (whose history is
-/// the frames the station took, fewer when a burst is coalesced) and the smoothing's release
-/// by its speed estimate are off, the station engages on fresh input and stays engaged through
+/// the frames the station took, fewer when a burst is coalesced), the smoothing's release
+/// by its speed estimate and by a pinch's approach (whose history is the same frames) are off, the station engages on fresh input and stays engaged through
 /// 5 s without a changed frame (a noise-free simulated hand that holds still sends exact
 /// repeats, which refresh nothing), and inputs and outputs are reliable with deep queues. Its targets equal an in-process retargeter's (or
 /// re-simulation's) fed the same frames, or started from the command before.
@@ -81,6 +81,7 @@ pub fn timing_independent_config() -> StationConfig {
     config.retarget.solver.max_rate_dt_s = 1.0;
     config.retarget.input_filter.min_cutoff_hz = 0.0;
     config.retarget.smoothing.release_speed_m_s = 0.0;
+    config.retarget.smoothing.approach_speed_m_s = 0.0;
     config.watchdog.disengage_timeout_ms = 5000;
     config
 }

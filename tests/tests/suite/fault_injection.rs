@@ -385,7 +385,7 @@ async fn burst(
 }
 
 /// The timer burst test checks which frame a command was computed from, so the joint-speed
-/// limit, the input filter and the smoothing's speed release (whose history is every frame the
+/// limit, the input filter and the smoothing's speed and pinch-approach releases (whose history is every frame the
 /// station took before) are lifted: the solution then depends on the frame and the previous command only (see
 /// `station_dds.rs`, joint targets equal the in-process retargeter). On every-frame control
 /// the frames of a burst are microseconds apart and the speed limit binds whatever its value,
@@ -396,6 +396,7 @@ fn burst_config(mode: ControlMode) -> StationConfig {
     config.retarget.solver.max_rate_dt_s = 1.0;
     config.retarget.input_filter.min_cutoff_hz = 0.0;
     config.retarget.smoothing.release_speed_m_s = 0.0;
+    config.retarget.smoothing.approach_speed_m_s = 0.0;
     config
 }
 
