@@ -243,7 +243,7 @@ impl Default for SmoothingConfig {
             residual_m: 0.01,
             release_speed_m_s: 0.3,
             approach_range_m: 0.06,
-            approach_speed_m_s: 1.0,
+            approach_speed_m_s: 0.5,
         }
     }
 }
