@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::config_error::ConfigError;
 
 /// Overrides of the twin's physics settings; `None` keeps the twin's default.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SimulatedPhysicsConfig {
     /// MuJoCo `solref` of the hand's contacts: time constant (s), damping ratio.
@@ -33,6 +33,12 @@ pub struct SimulatedPhysicsConfig {
     pub joint_damping: Option<f64>,
     /// Reflected rotor inertia on the project's hand's hinges, kg·m².
     pub joint_armature: Option<f64>,
+}
+
+impl Default for SimulatedPhysicsConfig {
+    fn default() -> Self {
+        SimulatedPhysicsConfig::DEFAULTS
+    }
 }
 
 impl SimulatedPhysicsConfig {
@@ -204,10 +210,6 @@ mod tests {
         )
         .unwrap();
         let physics = config.simulated_physics;
-        assert_eq!(
-            StationConfig::default().simulated_physics,
-            super::SimulatedPhysicsConfig::DEFAULTS
-        );
         assert_eq!(physics.contact_solref, Some([0.01, 1.0]));
         assert_eq!(physics.impratio, Some(100.0));
         assert_eq!(physics.mount_solref, None);

@@ -22,8 +22,9 @@ pub struct SimArgs {
     /// Task catalog (default: the built-in POMDAR catalog).
     #[arg(long, value_name = "FILE")]
     pub catalog: Option<PathBuf>,
-    /// Station configuration whose topics, arm start pose and network the simulated robot uses
-    /// (default: the built-in station defaults).
+    /// Station configuration whose topics, arm start pose and network the simulated robot uses,
+    /// with its `simulated_hand_mjcf` and `[simulated_physics]` (contact, servo and mount
+    /// settings of the project's scenes) (default: the built-in station defaults).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Write the project's scene for --task as MJCF to FILE and exit (open it in MuJoCo's
