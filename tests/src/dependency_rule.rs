@@ -8,7 +8,7 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 8] = [
+pub const CORE_CRATES: [&str; 9] = [
     "msgs",
     "retarget",
     "calibration",
@@ -17,6 +17,7 @@ pub const CORE_CRATES: [&str; 8] = [
     "review",
     "station",
     "simulation",
+    "practice",
 ];
 
 /// The directory of a workspace crate (its package name, but `simulation` lives in `sim/`).
