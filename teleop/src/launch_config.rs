@@ -62,6 +62,15 @@ pub enum LaunchConfigError {
         #[from]
         source: scoring::ScoringError,
     },
+    /// A practice file is not valid.
+    #[error("{path}: {source}")]
+    Practice {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, by key.
+        #[source]
+        source: practice::PracticeError,
+    },
     /// Glove ingress settings are not valid.
     #[error("{path}: {source}")]
     Ingress {
@@ -97,6 +106,9 @@ pub enum LaunchConfigKind {
     /// `sim/*.toml`: the simulated glove's task scripts (`pomdar demo --glove-script`,
     /// `pomdar trial --simulate --simulate-glove-script`).
     GloveScript,
+    /// `sim/practice.toml`: programmed practice's strategy families (`pomdar sim-bench
+    /// --practice`), its tasks checked against the built-in catalog.
+    Practice,
 }
 
 impl LaunchConfigKind {
@@ -111,6 +123,9 @@ impl LaunchConfigKind {
             .and_then(|n| n.to_str());
         if folder == "tasks" && grandparent == Some("sim") {
             return Some(LaunchConfigKind::GloveScript);
+        }
+        if folder == "sim" && path.file_name()? == "practice.toml" {
+            return Some(LaunchConfigKind::Practice);
         }
         match folder {
             "hands" => Some(LaunchConfigKind::HandImport),
@@ -195,6 +210,16 @@ pub fn check_file(path: &Path) -> Result<LaunchConfigKind, LaunchConfigError> {
         }
         LaunchConfigKind::GloveScript => {
             retarget::human_hand::GloveScript::from_toml_str(&text).map_err(|e| e.in_file(path))?;
+        }
+        LaunchConfigKind::Practice => {
+            let catalog = scoring::TaskCatalog::builtin();
+            let known: Vec<&str> = catalog.tasks.iter().map(|t| t.id.as_str()).collect();
+            practice::PracticeFile::from_toml_str(&text, &known).map_err(|source| {
+                LaunchConfigError::Practice {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         }
     }
     Ok(kind)

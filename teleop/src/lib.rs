@@ -31,6 +31,8 @@ pub mod ros;
 pub mod samples;
 pub mod score;
 pub mod sim;
+#[cfg(feature = "physics")]
+pub mod sim_bench;
 pub mod station_node;
 pub mod station_setup;
 pub mod station_topics;

@@ -76,6 +76,24 @@ enum Command {
     ///   pomdar sim --task G4 --write-scene g4.xml
     #[command(verbatim_doc_comment)]
     Sim(command::sim::SimArgs),
+    /// The benchmark without a teleoperator: every embodiment scored in simulation (needs the
+    /// `physics` build).
+    ///
+    /// Per embodiment and task, programmed practice: a seeded cross-entropy search over the
+    /// task's family of glove strategies (its script with the start placement, the approach,
+    /// the reach, which digits close and how far, and the timing varied), each practice trial
+    /// a lock-step run through the station core (retargeting to the embodiment, its other
+    /// joints locked) into the physics, scored the POMDAR way. Then recorded runs of the best
+    /// strategy at the glove's noise with moved starts, timed by the physics' completion
+    /// event. Writes the report `pomdar score` writes, the strategies chosen and the paper's
+    /// findings checked; shows a line per task and embodiment; same seed, same report.
+    ///
+    /// Examples:
+    ///   pomdar sim-bench --embodiment all --out reports/sim_bench/
+    ///   pomdar sim-bench --embodiment orca_2,orca_full --tasks G4,H5,C1 --budget 8 --out quick/
+    ///   pomdar sim-bench --shard 2/4 --out shard2/   (then: pomdar sim-bench --merge shard*/ --out all/)
+    #[command(verbatim_doc_comment)]
+    SimBench(command::sim_bench::SimBenchArgs),
     /// Re-simulate a recorded log's glove input through the station, deterministically.
     ///
     /// The station's processing is fed from the log with the log's clock, in process; the
@@ -558,6 +576,7 @@ pub fn main() -> ExitCode {
         }
         Command::MockHand(args) => command::common::run_async(command::mock_hand::mock_hand(args)),
         Command::Sim(args) => command::common::run_async(command::sim::sim(args)),
+        Command::SimBench(args) => return exit_code(command::sim_bench::sim_bench(args)),
         Command::MockFranka(args) => {
             command::common::run_async(command::mock_franka::mock_franka(args))
         }

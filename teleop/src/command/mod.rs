@@ -23,6 +23,7 @@ pub mod resim;
 pub mod review;
 pub mod score;
 pub mod sim;
+pub mod sim_bench;
 pub mod sim_glove;
 pub mod station;
 pub mod study;

@@ -10,7 +10,7 @@
 use retarget::HandModel;
 use retarget::human_hand::SimGlove;
 use station::convert::isometry_to_pose;
-use station::{ControlInput, KeypointFrame, StationConfig, StationInput};
+use station::{ControlInput, KeypointFrame, StationConfig, StationInput, StationOutputs};
 
 use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
@@ -36,6 +36,39 @@ pub struct LockstepOutcome {
     pub final_reading: Option<simulation::progress::Reading>,
 }
 
+/// What a lock-step trial watches besides the physics: every input the station is stepped with
+/// and every output it gives, at their simulated times (a recorder writes them as a live
+/// station's log).
+pub trait LockstepObserver {
+    /// The station is stepped with `input` at `now_ns`.
+    fn input(&mut self, now_ns: i64, input: &StationInput);
+    /// It answered with `outputs`.
+    fn outputs(&mut self, now_ns: i64, outputs: &StationOutputs);
+    /// The physics made a progress event.
+    fn progress(&mut self, event: &ProgressMessage);
+}
+
+/// Whether the progress events so far complete the task.
+pub type DoneTest<'a> = &'a dyn Fn(&[ProgressMessage]) -> bool;
+
+/// A lock-step trial's settings.
+pub struct LockstepPlay<'a> {
+    /// The station's configuration (with the task's arm constraint).
+    pub config: &'a StationConfig,
+    /// The hand model the station retargets to.
+    pub model: &'a HandModel,
+    /// The simulated glove.
+    pub glove: &'a SimGlove,
+    /// The glove's frame rate, Hz.
+    pub rate_hz: f64,
+    /// The trial's length, simulated seconds.
+    pub duration_s: f64,
+    /// Stop early once this says the progress events so far complete the task.
+    pub until: Option<DoneTest<'a>>,
+    /// Watches the station's inputs and outputs.
+    pub observer: Option<&'a mut dyn LockstepObserver>,
+}
+
 /// Play `glove` for `duration_s` through a station built from `config` on `model`, into the
 /// simulated robot of `loaded`; the glove's frames come at `config`'s glove rate `rate_hz`,
 /// the station's timer at its `control.rate_hz`, the arm's feedback with every frame.
@@ -47,6 +80,26 @@ pub fn run_lockstep(
     rate_hz: f64,
     duration_s: f64,
 ) -> Result<LockstepOutcome, PhysicsError> {
+    let play = LockstepPlay {
+        config,
+        model,
+        glove,
+        rate_hz,
+        duration_s,
+        until: None,
+        observer: None,
+    };
+    play_lockstep(play, loaded)
+}
+
+/// [`run_lockstep`] with its settings in one place: stopping early when `until` says the task
+/// is done (the outcome's time is then the time of that event's step), and an observer.
+pub fn play_lockstep(
+    mut play: LockstepPlay<'_>,
+    loaded: SimulatedTask,
+) -> Result<LockstepOutcome, PhysicsError> {
+    let config = play.config;
+    let model = play.model;
     let arm_start = config
         .arm
         .start_pose_isometry()
@@ -64,16 +117,17 @@ pub fn run_lockstep(
     let mut sim = SimState::new(loaded.engine, &robot)?;
     let mut outcome = LockstepOutcome::default();
     let limits: Vec<_> = model.limits().collect();
-    let dt = 1.0 / rate_hz;
-    let tick_every = (rate_hz / config.control.rate_hz).round().max(1.0) as u64;
-    let steps = (duration_s / dt).round() as u64;
+    let dt = 1.0 / play.rate_hz;
+    let tick_every = (play.rate_hz / config.control.rate_hz).round().max(1.0) as u64;
+    let steps = (play.duration_s / dt).round() as u64;
+    let mut taken = 0;
     for k in 0..steps {
         let t = k as f64 * dt;
         let now_ns = (t * 1e9) as i64;
         let feedback = isometry_to_pose(&sim.arm_pose);
         let mut inputs = vec![StationInput::ArmFeedback(feedback)];
-        if glove.sends_at(t) {
-            let (points, wrist) = glove.frame(t);
+        if play.glove.sends_at(t) {
+            let (points, wrist) = play.glove.frame(t);
             inputs.push(StationInput::Wrist(isometry_to_pose(&wrist)));
             inputs.push(StationInput::Keypoints(KeypointFrame {
                 points,
@@ -84,15 +138,27 @@ pub fn run_lockstep(
             inputs.push(StationInput::Control(ControlInput::Tick));
         }
         for input in inputs {
-            apply(
-                &mut sim,
-                (model, &limits),
-                station.step(input, now_ns),
-                &mut outcome,
-            );
+            if let Some(observer) = play.observer.as_deref_mut() {
+                observer.input(now_ns, &input);
+            }
+            let outputs = station.step(input, now_ns);
+            if let Some(observer) = play.observer.as_deref_mut() {
+                observer.outputs(now_ns, &outputs);
+            }
+            apply(&mut sim, (model, &limits), outputs, &mut outcome);
         }
+        let before = outcome.events.len();
         for event in sim.advance(dt, &robot) {
-            outcome.events.push(sim.progress_message(&event, &robot));
+            let message = sim.progress_message(&event, &robot);
+            if let Some(observer) = play.observer.as_deref_mut() {
+                observer.progress(&message);
+            }
+            outcome.events.push(message);
+        }
+        taken = k + 1;
+        let done = play.until.is_some_and(|until| until(&outcome.events));
+        if outcome.events.len() > before && done {
+            break;
         }
     }
     outcome.progress = sim.tracker.as_ref().map_or(0.0, |t| t.total());
@@ -100,7 +166,7 @@ pub fn run_lockstep(
         .progress
         .as_ref()
         .and_then(|(_, mapping)| sim.engine.reading(&mapping.joint));
-    outcome.sim_time_s = steps as f64 * dt;
+    outcome.sim_time_s = taken as f64 * dt;
     Ok(outcome)
 }
 
@@ -108,7 +174,7 @@ pub fn run_lockstep(
 fn apply(
     sim: &mut SimState,
     (model, limits): (&HandModel, &[retarget::Limits]),
-    outputs: station::StationOutputs,
+    outputs: StationOutputs,
     outcome: &mut LockstepOutcome,
 ) {
     if let Some(hand) = outputs.hand {
