@@ -38,6 +38,10 @@ struct JointAddress {
     width: usize,
 }
 
+/// One scene parsed at a time: MuJoCo's XML parser keeps state of its own, and `pomdar
+/// sim-bench` loads scenes from several threads.
+static XML_PARSER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// A loaded, bound scene.
 pub struct PhysicsEngine {
     data: MjData<Box<MjModel>>,
@@ -59,7 +63,11 @@ impl PhysicsEngine {
         origin: &str,
         binding: &HandBinding,
     ) -> Result<Self, PhysicsError> {
-        let model = MjModel::from_xml_string(xml).map_err(|e| PhysicsError::Load {
+        let model = {
+            let _parsing = XML_PARSER.lock();
+            MjModel::from_xml_string(xml)
+        }
+        .map_err(|e| PhysicsError::Load {
             origin: origin.to_string(),
             message: format!("{e:?}"),
         })?;
@@ -69,7 +77,11 @@ impl PhysicsEngine {
     /// Load a scene from an MJCF file (its meshes and includes relative to it) and bind the hand.
     pub fn from_file(path: &Path, binding: &HandBinding) -> Result<Self, PhysicsError> {
         let origin = path.display().to_string();
-        let model = MjModel::from_xml(path).map_err(|e| PhysicsError::Load {
+        let model = {
+            let _parsing = XML_PARSER.lock();
+            MjModel::from_xml(path)
+        }
+        .map_err(|e| PhysicsError::Load {
             origin: origin.clone(),
             message: format!("{e:?}"),
         })?;

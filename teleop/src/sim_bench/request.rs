@@ -18,6 +18,9 @@ use super::{embodiments_with_abduction, merge_shards};
 use crate::hand_source::HandSource;
 use crate::score::score_inputs::ScoringInputs;
 
+/// The example baseline's file in an output directory.
+pub const EXAMPLE_BASELINE_FILE: &str = "example_baseline.toml";
+
 /// The settings file of an output directory.
 pub const SETTINGS_FILE: &str = "sim_bench.json";
 
@@ -80,7 +83,8 @@ pub struct BenchSettings {
     pub practice: String,
     /// The station configuration.
     pub station: String,
-    /// The baseline table, if any.
+    /// The baseline table's source line, if any (shards on other machines read it from
+    /// other paths).
     pub baseline: Option<String>,
     /// The station's version.
     pub station_version: String,
@@ -224,7 +228,11 @@ fn bench_settings(
             .config
             .as_ref()
             .map_or("built-in defaults".into(), |p| p.display().to_string()),
-        baseline: request.scoring.baseline.as_ref().map(|b| b.origin.clone()),
+        baseline: request
+            .scoring
+            .baseline
+            .as_ref()
+            .map(|b| b.header.source.clone()),
         station_version: env!("CARGO_PKG_VERSION").into(),
     }
 }
@@ -274,7 +282,7 @@ fn example_baseline(
         path: out.to_path_buf(),
         reason: e.to_string(),
     })?;
-    let path = out.join("example_baseline.toml");
+    let path = out.join(EXAMPLE_BASELINE_FILE);
     crate::atomic_file::write_atomically(&path, text.as_bytes()).map_err(|e| {
         BenchError::Write {
             path: path.clone(),
@@ -288,12 +296,34 @@ fn example_baseline(
 /// `--merge`: the shards' directories joined into `out`.
 fn merge(request: &BenchRequest) -> Result<ExitCode, BenchError> {
     let settings = shard_settings(&request.merge)?;
-    let report = merge_shards(
-        &request.merge,
-        &request.out,
-        &request.scoring,
-        &settings.header(),
-    )?;
+    let mut scoring = request.scoring.clone();
+    if request.example_baseline {
+        let path = request.merge[0].join(EXAMPLE_BASELINE_FILE);
+        let text = std::fs::read_to_string(&path).map_err(|source| BenchError::Read {
+            path: path.clone(),
+            source,
+        })?;
+        let copy = request.out.join(EXAMPLE_BASELINE_FILE);
+        std::fs::create_dir_all(&request.out).map_err(|e| BenchError::Write {
+            path: request.out.clone(),
+            reason: e.to_string(),
+        })?;
+        crate::atomic_file::write_atomically(&copy, text.as_bytes()).map_err(|e| {
+            BenchError::Write {
+                path: copy.clone(),
+                reason: e.to_string(),
+            }
+        })?;
+        let table = scoring::BaselineTable::from_toml_str(
+            &text,
+            &copy.display().to_string(),
+            &scoring.catalog,
+        )
+        .map_err(|e| BenchError::Setup(e.to_string()))?;
+        scoring.baseline = Some(table);
+    }
+    let scoring = &scoring;
+    let report = merge_shards(&request.merge, &request.out, scoring, &settings.header())?;
     write_settings(&request.out, &settings)?;
     Ok(summarise(&report, &request.out))
 }

@@ -10,3 +10,4 @@ mod physics_hands;
 mod physics_scenes;
 mod physics_tasks;
 mod physics_trial;
+mod sim_bench;
