@@ -90,7 +90,7 @@ enum Command {
     ///
     /// Examples:
     ///   pomdar sim-bench --embodiment all --out reports/sim_bench/
-    ///   pomdar sim-bench --embodiment orca_2,orca_full --tasks G4,H5,C1 --budget 8 --out quick/
+    ///   pomdar sim-bench --embodiment orca_2,orca_full --tasks G4,H5,C1 --budget 12 --out quick/
     ///   pomdar sim-bench --shard 2/4 --out shard2/   (then: pomdar sim-bench --merge shard*/ --out all/)
     #[command(verbatim_doc_comment)]
     SimBench(command::sim_bench::SimBenchArgs),

@@ -90,3 +90,68 @@ impl RunTrial {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn event(event: &str, value: Option<f64>, t: f64) -> ProgressMessage {
+        ProgressMessage {
+            task: "V2".into(),
+            event: event.into(),
+            value,
+            unit: "notches".into(),
+            total: 0.0,
+            sim_time_s: t,
+        }
+    }
+
+    fn metadata(task: &str) -> BTreeMap<String, String> {
+        [
+            ("task", task),
+            ("embodiment", "orca_full"),
+            ("practice", "false"),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+    }
+
+    fn scored(trial: &RunTrial) -> scoring::TrialScore {
+        let catalog = scoring::TaskCatalog::builtin();
+        let rules = scoring::ScoringRules::default();
+        scoring::score_trial(&trial.log("run"), &catalog, None, &rules).unwrap()
+    }
+
+    #[test]
+    fn a_completed_run_stops_at_its_completion_and_an_unfinished_one_is_aborted() {
+        let notches: Vec<ProgressMessage> = (1..=6)
+            .map(|k| event("progress", Some(1.0), 2.0 * f64::from(k)))
+            .collect();
+        let done = run_trial(metadata("V2"), &notches, Some(12.0), 12.0);
+        let s = scored(&done);
+        assert_eq!(
+            (s.outcome, s.correctness, s.time_s),
+            (scoring::Outcome::Completed, 1.0, 12.0)
+        );
+        let half = run_trial(metadata("V2"), &notches[..3], None, 30.0);
+        let s = scored(&half);
+        assert_eq!(
+            (s.outcome, s.correctness, s.time_s),
+            (scoring::Outcome::Aborted, 0.5, 30.0)
+        );
+        assert!(
+            s.notes.iter().any(|n| n.contains(UNFINISHED_REASON)),
+            "{:?}",
+            s.notes
+        );
+    }
+
+    #[test]
+    fn a_drop_is_the_operators_drop_mark() {
+        let grasp = [event("progress", Some(0.5), 3.0), event("drop", None, 4.0)];
+        let trial = run_trial(metadata("G4"), &grasp, None, 12.0);
+        assert_eq!(trial.events[2].1, json!({"event": "drop"}));
+        assert_eq!(scored(&trial).correctness, 0.5);
+    }
+}
