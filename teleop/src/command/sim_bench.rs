@@ -37,7 +37,7 @@ pub struct SimBenchArgs {
     #[arg(long, value_name = "FILE", requires = "urdf")]
     pub import: Option<PathBuf>,
     /// Practice trials per task and embodiment, 1–1000: the search's budget.
-    #[arg(long, default_value_t = 24, value_name = "N")]
+    #[arg(long, default_value_t = 16, value_name = "N")]
     pub budget: usize,
     /// Recorded runs of the chosen strategy per task and embodiment, 1–1000.
     #[arg(long, default_value_t = 20, value_name = "N")]
