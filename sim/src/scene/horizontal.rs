@@ -27,23 +27,54 @@
 //! back pulls the rear bar and never touches the paddle, so the shoe stops at the first bump:
 //! the lift is the grip's. The bumps stand 26 mm apart, the first 12 mm behind the shoe, so
 //! that the arm's reach back along x (the workspace ends at x = 0.25 m, the start is 0.45)
-//! carries the carriage past the sixth. The three tasks share the mechanism and differ in the
-//! number of bumps; the tools' shapes are not modelled, and the grip is the script's (scissor
-//! strokes, a pinch, a squeeze).
+//! carries the carriage past the sixth. The three tasks shared the mechanism and differed in
+//! the number of bumps (the tools' shapes are not modelled, and the grip was the script's:
+//! scissor strokes, a pinch, a squeeze); H1 and H3 keep it, H2 was changed again (below).
 //!
 //! Measured with MuJoCo 3.17: in the lock step (`launch_configs/sim/tasks/H1.toml`, `H2.toml`,
-//! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts cleared every bump for seeds
-//! 1–20 and held-out seeds 501–540 with both hand models; the open hand drawn back the same
-//! 19.5 cm cleared none (seeds 1–5, both hand models). A fist (50 or 70 %) curls the fingers
-//! over the paddle's top: no bump (replayed, one trace each). Designs that did not hold,
-//! replayed with MuJoCo's Python bindings: a handle in front of the fingers' middle joints for
-//! the arm to push along +x, the paddle 1.2 cm further on — the curling fingers pushed the
-//! handle, and with it the paddle, 17 mm ahead of their tips, the lever turned 0.16–0.29 rad,
-//! not enough, and the carriage stuck at the first bump (both hand models); the paddle alone
-//! pushed along +x, or a post in front of the thumb for the arm to push — both did it, but so
-//! did the open hand (5 or 6 of the 6 bumps), since the arm pushing on kept the fingers on the
-//! paddle; a plate lifted by the curling tips from below — the open fingers' tips slid under it
-//! and lifted it too.
+//! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts of then cleared every bump
+//! for seeds 1–20 and held-out seeds 501–540 with both hand models; the open hand drawn back
+//! the same 19.5 cm cleared none (seeds 1–5, both hand models). A fist (50 or 70 %) curls the
+//! fingers over the paddle's top: no bump (replayed, one trace each). Designs that did not
+//! hold, replayed with MuJoCo's Python bindings: a handle in front of the fingers' middle
+//! joints for the arm to push along +x, the paddle 1.2 cm further on — the curling fingers
+//! pushed the handle, and with it the paddle, 17 mm ahead of their tips, the lever turned
+//! 0.16–0.29 rad, not enough, and the carriage stuck at the first bump (both hand models); the
+//! paddle alone pushed along +x, or a post in front of the thumb for the arm to push — both did
+//! it, but so did the open hand (5 or 6 of the 6 bumps), since the arm pushing on kept the
+//! fingers on the paddle; a plate lifted by the curling tips from below — the open fingers'
+//! tips slid under it and lifted it too.
+//!
+//! H2, changed again (the trigger above is H1's, scissors being done alike by every embodiment
+//! in the paper; chopsticks need finger abduction there): the paddle is replaced by a tong that
+//! only the fingers' sideways motion squeezes. Measured on both hand models (the station's
+//! retargeting of the named poses, then the fingers' collision geometry 6.6–9.4 cm up, where
+//! the hanging tips are): ORCA's zero abduction is wider than any spread the retargeter asks
+//! for — the open hand (fingers together) puts index_abd at its upper limit (0.246 rad) and
+//! ring_abd at −0.24, `open_spread` at 0.11 and −0.02 — so an embodiment with abduction locked
+//! holds its fingers spread for good, and a part worked by spreading alone would be worked by
+//! it too. What it cannot do is bring them together: the index finger's inner side and the ring
+//! finger's, 78–86 mm apart at zero abduction (66–73 spread), come to 40–43 mm in the open
+//! hand. The tong slides freely across the rail on the carriage (so the moved start and the
+//! turned rail do not matter): a prong beside the index finger's inner side and, 58 mm across
+//! the middle finger, a paddle beside the ring finger's, on a lever hinged about world x 5.5 cm
+//! up whose arm carries the shoe 8 cm across the rail. The two fingers closing sideways squeeze
+//! it: the prong's slide stops against the index finger and the ring finger pushes the paddle's
+//! top (some 4 cm above the hinge) toward the middle finger, turning the lever (to its 0.45 rad
+//! stop: the shoe 31 mm up, over the 15 mm bumps; at least 0.39 rad while drawn for seeds 1–20
+//! with the manufacturer's hand, 0.41 with the project's); one finger alone slides the tong
+//! (0.02 N of friction) and turns nothing, since the shoe's weight holds the paddle with some
+//! 0.2 N. The joints that make it: index_abd and ring_abd (middle_abd barely moves). Flexing
+//! fingers did not (the project's reading: the tips curl forward in their own planes, out of
+//! the plates' reach along the rail, and an abduction-locked hand's index and ring fingers
+//! never come within the tong's span). In the lock step (`launch_configs/sim/tasks/H2.toml`; 1
+//! mm of glove noise, moved starts) the script cleared the three bumps for seeds 1–20 with both
+//! hand models and held-out seeds 501–540 with the manufacturer's; with orca_5, orca_3 and
+//! orca_2 (abduction locked) it and 77 variants a person might try (fist, cylinder grasp,
+//! pinches of the index, middle or ring finger, relaxed, at 50–100 %; the wrist 1 cm off; twice
+//! as slow or fast; the old H1–H3 scripts) cleared none (seeds 1–5, both hand models). The
+//! carriage, its rear bar and the bumps' places are H1's; the bumps are wider across the rail,
+//! for the shoe is carried across with the tong.
 //!
 //! H4/H5, changed from the first model (a plain rod along world y on two U-supports, 8 cm up,
 //! in front of the hand): with the arm fixed at its start pose nothing of the hand reaches
@@ -161,6 +192,34 @@ const ROD_SUPPORT_X: [f64; 2] = [0.40, 0.58];
 /// The rod's front end ahead of the rail line (world x 0.5 at the start), m.
 const ROD_FRONT: f64 = 0.12;
 
+/// H2's tong (see the module docs), from the hinge's start (world x, y) and above the table,
+/// m: the prong's face against the index finger's inner side and the paddle's face against
+/// the ring finger's inner side, their span across the middle finger at rest, and the
+/// plates' extent (along the rail, from the hinge; up, over the hanging fingertips).
+const TONG_PRONG_FACE_Y: f64 = -0.02;
+const TONG_SPAN: f64 = 0.058;
+const TONG_PLATE_X: [f64; 2] = [-0.052, 0.006];
+const TONG_PLATE_Z: [f64; 2] = [0.066, 0.094];
+/// The plates' half thickness, m.
+const TONG_PLATE_HALF_T: f64 = 0.001;
+/// The lever's hinge (about world x) under the paddle, above the table, m.
+const TONG_HINGE_Z: f64 = 0.055;
+/// The shoe across the rail from the lever's hinge, m (the lever's arm): a push of the
+/// paddle's top by d turns the lever by d / 0.039 rad and lifts the shoe by about
+/// 0.08 m × that.
+const TONG_SHOE_Y: f64 = 0.08;
+/// The lever's travel, rad.
+const TONG_LEVER_MAX: f64 = 0.45;
+/// The tong's travel across the rail either way, m.
+const TONG_SLIDE: f64 = 0.018;
+/// The friction of the tong's slide across the rail, N: far less than the shoe's weight holds
+/// the paddle with (some 0.2 N at its top), so that one finger alone slides the tong.
+const TONG_SLIDE_FRICTION: f64 = 0.02;
+/// The bumps' half width across the rail under H2's shoe, m.
+const TONG_TRACK_HALF_W: f64 = 0.04;
+/// The paddle's hinge across the rail from the rail's origin (world y), m.
+const TONG_HINGE_Y: f64 = TONG_PRONG_FACE_Y + TONG_SPAN - TONG_PLATE_HALF_T;
+
 /// Which tool's task the rail stands for: only the number of bumps differs (the tools' own
 /// shapes are not modelled; the hand works the trigger, see the module docs).
 #[derive(Debug, Clone, Copy)]
@@ -181,6 +240,15 @@ impl RailGrip {
             RailGrip::Syringe => 4,
         }
     }
+
+    /// The bumps' track across the rail: its centre from the hinge (world y) and its half
+    /// width, m (wide enough for wherever the shoe is carried across).
+    fn track(self) -> (f64, f64) {
+        match self {
+            RailGrip::Chopsticks => (TONG_HINGE_Y + TONG_SHOE_Y, TONG_TRACK_HALF_W),
+            RailGrip::Scissors | RailGrip::Syringe => (SHOE_FROM_HINGE[1], BUMP_HALF[1]),
+        }
+    }
 }
 
 /// Bump `k`'s centre along world x from the hinge's start, m (behind the shoe).
@@ -199,7 +267,7 @@ fn clear_mark(k: usize) -> f64 {
 pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     let n = grip.bumps();
     let travel = clear_mark(n - 1) + RUN_OUT;
-    let track_y = SHOE_FROM_HINGE[1];
+    let (track_y, track_half_w) = grip.track();
     let floor_front = SHOE_FROM_HINGE[0] + SHOE_HALF[0] + 0.02;
     let floor_len = floor_front - bump_x(n - 1) + 0.02;
     let mut bodies = format!(
@@ -208,17 +276,20 @@ pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
     );
     bodies.push_str(&format!(
         "      <geom name=\"rail_floor\" class=\"pomdar_fixture\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n",
-        nums(&[floor_len / 2.0, 0.02, FLOOR_TOP / 2.0]),
+        nums(&[floor_len / 2.0, track_half_w + 0.008, FLOOR_TOP / 2.0]),
         nums(&[floor_front - floor_len / 2.0, track_y, FLOOR_TOP / 2.0])
     ));
     for k in 0..n {
         bodies.push_str(&format!(
             "      <geom name=\"bump_{k}\" class=\"pomdar_fixture\" type=\"box\" size=\"{}\" pos=\"{}\"/>\n",
-            nums(&BUMP_HALF),
+            nums(&[BUMP_HALF[0], track_half_w, BUMP_HALF[2]]),
             nums(&[bump_x(k), track_y, FLOOR_TOP + BUMP_HALF[2]])
         ));
     }
-    bodies.push_str(&carriage_body(travel));
+    bodies.push_str(&match grip {
+        RailGrip::Chopsticks => tong_carriage_body(travel),
+        RailGrip::Scissors | RailGrip::Syringe => carriage_body(travel),
+    });
     bodies.push_str("    </body>\n");
     Scaffold {
         bodies,
@@ -276,6 +347,67 @@ fn carriage_body(travel: f64) -> String {
         pin = nums(&[shoe_x, 0.0, shoe_z, shoe_x, shoe_y, shoe_z]),
         shoe = nums(&SHOE_HALF),
         shoe_pos = nums(&[shoe_x, shoe_y, shoe_z]),
+    )
+}
+
+/// H2's carriage: the axle and the rear bar as H1's, and the tong across the middle finger,
+/// sliding freely across the rail: its prong stands beside the index finger's inner side, and
+/// its lever, hinged about world x under the ring finger, carries the paddle beside the ring
+/// finger's inner side and, on its arm across the rail, the shoe. The index and ring fingers
+/// closing sideways onto one another squeeze the tong: the prong's slide stops against the
+/// index finger, the ring finger turns the lever and lifts the shoe.
+fn tong_carriage_body(travel: f64) -> String {
+    let [x0, x1] = TONG_PLATE_X;
+    let [z0, z1] = TONG_PLATE_Z;
+    let plate_half = [(x1 - x0) / 2.0, TONG_PLATE_HALF_T, (z1 - z0) / 2.0];
+    let plate_x = (x0 + x1) / 2.0;
+    let plate_z = (z0 + z1) / 2.0;
+    let [rear_x, rear_z] = REAR_BAR;
+    let rear_y0 = -REAR_BAR_HALF_W - 0.005;
+    let shoe_x = SHOE_FROM_HINGE[0];
+    let shoe_z = FLOOR_TOP + SHOE_CLEAR + SHOE_HALF[2] - TONG_HINGE_Z;
+    let prong_y = TONG_PRONG_FACE_Y + TONG_PLATE_HALF_T;
+    format!(
+        r#"      <body name="carriage" pos="0 0 0">
+        <joint name="carriage_slide" class="pomdar_object" type="slide" axis="-1 0 0" range="0 {travel}" damping="0.3" frictionloss="{friction}"/>
+        <geom name="carriage_axle" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{axle}" size="0.003" mass="0.005"/>
+        <geom name="carriage_rear_bar" class="pomdar_object" type="capsule" fromto="{rear}" size="0.004" mass="0.005"/>
+        <body name="tong">
+          <joint name="tong_slide" class="pomdar_object" type="slide" axis="0 1 0" range="{slide_lo} {slide}" damping="0.05" frictionloss="{slide_friction}"/>
+          <geom name="tong_prong" class="pomdar_object" type="box" size="{plate}" pos="{prong_pos}" mass="0.003"/>
+          <geom name="tong_bridge" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{bridge}" size="0.002" mass="0.002"/>
+          <body name="tong_lever" pos="{hinge}">
+            <joint name="tong_hinge" class="pomdar_object" type="hinge" axis="1 0 0" range="0 {lever_max}" stiffness="0.002" springref="0" damping="0.002"/>
+            <geom name="tong_paddle" class="pomdar_object" type="box" size="{plate}" pos="{paddle_pos}" mass="0.003"/>
+            <geom name="tong_arm" class="pomdar_object" contype="0" conaffinity="0" type="capsule" fromto="{arm}" size="0.003" mass="0.003"/>
+            <geom name="carriage_shoe" class="pomdar_object" type="box" size="{shoe}" pos="{shoe_pos}" mass="0.01"/>
+          </body>
+        </body>
+      </body>
+"#,
+        travel = num(travel),
+        friction = num(CARRIAGE_FRICTION),
+        axle = nums(&[shoe_x, -0.02, 0.03, rear_x, -0.02, rear_z]),
+        rear = nums(&[
+            rear_x,
+            rear_y0,
+            rear_z,
+            rear_x,
+            rear_y0 + 2.0 * REAR_BAR_HALF_W,
+            rear_z
+        ]),
+        slide_lo = num(-TONG_SLIDE),
+        slide = num(TONG_SLIDE),
+        slide_friction = num(TONG_SLIDE_FRICTION),
+        plate = nums(&plate_half),
+        prong_pos = nums(&[plate_x, prong_y, plate_z]),
+        bridge = nums(&[plate_x, prong_y, z0, plate_x, TONG_HINGE_Y, TONG_HINGE_Z]),
+        hinge = nums(&[0.0, TONG_HINGE_Y, TONG_HINGE_Z]),
+        lever_max = num(TONG_LEVER_MAX),
+        paddle_pos = nums(&[plate_x, 0.0, plate_z - TONG_HINGE_Z]),
+        arm = nums(&[plate_x, 0.0, 0.0, shoe_x, TONG_SHOE_Y, shoe_z]),
+        shoe = nums(&SHOE_HALF),
+        shoe_pos = nums(&[shoe_x, TONG_SHOE_Y, shoe_z]),
     )
 }
 
@@ -428,10 +560,27 @@ mod tests {
             assert_eq!(marks.len(), n);
             assert!(marks.windows(2).all(|w| w[1] > w[0]));
             assert!(marks[n - 1] < travel);
-            assert_eq!(named("trigger_hinge").attribute("axis"), Some("0 1 0"));
             // The lever at its stop holds the shoe's bottom over the bumps' tops.
-            let lift = -SHOE_FROM_HINGE[0] * LEVER_MAX.sin();
-            assert!(SHOE_CLEAR + lift > 2.0 * BUMP_HALF[2] + 0.005, "{lift}");
+            let (hinge, axis, lift) = match grip {
+                RailGrip::Scissors | RailGrip::Syringe => (
+                    "trigger_hinge",
+                    "0 1 0",
+                    -SHOE_FROM_HINGE[0] * LEVER_MAX.sin(),
+                ),
+                RailGrip::Chopsticks => {
+                    let drop = TONG_HINGE_Z - FLOOR_TOP - SHOE_CLEAR - SHOE_HALF[2];
+                    (
+                        "tong_hinge",
+                        "1 0 0",
+                        TONG_SHOE_Y * TONG_LEVER_MAX.sin() - drop * (1.0 - TONG_LEVER_MAX.cos()),
+                    )
+                }
+            };
+            assert_eq!(named(hinge).attribute("axis"), Some(axis));
+            assert!(
+                SHOE_CLEAR + lift > 2.0 * BUMP_HALF[2] + 0.005,
+                "{grip:?} {lift}"
+            );
             // The dropped shoe meets the first bump behind it (the carriage travels along
             // −x), and each mark puts its front past the bump it counts.
             let shoe_back = SHOE_FROM_HINGE[0] - SHOE_HALF[0];
@@ -449,5 +598,28 @@ mod tests {
             assert!(rear + START_OFFSET_MAX_M < 0.437, "{rear}");
             assert!(0.45 - 0.25 > marks[n - 1] + 0.02, "{}", marks[n - 1]);
         }
+    }
+
+    #[test]
+    fn the_tong_is_squeezed_only_by_fingers_closing_together_sideways() {
+        let xml = format!("<w>{}</w>", rail_scaffold(RailGrip::Chopsticks).bodies);
+        let doc = roxmltree::Document::parse(&xml).unwrap();
+        let named = |name: &str| {
+            doc.descendants()
+                .find(|node| node.attribute("name") == Some(name))
+                .unwrap()
+        };
+        assert_eq!(named("tong_slide").attribute("axis"), Some("0 1 0"));
+        // Measured on both hand models, 6.6-9.4 cm up: the index and ring fingers' inner sides
+        // 40-43 mm apart in the open hand (fingers together), 66-73 mm spread, 78-86 mm at
+        // zero abduction. The span lies between, with room to turn the lever, and the tong's
+        // slide carries it wherever the start is moved (5 mm, and 6 mm across a turned rail's
+        // 12 cm).
+        const { assert!(TONG_SPAN > 0.043 + 0.01 && TONG_SPAN < 0.066 - 0.005) };
+        const { assert!(TONG_SLIDE > START_OFFSET_MAX_M + 0.007 + 0.005) };
+        // The paddle's top lies over the hinge: a push across the rail turns the lever.
+        const { assert!(TONG_PLATE_Z[1] - TONG_HINGE_Z > 0.03) };
+        // The bumps span the shoe wherever the tong carries it.
+        const { assert!(TONG_TRACK_HALF_W > TONG_SLIDE + SHOE_HALF[1] + 0.01) };
     }
 }
