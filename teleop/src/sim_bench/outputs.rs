@@ -24,12 +24,7 @@ pub const ITEMS_DIR: &str = "items";
 
 /// Writes `outcome` to `out/items/`.
 pub fn write_item(out: &Path, outcome: &ItemOutcome) -> Result<(), BenchError> {
-    let dir = out.join(ITEMS_DIR);
-    std::fs::create_dir_all(&dir).map_err(|e| BenchError::Write {
-        path: dir.clone(),
-        reason: e.to_string(),
-    })?;
-    let path = dir.join(format!(
+    let path = out.join(ITEMS_DIR).join(format!(
         "{}__{}.json",
         outcome.item.embodiment, outcome.item.task
     ));
@@ -37,8 +32,25 @@ pub fn write_item(out: &Path, outcome: &ItemOutcome) -> Result<(), BenchError> {
     write(&path, text.as_bytes())
 }
 
-fn write(path: &Path, bytes: &[u8]) -> Result<(), BenchError> {
-    write_atomically(path, bytes).map_err(|e| BenchError::Write {
+/// Writes `bytes` to `path` atomically, its folder created first.
+pub fn write(path: &Path, bytes: &[u8]) -> Result<(), BenchError> {
+    let failed = |reason: String| BenchError::Write {
+        path: path.to_path_buf(),
+        reason,
+    };
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| failed(e.to_string()))?;
+    }
+    write_atomically(path, bytes).map_err(|e| failed(e.to_string()))
+}
+
+/// Reads a JSON file this command wrote.
+pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, BenchError> {
+    let text = std::fs::read_to_string(path).map_err(|source| BenchError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    serde_json::from_str(&text).map_err(|e| BenchError::Item {
         path: path.to_path_buf(),
         reason: e.to_string(),
     })
@@ -61,15 +73,7 @@ pub fn read_items(dirs: &[PathBuf]) -> Result<Vec<ItemOutcome>, BenchError> {
             .collect();
         paths.sort();
         for path in paths {
-            let text = std::fs::read_to_string(&path).map_err(|source| BenchError::Read {
-                path: path.clone(),
-                source,
-            })?;
-            let outcome: ItemOutcome =
-                serde_json::from_str(&text).map_err(|e| BenchError::Item {
-                    path: path.clone(),
-                    reason: e.to_string(),
-                })?;
+            let outcome: ItemOutcome = read_json(&path)?;
             if let Some((other, _)) = found.iter().find(|(_, o)| same_item(o, &outcome)) {
                 return Err(BenchError::Item {
                     path,

@@ -13,7 +13,7 @@ use super::bench_run::{BenchRun, run_bench};
 use super::error::BenchError;
 use super::families::{Families, PracticeSource};
 use super::item::ItemSettings;
-use super::outputs::{BenchReport, read_items, write_bench_report};
+use super::outputs::{BenchReport, read_items, read_json, write, write_bench_report};
 use super::{embodiments_with_abduction, merge_shards};
 use crate::hand_source::HandSource;
 use crate::score::score_inputs::ScoringInputs;
@@ -278,18 +278,17 @@ fn example_baseline(
             ));
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| BenchError::Write {
-        path: out.to_path_buf(),
-        reason: e.to_string(),
-    })?;
     let path = out.join(EXAMPLE_BASELINE_FILE);
-    crate::atomic_file::write_atomically(&path, text.as_bytes()).map_err(|e| {
-        BenchError::Write {
-            path: path.clone(),
-            reason: e.to_string(),
-        }
-    })?;
-    scoring::BaselineTable::from_toml_str(&text, &path.display().to_string(), &scoring.catalog)
+    write(&path, text.as_bytes())?;
+    baseline_table(&text, &path, scoring)
+}
+
+fn baseline_table(
+    text: &str,
+    path: &Path,
+    scoring: &ScoringInputs,
+) -> Result<scoring::BaselineTable, BenchError> {
+    scoring::BaselineTable::from_toml_str(text, &path.display().to_string(), &scoring.catalog)
         .map_err(|e| BenchError::Setup(e.to_string()))
 }
 
@@ -304,23 +303,8 @@ fn merge(request: &BenchRequest) -> Result<ExitCode, BenchError> {
             source,
         })?;
         let copy = request.out.join(EXAMPLE_BASELINE_FILE);
-        std::fs::create_dir_all(&request.out).map_err(|e| BenchError::Write {
-            path: request.out.clone(),
-            reason: e.to_string(),
-        })?;
-        crate::atomic_file::write_atomically(&copy, text.as_bytes()).map_err(|e| {
-            BenchError::Write {
-                path: copy.clone(),
-                reason: e.to_string(),
-            }
-        })?;
-        let table = scoring::BaselineTable::from_toml_str(
-            &text,
-            &copy.display().to_string(),
-            &scoring.catalog,
-        )
-        .map_err(|e| BenchError::Setup(e.to_string()))?;
-        scoring.baseline = Some(table);
+        write(&copy, text.as_bytes())?;
+        scoring.baseline = Some(baseline_table(&text, &copy, &scoring)?);
     }
     let scoring = &scoring;
     let report = merge_shards(&request.merge, &request.out, scoring, &settings.header())?;
@@ -393,13 +377,10 @@ fn task_ids(ids: &[String], scoring: &ScoringInputs) -> Result<Vec<String>, Benc
 /// holds another benchmark's results.
 fn resume(out: &Path, settings: &BenchSettings) -> Result<Vec<WorkItem>, BenchError> {
     let path = out.join(SETTINGS_FILE);
-    let Ok(text) = std::fs::read_to_string(&path) else {
+    if !path.is_file() {
         return Ok(Vec::new());
-    };
-    let earlier: BenchSettings = serde_json::from_str(&text).map_err(|e| BenchError::Item {
-        path: path.clone(),
-        reason: e.to_string(),
-    })?;
+    }
+    let earlier: BenchSettings = read_json(&path)?;
     if &earlier != settings {
         return Err(BenchError::Setup(format!(
             "{} holds the results of a benchmark with other settings ({}): choose another --out",
@@ -421,15 +402,7 @@ fn shard_settings(dirs: &[PathBuf]) -> Result<BenchSettings, BenchError> {
     let mut found: Option<(PathBuf, BenchSettings)> = None;
     for dir in dirs {
         let path = dir.join(SETTINGS_FILE);
-        let text = std::fs::read_to_string(&path).map_err(|source| BenchError::Read {
-            path: path.clone(),
-            source,
-        })?;
-        let settings: BenchSettings =
-            serde_json::from_str(&text).map_err(|e| BenchError::Item {
-                path: path.clone(),
-                reason: e.to_string(),
-            })?;
+        let settings: BenchSettings = read_json(&path)?;
         if let Some((first, earlier)) = &found {
             if earlier != &settings {
                 return Err(BenchError::Setup(format!(
@@ -448,16 +421,8 @@ fn shard_settings(dirs: &[PathBuf]) -> Result<BenchSettings, BenchError> {
 }
 
 fn write_settings(out: &Path, settings: &BenchSettings) -> Result<(), BenchError> {
-    std::fs::create_dir_all(out).map_err(|e| BenchError::Write {
-        path: out.to_path_buf(),
-        reason: e.to_string(),
-    })?;
-    let path = out.join(SETTINGS_FILE);
     let text = serde_json::to_string_pretty(settings).unwrap_or_default();
-    crate::atomic_file::write_atomically(&path, text.as_bytes()).map_err(|e| BenchError::Write {
-        path,
-        reason: e.to_string(),
-    })
+    write(&out.join(SETTINGS_FILE), text.as_bytes())
 }
 
 /// The table, the findings, and where the files went.
