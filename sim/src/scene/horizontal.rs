@@ -29,7 +29,7 @@
 //! that the arm's reach back along x (the workspace ends at x = 0.25 m, the start is 0.45)
 //! carries the carriage past the sixth. The three tasks shared the mechanism and differed in
 //! the number of bumps (the tools' shapes are not modelled, and the grip was the script's:
-//! scissor strokes, a pinch, a squeeze); H1 and H3 keep it, H2 was changed again (below).
+//! scissor strokes, a pinch, a squeeze); H1 keeps it, H2 and H3 were changed again (below).
 //!
 //! Measured with MuJoCo 3.17: in the lock step (`launch_configs/sim/tasks/H1.toml`, `H2.toml`,
 //! `H3.toml`; 1 mm of glove noise, moved starts) the three scripts of then cleared every bump
@@ -70,11 +70,33 @@
 //! never come within the tong's span). In the lock step (`launch_configs/sim/tasks/H2.toml`; 1
 //! mm of glove noise, moved starts) the script cleared the three bumps for seeds 1–20 with both
 //! hand models and held-out seeds 501–540 with the manufacturer's; with orca_5, orca_3 and
-//! orca_2 (abduction locked) it and 77 variants a person might try (fist, cylinder grasp,
+//! orca_2 (abduction locked) it and 87 variants a person might try (fist, cylinder grasp,
 //! pinches of the index, middle or ring finger, relaxed, at 50–100 %; the wrist 1 cm off; twice
-//! as slow or fast; the old H1–H3 scripts) cleared none (seeds 1–5, both hand models). The
-//! carriage, its rear bar and the bumps' places are H1's; the bumps are wider across the rail,
-//! for the shoe is carried across with the tong.
+//! as slow or fast; the old H1–H3 scripts, and H1's six strokes with a fist, a cylinder grasp
+//! or a pinch) cleared none (seeds 1–5, both hand models). The carriage, its rear bar and the
+//! bumps' places are H1's; the bumps are wider across the rail, for the shoe is carried across
+//! with the tong.
+//!
+//! H3, changed with H2: the same tong with four bumps — the squeeze needs finger abduction too.
+//! Thumb abduction (the paper's reading of a syringe squeezed) was tried and not taken. The
+//! retargeter moves thumb_abd only in the little-finger pinch (−0.27 rad, thumb_mcp at its
+//! 0.873 limit; |thumb_abd| ≤ 0.04 in every other named pose), and thumb_abd's axis lies 20°
+//! from thumb_mcp's, so abduction carries the thumb's swing on past the limit: the abducted
+//! thumb's tip ends 21 mm beyond anywhere an abduction-locked thumb reaches, its distal segment
+//! 1.1 mm from the little finger's (8.6 mm or more over a grid of abduction-locked poses; the
+//! project's hand's capsules). But the place lies in front of the palm 18 cm up where an
+//! abduction-locked hand's little finger reaches too (within 4 mm) and its ring finger, splayed
+//! by zero abduction, sweeps through. A syringe there (a flange and a plunger on a lever, 6 mm
+//! across, between the two tips), in the lock step: sliding level across the rail, the squeeze
+//! bent the manufacturer's hand's wrist 0.09 rad and slipped off (0 of seeds 1–20); sliding
+//! down its line onto a stop (its weight), 20 of 20 with both hand models, but the plunger then
+//! gave against the stop alone, and orca_5 worked it with strokes of its ring finger (H1's
+//! script with pinch_ring at 70 %: all four bumps for 1 of seeds 1–5, the manufacturer's hand;
+//! fist strokes three). In the lock step (`launch_configs/sim/tasks/H3.toml`: H2's, drawn 15
+//! cm; 1 mm of glove noise, moved starts) the tong cleared the four bumps for seeds 1–20 with
+//! both hand models and held-out seeds 501–540 with the manufacturer's; with orca_5, orca_3 and
+//! orca_2 it and 110 variants (H2's, and the little-finger pinch) cleared none (seeds 1–5, both
+//! hand models).
 //!
 //! H4/H5, changed from the first model (a plain rod along world y on two U-supports, 8 cm up,
 //! in front of the hand): with the arm fixed at its start pose nothing of the hand reaches
@@ -220,15 +242,15 @@ const TONG_TRACK_HALF_W: f64 = 0.04;
 /// The paddle's hinge across the rail from the rail's origin (world y), m.
 const TONG_HINGE_Y: f64 = TONG_PRONG_FACE_Y + TONG_SPAN - TONG_PLATE_HALF_T;
 
-/// Which tool's task the rail stands for: only the number of bumps differs (the tools' own
-/// shapes are not modelled; the hand works the trigger, see the module docs).
+/// Which tool's task the rail stands for: the number of bumps and the trigger (H1's paddle,
+/// H2's and H3's tong; the tools' own shapes are not modelled, see the module docs).
 #[derive(Debug, Clone, Copy)]
 pub(super) enum RailGrip {
     /// H1: scissors (6 bumps).
     Scissors,
-    /// H2: chopsticks (3 bumps).
+    /// H2: chopsticks (3 bumps; the tong, see the module docs).
     Chopsticks,
-    /// H3: a syringe squeezed (4 bumps).
+    /// H3: a syringe squeezed (4 bumps; H2's tong, see the module docs).
     Syringe,
 }
 
@@ -245,8 +267,10 @@ impl RailGrip {
     /// width, m (wide enough for wherever the shoe is carried across).
     fn track(self) -> (f64, f64) {
         match self {
-            RailGrip::Chopsticks => (TONG_HINGE_Y + TONG_SHOE_Y, TONG_TRACK_HALF_W),
-            RailGrip::Scissors | RailGrip::Syringe => (SHOE_FROM_HINGE[1], BUMP_HALF[1]),
+            RailGrip::Chopsticks | RailGrip::Syringe => {
+                (TONG_HINGE_Y + TONG_SHOE_Y, TONG_TRACK_HALF_W)
+            }
+            RailGrip::Scissors => (SHOE_FROM_HINGE[1], BUMP_HALF[1]),
         }
     }
 }
@@ -287,8 +311,8 @@ pub(super) fn rail_scaffold(grip: RailGrip) -> Scaffold {
         ));
     }
     bodies.push_str(&match grip {
-        RailGrip::Chopsticks => tong_carriage_body(travel),
-        RailGrip::Scissors | RailGrip::Syringe => carriage_body(travel),
+        RailGrip::Chopsticks | RailGrip::Syringe => tong_carriage_body(travel),
+        RailGrip::Scissors => carriage_body(travel),
     });
     bodies.push_str("    </body>\n");
     Scaffold {
@@ -562,12 +586,12 @@ mod tests {
             assert!(marks[n - 1] < travel);
             // The lever at its stop holds the shoe's bottom over the bumps' tops.
             let (hinge, axis, lift) = match grip {
-                RailGrip::Scissors | RailGrip::Syringe => (
+                RailGrip::Scissors => (
                     "trigger_hinge",
                     "0 1 0",
                     -SHOE_FROM_HINGE[0] * LEVER_MAX.sin(),
                 ),
-                RailGrip::Chopsticks => {
+                RailGrip::Chopsticks | RailGrip::Syringe => {
                     let drop = TONG_HINGE_Z - FLOOR_TOP - SHOE_CLEAR - SHOE_HALF[2];
                     (
                         "tong_hinge",
