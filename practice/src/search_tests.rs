@@ -76,19 +76,24 @@ fn the_same_seed_and_scores_give_the_same_search() {
 }
 
 #[test]
-fn confirmation_runs_retry_the_best_and_the_answer_is_the_best_mean() {
+fn confirmation_retries_the_start_point_and_the_best_other_and_answers_the_best_mean() {
     let (search, _) = run(24, 2);
     let confirmed: Vec<&Tried> = search
         .tried()
         .iter()
-        .filter(|t| t.scores.len() == 5)
+        .filter(|t| t.scores.len() == 7)
         .collect();
     assert_eq!(
         confirmed.len(),
-        3,
-        "half of 24 confirms the best three, four more trials each"
+        2,
+        "half of 24 confirms two candidates, six more trials each"
+    );
+    assert_eq!(
+        confirmed[0].candidate,
+        search.tried()[0].candidate,
+        "the start point is one"
     );
     let best = search.best().unwrap();
-    assert_eq!(best.scores.len(), 5, "the answer is a confirmed candidate");
+    assert_eq!(best.scores.len(), 7, "the answer is a confirmed candidate");
     assert!(confirmed.iter().all(|t| t.mean() <= best.mean()));
 }
