@@ -268,7 +268,7 @@ fn check_options(options: &SceneOptions) -> Result<(), SceneError> {
 fn scaffold_for(id: &str, start: &StartPerturbation) -> Option<Scaffold> {
     use continuous::Rotor;
     use grasp::Object;
-    use horizontal::RailGrip;
+    use horizontal::{RailGrip, RodStroke};
     use vertical::Handle;
     Some(match id {
         "V1" => placed(vertical::scaffold(Handle::Wheel), start),
@@ -277,7 +277,8 @@ fn scaffold_for(id: &str, start: &StartPerturbation) -> Option<Scaffold> {
         "H1" => placed(horizontal::rail_scaffold(RailGrip::Scissors), start),
         "H2" => placed(horizontal::rail_scaffold(RailGrip::Chopsticks), start),
         "H3" => placed(horizontal::rail_scaffold(RailGrip::Syringe), start),
-        "H4" | "H5" => placed(horizontal::rod_scaffold(), start),
+        "H4" => placed(horizontal::rod_scaffold(RodStroke::Palmar), start),
+        "H5" => placed(horizontal::rod_scaffold(RodStroke::Pinch), start),
         "C1" => placed(continuous::rotor_scaffold(Rotor::Bolt), start),
         "C2" => placed(continuous::rotor_scaffold(Rotor::Stick), start),
         "C3" => placed(continuous::rotor_scaffold(Rotor::Wheel), start),

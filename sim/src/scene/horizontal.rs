@@ -107,7 +107,7 @@
 //! fingers sweep, 4 cm up under the hanging middle finger, and carries a row of flaps 3 cm
 //! apart (the first two 4.5 cm), 18 mm wide and 12 cm high, each hinged on the rod's top about
 //! world y. A flap stands against its stop when the finger's pad pushes it forward, so closing
-//! the hand (a palmar grasp, H4, or the middle finger's pinch, H5) carries the rod some 5 cm
+//! the hand (a palmar grasp, H4) carries the rod some 5 cm
 //! along +x; a flap the returning finger meets from the front folds back under it (a weak
 //! spring stands it up again), so opening the hand leaves the rod where it is, held by its
 //! friction. Each stroke thus advances the rod by about one pitch or more (the rod, 60 g held
@@ -120,7 +120,28 @@
 //! the rod, pitches 25–35 mm; fixed pegs instead of flaps never gained, since the returning
 //! finger pushed the next peg back as far as the closing one had pushed its own. In the lock
 //! step (`launch_configs/sim/tasks/H4.toml`, `H5.toml`; 1 mm of glove noise, moved starts) both
-//! scripts did it for seeds 1–20 and held-out seeds 501–600 with both hand models.
+//! scripts did it for seeds 1–20 and held-out seeds 501–600 with both hand models — H5 then in
+//! this same placement, stroked by the middle finger's pinch.
+//!
+//! H5, changed again (`RodStroke::Pinch`): the paper's pinch is the thumb–index pinch, done
+//! alike by every embodiment, and orca_2 (thumb and index only) has no middle finger to stroke
+//! with; the index finger hangs 4 cm to the side of H4's rod line, and a flap wide enough to
+//! reach it from there was held folded by the resting middle finger. H5's rod now lies under
+//! the index finger (`PINCH_ROD_Y`), with flaps 24 mm wide, clear of the middle finger, and
+//! 12.5 mm apart (`PINCH_FLAP_PITCH`: at 30 mm the shorter index stroke stalled whenever a
+//! stroke left the next flap where the returning tip folds it under the resting finger); the
+//! rod, its travel and friction, the flaps' height and spring and the first flap's place are
+//! H4's. Where the index hangs depends on the embodiment: the open hand with every joint free
+//! holds index_abd at its limit, an abduction-locked hand (orca_5, orca_3, orca_2) at zero, 2 cm
+//! further out; the rod's line lies where both overlap (the bands quoted at `PINCH_ROD_Y`,
+//! `PINCH_FLAP_HALF_W` and `PINCH_FLAP_PITCH` were measured with one flap fewer at the rod's
+//! back end, which only the end of the travel reaches). Measured with MuJoCo 3.17 in the lock
+//! step (`launch_configs/sim/tasks/H5.toml`, `pinch_index` strokes; 1 mm of glove noise, moved
+//! starts) the one script did the full 200 mm for seeds 1–20 with every embodiment: orca_full,
+//! orca_5, orca_3 and orca_2 each 20 of 20 with the manufacturer's hand, and 20, 20, 19 and 20
+//! of 20 with the project's (orca_3's one miss stalled at 66 mm); held-out seeds 501–520 with
+//! orca_full and orca_2, the manufacturer's hand: 20 of 20 each. H4's scene is unchanged (the
+//! same MJCF), and its script still did it for seeds 1–20 with both hand models.
 
 use scoring::PhysicsMapping;
 
@@ -176,14 +197,43 @@ const REAR_BAR_HALF_W: f64 = 0.055;
 /// push on the paddle lifts the shoe before it moves the carriage.
 const CARRIAGE_FRICTION: f64 = 0.3;
 
-/// The rod's axis: its line across the table (world y) and its height, m. The rod lies along
-/// world x, under the middle finger of the hand hanging at the arm's start pose (its tip at
+/// The rod's axis: its line across the table (world y; H4's, H5's is `PINCH_ROD_Y`) and its
+/// height, m. The rod lies along world x, under the middle finger of the hand hanging at the arm's start pose (its tip at
 /// about y = −3 mm), with its flaps' centre 3 mm to the index side of it: the band in which
 /// the strokes carried the rod the full 200 mm (replayed with MuJoCo, both hand models) was
 /// y = −12 … 0 mm; 4 mm further to either side the flap met the middle finger's rounded
 /// edge or the ring finger, and the strokes stalled.
 const ROD_Y: f64 = -0.006;
 const ROD_Z: f64 = 0.04;
+/// H5's rod line (world y), m: under the index finger, whose tip hangs 4 cm to the index side
+/// of the middle finger's, at y = −52 … −27 mm with all joints free (the open hand holds
+/// index_abd at its limit) and −71 … −41 mm with abduction locked at zero (orca_5, orca_3,
+/// orca_2; measured on the manufacturer's hand 8–12 cm up; the project's within 3 mm); the rod
+/// lies where both overlap. The band (lock step, 10 seeds each of orca_full and orca_2 with
+/// both hand models): y = −47 … −35 mm did the full 200 mm for 10 of 10 but one seed (orca_2,
+/// the project's hand, at −35); at −49 mm the project's hand fell to 7 of 10 (orca_full), at
+/// −33 mm orca_2 to 9 of 10 with both hands. The scene takes the middle.
+const PINCH_ROD_Y: f64 = -0.041;
+/// H5's flaps' half width across the rod, m: 24 mm wide, the flaps span y = −53 … −29 mm,
+/// 16 mm clear of the resting middle finger's side (y ≈ −13 mm), so that it never holds one
+/// folded. Flaps 16 mm wide did as well (10 of 10 seeds, orca_full and orca_2, both hand
+/// models); 32 mm wide did at a 15 mm pitch.
+const PINCH_FLAP_HALF_W: f64 = 0.012;
+/// H5's distance between flaps along the rod, m. The index finger's stroke is shorter than the
+/// middle finger's (its pad leaves a 12 cm flap some 4–5 cm on), and a flap standing 2–5 cm in
+/// front of its resting pad is struck from above by the returning tip, folded back and held
+/// down under the resting finger until the next pinch has passed it. At H4's 30 mm that
+/// stalled the rod whenever a stroke left the next flap there (orca_full, seeds 1–20, the rod
+/// at y = −46 mm: 14 of 20 with the manufacturer's hand, 9 with the project's; a 1 s rest
+/// between strokes instead of 0.2 s did not help, 15 and 3 of 20, nor flap springs 2–5 times as
+/// stiff; flaps 14 cm high only partly, 10 and 8 of 10 seeds). At 12.5 mm a flap stands within the pad's reach whatever a stroke leaves (15 and
+/// 17.5 mm also did, with the project's hand 18–19 of 20 for orca_5). The
+/// second flap stands `FLAP_FIRST_GAP` plus this pitch behind the first, so at the start it
+/// stands in the resting index finger and is folded there when the scene loads (the rod kicked
+/// 1–5 mm forward in the first 0.05 s, seeds 1–3, before the first pinch); with the row set back so that
+/// the second flap stood 5 mm behind the finger, as H4's does, orca_5 did it for only 11 of 20
+/// seeds and orca_3 for 16 (the manufacturer's hand).
+const PINCH_FLAP_PITCH: f64 = 0.0125;
 /// The rod's radius, m.
 const ROD_RADIUS: f64 = 0.006;
 /// The rod's travel, m: 200 mm (the paper) plus 10 mm so that the end stop is not needed.
@@ -435,27 +485,64 @@ fn tong_carriage_body(travel: f64) -> String {
     )
 }
 
-/// The rod in two channels, sliding along world x, with its row of sprung flaps.
-pub(super) fn rod_scaffold() -> Scaffold {
+/// Which stroke feeds the rod: H4's and H5's scene, placed under the finger that strokes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum RodStroke {
+    /// H4: a palmar grasp; the rod under the middle finger.
+    Palmar,
+    /// H5: the thumb–index pinch; the rod under the index finger, its flaps closer together.
+    Pinch,
+}
+
+impl RodStroke {
+    /// The rod's line across the table (world y) at the start, m.
+    fn rod_y(self) -> f64 {
+        match self {
+            RodStroke::Palmar => ROD_Y,
+            RodStroke::Pinch => PINCH_ROD_Y,
+        }
+    }
+
+    /// A flap's half width across the rod, m.
+    fn flap_half_w(self) -> f64 {
+        match self {
+            RodStroke::Palmar => FLAP_HALF[1],
+            RodStroke::Pinch => PINCH_FLAP_HALF_W,
+        }
+    }
+
+    /// The distance between flaps along the rod, m.
+    fn flap_pitch(self) -> f64 {
+        match self {
+            RodStroke::Palmar => FLAP_PITCH,
+            RodStroke::Pinch => PINCH_FLAP_PITCH,
+        }
+    }
+}
+
+/// The rod in two channels, sliding along world x, with its row of sprung flaps, placed for
+/// `stroke`.
+pub(super) fn rod_scaffold(stroke: RodStroke) -> Scaffold {
+    let rod_y = stroke.rod_y();
     let mut bodies = String::from("    <body name=\"rod_supports\" pos=\"0 0 0\">\n");
     for (k, x) in ROD_SUPPORT_X.iter().enumerate() {
-        bodies.push_str(&channel(k, *x));
+        bodies.push_str(&channel(k, *x, rod_y));
     }
     bodies.push_str("    </body>\n");
-    let flaps = flap_count();
-    let back = flap_x(flaps - 1) - 0.01;
+    let flaps = flap_count(stroke);
+    let back = flap_x(stroke, flaps - 1) - 0.01;
     bodies.push_str(&format!(
         r#"    <body name="rod" pos="{pos}">
       <joint name="rod_slide" class="pomdar_object" type="slide" axis="1 0 0" range="0 {travel}" damping="0.5" frictionloss="0.2"/>
       <geom name="rod" class="pomdar_object" type="capsule" fromto="{back} 0 0 {front} 0 0" size="{r}" mass="0.06"/>
 {flaps}    </body>
 "#,
-        pos = nums(&[RAIL_X, ROD_Y, ROD_Z]),
+        pos = nums(&[RAIL_X, rod_y, ROD_Z]),
         travel = num(ROD_TRAVEL),
         back = num(back),
         front = num(ROD_FRONT),
         r = num(ROD_RADIUS),
-        flaps = (0..flaps).map(flap).collect::<String>(),
+        flaps = (0..flaps).map(|k| flap(stroke, k)).collect::<String>(),
     ));
     Scaffold {
         bodies,
@@ -464,14 +551,23 @@ pub(super) fn rod_scaffold() -> Scaffold {
 }
 
 /// Enough flaps that one stands in front of the hanging finger over the whole travel.
-fn flap_count() -> usize {
-    ((ROD_TRAVEL + FLAP_PITCH) / FLAP_PITCH).round() as usize + 1
+fn flap_count(stroke: RodStroke) -> usize {
+    match stroke {
+        RodStroke::Palmar => ((ROD_TRAVEL + FLAP_PITCH) / FLAP_PITCH).round() as usize + 1,
+        // One more at H5's short pitch, for the first gap.
+        RodStroke::Pinch => {
+            let pitch = PINCH_FLAP_PITCH;
+            ((ROD_TRAVEL + FLAP_FIRST_GAP + pitch) / pitch).ceil() as usize + 1
+        }
+    }
 }
 
-/// Flap `k`'s place along the rod, from the rod body's origin, m.
-fn flap_x(k: usize) -> f64 {
+/// Flap `k`'s place along the rod, from the rod body's origin, m: the second one
+/// `FLAP_FIRST_GAP` more than the stroke's pitch behind the first, the rest the stroke's pitch
+/// apart.
+fn flap_x(stroke: RodStroke, k: usize) -> f64 {
     let gap = if k == 0 { 0.0 } else { FLAP_FIRST_GAP };
-    FLAP_FIRST_X - RAIL_X - gap - k as f64 * FLAP_PITCH
+    FLAP_FIRST_X - RAIL_X - gap - k as f64 * stroke.flap_pitch()
 }
 
 /// Flap `k` (the first in front of the finger, the others behind it), hinged on the rod's
@@ -479,8 +575,8 @@ fn flap_x(k: usize) -> f64 {
 /// from the front. Flaps touch the hand and the fixtures but not one another (contype 5 shares
 /// a bit with both hand models' and the fixtures' conaffinity; conaffinity 0): a folded flap
 /// lies in a slot in the rod.
-fn flap(k: usize) -> String {
-    let x = flap_x(k);
+fn flap(stroke: RodStroke, k: usize) -> String {
+    let x = flap_x(stroke, k);
     let hinge_z = ROD_RADIUS / 2.0;
     let half_height = (FLAP_TOP - ROD_Z - hinge_z) / 2.0;
     format!(
@@ -492,14 +588,14 @@ fn flap(k: usize) -> String {
         pos = nums(&[x, 0.0, hinge_z]),
         fold = num(-FLAP_FOLD),
         spring = num(FLAP_SPRING),
-        size = nums(&[FLAP_HALF[0], FLAP_HALF[1], half_height]),
+        size = nums(&[FLAP_HALF[0], stroke.flap_half_w(), half_height]),
         half = num(half_height),
     )
 }
 
-/// A post with a channel under the rod (1 mm clear of it), at world `x`; its walls end below
-/// the rod's top so that the flaps pass over them.
-fn channel(k: usize, x: f64) -> String {
+/// A post with a channel under the rod (1 mm clear of it), at world `x` on the rod's line
+/// `rod_y`; its walls end below the rod's top so that the flaps pass over them.
+fn channel(k: usize, x: f64, rod_y: f64) -> String {
     let floor = ROD_Z - ROD_RADIUS - 0.001;
     let wall_y = ROD_RADIUS + 0.001 + 0.003;
     let wall_half = ROD_RADIUS / 2.0;
@@ -511,10 +607,10 @@ fn channel(k: usize, x: f64) -> String {
         ),
         k = k,
         post = nums(&[0.008, 0.012, floor / 2.0]),
-        post_pos = nums(&[x, ROD_Y, floor / 2.0]),
+        post_pos = nums(&[x, rod_y, floor / 2.0]),
         wall = nums(&[0.008, 0.003, wall_half]),
-        wall_a = nums(&[x, ROD_Y + wall_y, floor + wall_half]),
-        wall_b = nums(&[x, ROD_Y - wall_y, floor + wall_half]),
+        wall_a = nums(&[x, rod_y + wall_y, floor + wall_half]),
+        wall_b = nums(&[x, rod_y - wall_y, floor + wall_half]),
     )
 }
 
@@ -529,37 +625,75 @@ mod tests {
 
     #[test]
     fn the_rod_slides_along_x_with_a_flap_in_front_of_the_finger_and_the_next_behind_it() {
-        let xml = format!("<w>{}</w>", rod_scaffold().bodies);
-        let doc = roxmltree::Document::parse(&xml).unwrap();
-        let slide = doc
-            .descendants()
-            .find(|n| n.attribute("name") == Some("rod_slide"))
-            .unwrap();
-        assert_eq!(slide.attribute("axis"), Some("1 0 0"));
-        assert!(floats(slide.attribute("range").unwrap())[1] > 0.2);
-        let flaps: Vec<_> = doc
-            .descendants()
-            .filter(|n| n.tag_name().name() == "geom")
-            .filter(|n| n.attribute("name").is_some_and(|v| v.starts_with("flap_")))
-            .collect();
-        assert_eq!(flaps.len(), flap_count());
-        for geom in &flaps {
-            // Flaps touch the hand and the fixtures, not one another.
-            assert_eq!(geom.attribute("contype"), Some("5"));
-            assert_eq!(geom.attribute("conaffinity"), Some("0"));
+        for stroke in [RodStroke::Palmar, RodStroke::Pinch] {
+            let xml = format!("<w>{}</w>", rod_scaffold(stroke).bodies);
+            let doc = roxmltree::Document::parse(&xml).unwrap();
+            let named = |name: &str| {
+                doc.descendants()
+                    .find(|n| n.attribute("name") == Some(name))
+                    .unwrap()
+            };
+            let slide = named("rod_slide");
+            assert_eq!(slide.attribute("axis"), Some("1 0 0"));
+            assert!(floats(slide.attribute("range").unwrap())[1] > 0.2);
+            assert_eq!(
+                floats(named("rod").attribute("pos").unwrap())[1],
+                stroke.rod_y()
+            );
+            let flaps: Vec<_> = doc
+                .descendants()
+                .filter(|n| n.tag_name().name() == "geom")
+                .filter(|n| n.attribute("name").is_some_and(|v| v.starts_with("flap_")))
+                .collect();
+            assert_eq!(flaps.len(), flap_count(stroke));
+            for geom in &flaps {
+                // Flaps touch the hand and the fixtures, not one another.
+                assert_eq!(geom.attribute("contype"), Some("5"));
+                assert_eq!(geom.attribute("conaffinity"), Some("0"));
+                assert_eq!(
+                    floats(geom.attribute("size").unwrap())[1],
+                    stroke.flap_half_w()
+                );
+            }
+            // World x at the start: the first flap in front of the hanging finger's pad
+            // (x ≈ 0.462), the second 5 mm or more behind its back (x ≈ 0.437) after a 5 mm
+            // move (H4; H5's second flap stands in the resting index finger, see
+            // `PINCH_FLAP_PITCH`, its third behind it).
+            let first = RAIL_X + flap_x(stroke, 0);
+            let second = RAIL_X + flap_x(stroke, 1);
+            assert!(first - START_OFFSET_MAX_M > 0.462, "{stroke:?} {first}");
+            match stroke {
+                RodStroke::Palmar => assert!(
+                    second + START_OFFSET_MAX_M <= 0.437 - 0.005 + 1e-9,
+                    "{second}"
+                ),
+                RodStroke::Pinch => {
+                    assert!(second < 0.462 - START_OFFSET_MAX_M, "{second}");
+                    let third = RAIL_X + flap_x(stroke, 2);
+                    assert!(third + START_OFFSET_MAX_M <= 0.437 + 1e-9, "{third}");
+                }
+            }
+            // Enough flaps that the last is still behind the finger at the end of the travel.
+            let last = RAIL_X + flap_x(stroke, flap_count(stroke) - 1);
+            assert!(last + ROD_TRAVEL < 0.437, "{stroke:?} {last}");
         }
-        // World x at the start: the first flap in front of the hanging middle finger's pad
-        // (x ≈ 0.462), the second 5 mm or more behind its back (x ≈ 0.437) after a 5 mm move.
-        let first = RAIL_X + flap_x(0);
-        let second = RAIL_X + flap_x(1);
-        assert!(first - START_OFFSET_MAX_M > 0.462, "{first}");
+        // H5's flaps lie under the index finger wherever the start is moved — 5 mm or more of
+        // their width under it with all joints free (y = −52 … −27 mm) and with abduction
+        // locked (−71 … −41 mm) — and 10 mm or more clear of the resting middle finger's side
+        // (y ≈ −13 mm).
+        let inner = PINCH_ROD_Y + PINCH_FLAP_HALF_W;
+        let outer = PINCH_ROD_Y - PINCH_FLAP_HALF_W;
+        for shift in [-START_OFFSET_MAX_M, START_OFFSET_MAX_M] {
+            for finger in [[-0.052, -0.027], [-0.071, -0.041]] {
+                let overlap = (inner + shift).min(finger[1]) - (outer + shift).max(finger[0]);
+                assert!(overlap >= 0.005, "{shift} {finger:?} {overlap}");
+            }
+        }
         assert!(
-            second + START_OFFSET_MAX_M <= 0.437 - 0.005 + 1e-9,
-            "{second}"
+            inner + START_OFFSET_MAX_M <= -0.013 - 0.01 + 1e-9,
+            "{inner}"
         );
-        // Enough flaps that the last is still behind the finger at the end of the travel.
-        let last = RAIL_X + flap_x(flap_count() - 1);
-        assert!(last + ROD_TRAVEL < 0.437, "{last}");
+        assert!(PINCH_FLAP_PITCH < FLAP_PITCH);
     }
 
     #[test]
