@@ -693,7 +693,7 @@ mod tests {
             inner + START_OFFSET_MAX_M <= -0.013 - 0.01 + 1e-9,
             "{inner}"
         );
-        assert!(PINCH_FLAP_PITCH < FLAP_PITCH);
+        const { assert!(PINCH_FLAP_PITCH < FLAP_PITCH) };
     }
 
     #[test]
