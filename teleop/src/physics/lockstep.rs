@@ -156,8 +156,9 @@ pub fn play_lockstep(
             outcome.events.push(message);
         }
         taken = k + 1;
-        let done = play.until.is_some_and(|until| until(&outcome.events));
-        if outcome.events.len() > before && done {
+        // Asked only when the physics made an event: nothing else changes the answer.
+        let new_events = outcome.events.len() > before;
+        if new_events && play.until.is_some_and(|until| until(&outcome.events)) {
             break;
         }
     }

@@ -108,6 +108,8 @@ pub fn play(
         rate_hz: glove_config.rate_hz,
         duration_s: strategy.script.duration_s() + TAIL_S,
         until: Some(&done),
+        // Each arm coerces the observer to the run's shorter lifetime (a plain move or
+        // `map` keeps the caller's, which the run's locals do not live for).
         observer: match observer {
             Some(o) => Some(o),
             None => None,

@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 use station::{StationConfig, StationInput, StationOutputs};
 
 use super::error::BenchError;
-use super::trial_events::{UNFINISHED_REASON, log_ns, progress_event};
+use super::trial_events::{RUN_EPOCH_NS, UNFINISHED_REASON, log_ns, progress_event};
 use crate::physics::lockstep::LockstepObserver;
 use crate::sim::progress_message::ProgressMessage;
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
@@ -63,7 +63,7 @@ impl<'a> TrialLogWriter<'a> {
 
 impl LockstepObserver for TrialLogWriter<'_> {
     fn input(&mut self, now_ns: i64, input: &StationInput) {
-        let t = now_ns + log_ns(0.0);
+        let t = RUN_EPOCH_NS + now_ns;
         match input {
             StationInput::Keypoints(frame) => {
                 let rows: Vec<[f32; 3]> = frame
@@ -91,7 +91,7 @@ impl LockstepObserver for TrialLogWriter<'_> {
 
     fn outputs(&mut self, now_ns: i64, outputs: &StationOutputs) {
         if let Some(hand) = &outputs.hand {
-            let t = now_ns + log_ns(0.0);
+            let t = RUN_EPOCH_NS + now_ns;
             self.recorder.output(
                 &self.config.output.joint_targets_topic,
                 t,
