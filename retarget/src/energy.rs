@@ -54,6 +54,35 @@ pub fn pinch_activation(distance_m: f64, engage_m: f64, release_m: f64) -> f64 {
     x * x * (3.0 - 2.0 * x)
 }
 
+/// Per finger (index first), the extra weight of the thumb → finger vector while the human's
+/// thumb approaches it: only the finger the thumb is nearest, rising smoothly from 0 at
+/// `pinch.approach_m` to `w_pt − w_tt` at `pinch.release_m`, where the pinch takes over.
+///
+/// **Why.** Before a pinch begins, the robot's thumb–finger gap is set by where each tip is
+/// placed. For a thumb the robot cannot reproduce (a camera tracker's thumb, a hand unlike
+/// the robot's), that gap stays far wider than the human's: on a 30 Hz recording the
+/// human's thumb–index distance fell 60 → 43 → 33 → 19 mm while the robot's stayed at 68 mm
+/// until the pinch began at 40 mm, and then the step limit could not close it in the pinch's
+/// first frame. Weighted as much as a fingertip's placement by the time the pinch begins, the
+/// vector makes the robot's gap follow the human's on the way in (51 → 37 → 10 mm there).
+/// Only the nearest finger gains it: the others' vectors would hold the thumb where they are.
+pub fn approach_weights(pinch_distances_m: &[f64; 4], config: &RetargetConfig) -> [f64; 4] {
+    let p = &config.pinch;
+    let w = &config.weights;
+    let extra = (w.palm_to_tip - w.tip_to_tip).max(0.0);
+    if p.approach_m <= p.release_m || p.weight <= 0.0 || extra <= 0.0 {
+        return [0.0; 4];
+    }
+    let nearest = (0..4).min_by(|&a, &b| pinch_distances_m[a].total_cmp(&pinch_distances_m[b]));
+    std::array::from_fn(|i| {
+        if Some(i) == nearest {
+            extra * pinch_activation(pinch_distances_m[i], p.release_m, p.approach_m)
+        } else {
+            0.0
+        }
+    })
+}
+
 fn unit_or_zero(v: &Vector3<f64>) -> Vector3<f64> {
     let n = v.norm();
     if n > 1e-9 { v / n } else { Vector3::zeros() }
@@ -66,7 +95,8 @@ fn unit_or_zero(v: &Vector3<f64>) -> Vector3<f64> {
 ///   branch: a straight-ish finger reaches the same tip with its PIP bent either way);
 /// - thumb → finger `k`: with `β_k` the pinch activation of the human thumb–finger distance,
 ///   target `ĥ · ((1 − β_k)‖h‖ + β_k · gap)` (the human vector with no pinch, the closed gap
-///   at a full one), weight `w_tt + β_k w_pinch`;
+///   at a full one), weight `w_tt + max(β_k w_pinch, a_k)`, `a_k` the approach weight of
+///   [`approach_weights`];
 /// - finger `a` → finger `b`: with `β = max(β_a, β_b)`, the human vector at weight
 ///   `w_tt · (1 − β)` and the separation goal `ĥ · max(‖h‖, separation)` at `β · w_sep`: a
 ///   finger next to a pinching one keeps its distance.
@@ -88,6 +118,7 @@ pub fn key_vector_targets(
 ) -> [KeyVector; KEY_VECTORS] {
     let p = &config.pinch;
     let w = &config.weights;
+    let approach = approach_weights(&human.pinch_distances_m, config);
     let beta: [f64; 5] = std::array::from_fn(|i| {
         if i == 0 {
             0.0
@@ -115,7 +146,7 @@ pub fn key_vector_targets(
         for b in a + 1..5 {
             let h = human.tips[b] - human.tips[a];
             if a == 0 {
-                out[k] = thumb_pair(b, h, beta[b], config);
+                out[k] = thumb_pair(b, h, beta[b], approach[b - 1], config);
                 k += 1;
                 continue;
             }
@@ -155,8 +186,14 @@ pub fn key_vector_targets(
 /// The thumb → finger key vector at pinch activation `beta` of a human vector `h`: the
 /// distance aimed for slides from the human's to the closed gap, `(1 − β)‖h‖ + β · gap`, along
 /// the human direction, and the weight grows from `w_tt` to `w_tt + w_pinch` (a pinch weight
-/// of 0 turns the pinch off).
-fn thumb_pair(to: usize, h: Vector3<f64>, beta: f64, config: &RetargetConfig) -> KeyVector {
+/// of 0 turns the pinch off); on the way in, the weight is at least `w_tt + approach`.
+fn thumb_pair(
+    to: usize,
+    h: Vector3<f64>,
+    beta: f64,
+    approach: f64,
+    config: &RetargetConfig,
+) -> KeyVector {
     let p = &config.pinch;
     let target = if beta > 0.0 && p.weight > 0.0 {
         unit_or_zero(&h) * ((1.0 - beta) * h.norm() + beta * p.closed_gap_m)
@@ -167,7 +204,7 @@ fn thumb_pair(to: usize, h: Vector3<f64>, beta: f64, config: &RetargetConfig) ->
         from: Some(Finger::Thumb.index()),
         to,
         target,
-        weight: config.weights.tip_to_tip + beta * p.weight,
+        weight: config.weights.tip_to_tip + (beta * p.weight).max(approach),
     }
 }
 
@@ -240,6 +277,51 @@ mod tests {
             assert!((a - previous).abs() < 0.01);
             previous = a;
         }
+    }
+
+    #[test]
+    fn the_thumb_approaching_its_nearest_finger_weighs_their_vector_more() {
+        let config = RetargetConfig::default();
+        let (p, w) = (&config.pinch, &config.weights);
+        let full = w.palm_to_tip - w.tip_to_tip;
+        // Index nearest: only it gains weight, none at the approach range, all at release.
+        let at = |index_m: f64| approach_weights(&[index_m, 0.065, 0.07, 0.09], &config);
+        assert_eq!(at(p.approach_m), [0.0; 4]);
+        assert_eq!(at(p.release_m), [full, 0.0, 0.0, 0.0]);
+        let between = at(0.5 * (p.approach_m + p.release_m))[0];
+        assert!(between > 0.0 && between < full, "{between}");
+        // The middle finger nearer than the index: the index gains nothing.
+        let middle = approach_weights(&[0.045, 0.042, 0.07, 0.09], &config);
+        assert_eq!(middle[0], 0.0);
+        assert!(middle[1] > 0.0);
+        // Into the pinch the weight never drops: max(β w_pinch, approach) is continuous.
+        let human = |index_m: f64| HumanKeyVectors {
+            tips: [Vector3::zeros(); 5],
+            mids: [Vector3::zeros(); 5],
+            pinch_distances_m: [index_m, 0.12, 0.12, 0.12],
+        };
+        let weight = |index_m: f64| {
+            let v = key_vector_targets(&human(index_m), &config);
+            v.iter()
+                .find(|k| k.from == Some(0) && k.to == 1)
+                .unwrap()
+                .weight
+        };
+        let mut previous = weight(0.1);
+        assert_eq!(previous, w.tip_to_tip);
+        for i in 1..=200 {
+            let now = weight(0.1 - 0.1 * f64::from(i) / 200.0);
+            assert!(now >= previous - 1e-12, "falls at step {i}");
+            assert!(now - previous < 1.0, "jumps at step {i}");
+            previous = now;
+        }
+        // Off when the approach range is not beyond the release, or the pinch is off.
+        let mut off = config.clone();
+        off.pinch.approach_m = off.pinch.release_m;
+        assert_eq!(approach_weights(&[0.045, 0.1, 0.1, 0.1], &off), [0.0; 4]);
+        off.pinch.approach_m = 0.06;
+        off.pinch.weight = 0.0;
+        assert_eq!(approach_weights(&[0.045, 0.1, 0.1, 0.1], &off), [0.0; 4]);
     }
 
     #[test]

@@ -100,7 +100,10 @@
 //!   the activation `β_k = smoothstep((release − d_k)/(release − engage))` of the raw human
 //!   thumb–finger distance `d_k` (1 below `engage_m`, 0 above `release_m`, C¹ in between: no
 //!   snapping) slides the distance aimed for from the human's to `closed_gap_m`: target
-//!   `ĥ ((1 − β_k)‖h‖ + β_k · gap)`, weight `w_tt + β_k w_pinch`. For finger pairs,
+//!   `ĥ ((1 − β_k)‖h‖ + β_k · gap)`, weight `w_tt + max(β_k w_pinch, a_k)`. On the way in, the
+//!   finger the thumb is nearest gains `a_k`, rising smoothly from 0 at `pinch.approach_m` to
+//!   `w_pt − w_tt` at `release_m`, so the robot's gap follows the human's before the pinch
+//!   begins ([`energy::approach_weights`]). For finger pairs,
 //!   `β = max(β_a, β_b)` adds `β w_sep ‖r − ĥ · max(‖h‖, separation_m)‖²`, keeping a pinching
 //!   finger's neighbours away: one quadratic of weight `w_ij = w_tt + β w_sep`, target
 //!   `(1 − σ) h + σ · goal`, `σ = β w_sep / w_ij` ([`energy::key_vector_targets`]).

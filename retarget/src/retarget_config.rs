@@ -62,6 +62,10 @@ pub struct PinchConfig {
     pub engage_m: f64,
     /// Distance at or above which there is no pinch, metres (smooth blend in between).
     pub release_m: f64,
+    /// Distance under which the thumb approaching its nearest finger weighs their vector more,
+    /// up to a fingertip placement's weight at `release_m`, metres; at or under `release_m`
+    /// there is no approach (see `energy::approach_weights`).
+    pub approach_m: f64,
     /// Robot thumb-tip to fingertip distance aimed for at full pinch, metres.
     pub closed_gap_m: f64,
     /// Extra weight keeping a pinching finger's neighbours at least `separation_m` away.
@@ -183,6 +187,7 @@ impl Default for PinchConfig {
             weight: 15.0,
             engage_m: 0.022,
             release_m: 0.04,
+            approach_m: 0.06,
             closed_gap_m: 0.005,
             separation_weight: 2.0,
             separation_m: 0.03,
@@ -296,6 +301,7 @@ impl RetargetConfig {
                 allowed: format!("must be greater than pinch.engage_m = {}", p.engage_m),
             });
         }
+        range("pinch.approach_m", p.approach_m, 0.0, 0.2)?;
         range("pinch.closed_gap_m", p.closed_gap_m, 0.0, 0.05)?;
         range("pinch.separation_weight", p.separation_weight, 0.0, 1e4)?;
         range("pinch.separation_m", p.separation_m, 0.0, 0.1)?;
