@@ -3,11 +3,11 @@
 scored on the evaluation set through the station's live path (`pomdar eval --json`), with
 leave-one-out over the real recordings.
 
-The shipped defaults are not this search's best sample: with the MediaPipe recording in the
-tuning part no sample is admissible (its one-frame thumb dips), so they were chosen by hand,
-looking at all three shared sources (README "The evaluation set"). Figures on those sources
-are regression guards; the held-out ones are this script's leave-one-out folds and the
-synthetic users, which no fold tunes on.
+The shipped defaults are not this search's best sample: they were chosen by hand, looking at
+all three shared sources (README "The evaluation set"). Figures on those sources are
+regression guards; the held-out ones are this script's leave-one-out folds and the synthetic
+users, which no fold tunes on. The search leaves `pinch.approach_m` and the smoothing's
+approach settings at the defaults.
 
     python3 retarget/tuning/tune.py ../shared/reference/ --set /tmp/eval_set --samples 48
 
