@@ -5,6 +5,7 @@ pub mod dependency_rule;
 pub mod deployment_guide;
 pub mod guide_session;
 pub mod interop;
+pub mod layer_rule;
 pub mod line_console;
 pub mod load_turns;
 pub mod module_graph;

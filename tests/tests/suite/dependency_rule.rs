@@ -120,3 +120,44 @@ fn anyhow_is_only_in_the_binary_wiring() {
         offenders.join("\n")
     );
 }
+
+/// teleop's modules import only from their own layer and the layers below it, as
+/// ARCHITECTURE.md's table ranks them, and the table names every top-level module.
+#[test]
+fn teleop_imports_only_from_its_own_layer_and_below() {
+    use pomdar_tests::layer_rule::{layer_ranks, layer_violations};
+    let doc = std::fs::read_to_string(workspace_root().join("ARCHITECTURE.md")).unwrap();
+    let ranks = layer_ranks(&doc).unwrap();
+    assert!(ranks.len() >= 20, "the table names {} modules", ranks.len());
+    let root = workspace_root().join("teleop/src/lib.rs");
+    let report = layer_violations(&root, &ranks).unwrap();
+    assert!(
+        report.is_empty(),
+        "layer rule broken:\n{}",
+        report.join("\n")
+    );
+}
+
+/// The layer check fails where it should: a fixture crate whose infrastructure module names
+/// its sessions module, and a module its table leaves out.
+#[test]
+fn the_layer_check_reports_an_upward_import_and_an_unlisted_module() {
+    use pomdar_tests::layer_rule::{layer_ranks, layer_violations};
+    let fixture = workspace_root().join("tests/fixtures/layer_rule");
+    let doc = std::fs::read_to_string(fixture.join("ARCHITECTURE.md")).unwrap();
+    let ranks = layer_ranks(&doc).unwrap();
+    let report = layer_violations(&fixture.join("src/lib.rs"), &ranks).unwrap();
+    assert_eq!(report.len(), 2, "{report:#?}");
+    assert!(
+        report
+            .iter()
+            .any(|l| l.starts_with("`clock` (infrastructure) imports `console` (sessions)")),
+        "{report:#?}"
+    );
+    assert!(
+        report
+            .iter()
+            .any(|l| l.contains("`unlisted` is in no layer")),
+        "{report:#?}"
+    );
+}
