@@ -2,7 +2,7 @@
 //! each topic's QoS. The application turns it into a DDS participant and QoS profiles.
 //!
 //! RustDDS drops samples silently when a burst exceeds the history depth (even Reliable), so
-//! depths are sized above any burst the rates allow (DOMAIN.md §7).
+//! depths are sized above any burst the rates allow (docs/LAB_CONVENTIONS.md §5).
 
 use core::net::IpAddr; // an address as data (no socket): the core one
 

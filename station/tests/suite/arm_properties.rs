@@ -13,7 +13,7 @@ use station::arm::{
     ArmCommand, ArmConfig, ArmMapper, Constraint, OrientationPolicy, RotationConfig, StartPose,
 };
 
-/// Tolerance of "on the axis line" (metres), from the issue.
+/// Tolerance of "on the axis line" (metres): the constraint's own rounding, no more.
 const ON_AXIS_M: f64 = 1e-9;
 /// Rounding allowance on the step caps.
 const CAP_SLACK_M: f64 = 1e-12;

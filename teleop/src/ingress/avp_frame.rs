@@ -35,7 +35,7 @@
 //! The skeleton has 25 joints (27 from newer apps): 0 wrist; thumb 1–4 (knuckle, intermediate
 //! base, intermediate tip, tip); index 5–9, middle 10–14, ring 15–19, little 20–24 (metacarpal,
 //! knuckle, intermediate base, intermediate tip, tip); 25 forearm-wrist and 26 forearm-arm.
-//! The lab's 22-point layout (DOMAIN.md §2) takes the wrist, the thumb's four and each finger's
+//! The lab's 22-point layout (docs/LAB_CONVENTIONS.md §1) takes the wrist, the thumb's four and each finger's
 //! four without its metacarpal; its forearm point (0) is the forearm-arm joint when the app
 //! sends it, else the wrist again (the ETH lab's convention). `lab21` leaves the forearm out.
 

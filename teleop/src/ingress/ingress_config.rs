@@ -50,7 +50,7 @@ pub struct IngressConfig {
     /// Keypoint layout published: `lab22` (with the forearm point) or `lab21`.
     pub layout: KeypointLayout,
     /// Multiplier from the stream's position unit to metres (1.0: the stream is in metres,
-    /// which DOMAIN.md marks unverified; 0.01 if a studio streams centimetres).
+    /// which the vendor does not confirm: docs/LAB_CONVENTIONS.md §2; 0.01 if a studio streams centimetres).
     pub position_scale_to_m: f64,
     /// Packets larger than this are refused, bytes (one UDP datagram is at most 65507).
     pub max_packet_bytes: usize,

@@ -1,7 +1,7 @@
 //! Rokoko Studio's coordinate frame to ROS's.
 //!
 //! Rokoko Studio streams in a Unity-style frame: x right, y up, z forward, **left-handed**
-//! (DOMAIN.md §2). ROS (REP 103) is right-handed: x forward, y left, z up. The change of
+//! (docs/LAB_CONVENTIONS.md §2). ROS (REP 103) is right-handed: x forward, y left, z up. The change of
 //! basis is the reflection
 //!
 //! ```text

@@ -1,6 +1,6 @@
 //! Parsing one Rokoko Studio "custom streaming" JSON v3 packet into the lab's keypoints.
 //!
-//! A packet is one UTF-8 JSON document (DOMAIN.md §2):
+//! A packet is one UTF-8 JSON document (docs/LAB_CONVENTIONS.md §2):
 //!
 //! ```text
 //! { "version": "3,0", "fps": 100,

@@ -1,4 +1,4 @@
-//! Building packets in Rokoko Studio's custom-streaming JSON v3 format (DOMAIN.md §2) from a
+//! Building packets in Rokoko Studio's custom-streaming JSON v3 format (docs/LAB_CONVENTIONS.md §2) from a
 //! hand given in ROS's frame: what the tests, the benchmark and a stand-in for Studio send.
 //!
 //! A built packet has the shape Studio streams: version, fps, a scene with a timestamp, one

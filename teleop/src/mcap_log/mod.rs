@@ -1,6 +1,6 @@
 //! # Trial logs in MCAP, as rosbag2 writes them
 //!
-//! Each trial is one MCAP file that every ROS 2 tool can read (DOMAIN.md §6):
+//! Each trial is one MCAP file that every ROS 2 tool can read (docs/LAB_CONVENTIONS.md §4):
 //!
 //! | record | content |
 //! |---|---|

@@ -1,7 +1,7 @@
 //! QoS as configuration: reliability and keep-last depth per topic.
 //!
 //! RustDDS drops samples silently when a burst exceeds the history depth (even Reliable), so
-//! depths are sized above any burst the rates allow (DOMAIN.md §7).
+//! depths are sized above any burst the rates allow (docs/LAB_CONVENTIONS.md §5).
 
 use ros2_client::QosProfile;
 use ros2_client::qos::{History, Reliability as RosReliability, WhenFull};

@@ -43,6 +43,7 @@ mod ros_tools;
 mod score_cli;
 mod score_compare;
 mod slow_disk;
+mod stands_alone;
 mod station_cli;
 mod station_dds;
 mod study_interrupt;
