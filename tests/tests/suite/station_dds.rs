@@ -1,5 +1,5 @@
 //! The station over real DDS on loopback: a test node plays the glove and listens to every
-//! output of a production station node (`teleop::station::ros_station`), on a test-unique
+//! output of a production station node (`teleop::station_node::ros_node::run_station`), on a test-unique
 //! domain id with loopback-only discovery.
 
 use std::time::Duration;
