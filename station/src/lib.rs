@@ -31,6 +31,7 @@ pub mod arm;
 pub mod config_error;
 pub mod convert;
 pub mod frame_gate;
+#[cfg(feature = "fuzzing")]
 pub mod fuzz;
 pub mod hand_control;
 pub mod hand_convention;
