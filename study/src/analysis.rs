@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use retarget::KeypointLayout;
 use serde::Serialize;
 
+use crate::cluster_strength::ClusterStrength;
 use crate::error::StudyError;
 use crate::motion::TrialMotion;
 use crate::pca;
@@ -13,7 +14,6 @@ use crate::segments::{feature_names, trial_segments};
 use crate::settings::StrategySettings;
 use crate::silhouette::silhouette_values;
 use crate::skip::SkippedTrial;
-use crate::verdict::Verdict;
 
 /// One segment's place in the principal component space.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -88,8 +88,8 @@ pub struct StrategyAnalysis {
 
 impl StrategyAnalysis {
     /// Kaufman & Rousseeuw's band of the overall mean silhouette.
-    pub fn verdict(&self) -> Verdict {
-        Verdict::from_silhouette(self.silhouette)
+    pub fn verdict(&self) -> ClusterStrength {
+        ClusterStrength::from_silhouette(self.silhouette)
     }
 }
 

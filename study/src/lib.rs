@@ -58,7 +58,7 @@
 //! of its own task, `b` = the smallest mean distance to another task's segments,
 //! `s = (b − a) / max(a, b)` (0 for a task with one segment). Computed in the PC space because
 //! that is the space the figures show and the claim is about; the mean over all segments is
-//! read with Kaufman & Rousseeuw's bands ([`Verdict`]): above 0.70 strong, above 0.50
+//! read with Kaufman & Rousseeuw's bands ([`ClusterStrength`]): above 0.70 strong, above 0.50
 //! reasonable, above 0.25 weak, otherwise no substantial structure. The analysis needs at
 //! least two tasks and two segments.
 //!
@@ -77,10 +77,11 @@
 //! | `segments.rs` | windows and their features ([`trial_segments`], [`feature_names`]) |
 //! | `pca.rs`, `silhouette.rs` | the PCA and the silhouette |
 //! | `analysis.rs` | [`analyse`] and [`StrategyAnalysis`] |
-//! | `verdict.rs` | [`Verdict`]: Kaufman & Rousseeuw's bands |
+//! | `cluster_strength.rs` | [`ClusterStrength`]: Kaufman & Rousseeuw's bands |
 //! | `report.rs`, `figure.rs` | [`report_markdown`], [`StrategyAnalysis::sentence`], [`strategy_figure`] |
 
 mod analysis;
+mod cluster_strength;
 mod error;
 mod figure;
 mod motion;
@@ -91,9 +92,9 @@ mod segments;
 mod settings;
 mod silhouette;
 mod skip;
-mod verdict;
 
 pub use analysis::{SegmentScore, StrategyAnalysis, TaskSeparation, analyse};
+pub use cluster_strength::ClusterStrength;
 pub use error::StudyError;
 pub use figure::{strategy_chart, strategy_figure};
 pub use motion::{MotionFrame, TrialMotion};
@@ -103,4 +104,3 @@ pub use segments::{Segment, TrialSegments, feature_names, trial_segments};
 pub use settings::{MAX_SEGMENT_S, StrategySettings};
 pub use silhouette::silhouette_values;
 pub use skip::{SkipReason, SkippedTrial};
-pub use verdict::Verdict;

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::analysis::StrategyAnalysis;
-use crate::verdict::Verdict;
+use crate::cluster_strength::ClusterStrength;
 
 impl StrategyAnalysis {
     /// One plain sentence for the report: whether the segments cluster by task, the mean
@@ -11,9 +11,9 @@ impl StrategyAnalysis {
     pub fn sentence(&self) -> String {
         let verdict = self.verdict();
         let claim = match verdict {
-            Verdict::Strong | Verdict::Reasonable => "Segments cluster by task",
-            Verdict::Weak => "Segments cluster only weakly by task",
-            Verdict::NoSubstantialStructure => "Segments do not cluster by task",
+            ClusterStrength::Strong | ClusterStrength::Reasonable => "Segments cluster by task",
+            ClusterStrength::Weak => "Segments cluster only weakly by task",
+            ClusterStrength::NoSubstantialStructure => "Segments do not cluster by task",
         };
         format!(
             "{claim}: mean silhouette {:.2} over {} segments of {} tasks from {} participant{} \

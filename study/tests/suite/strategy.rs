@@ -7,8 +7,8 @@ use crate::common;
 use common::{Motion, Participant, Rng, study_trials, trial};
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
 use study::{
-    SkipReason, StrategySettings, StudyError, Verdict, analyse, report_markdown, strategy_figure,
-    trial_segments,
+    ClusterStrength, SkipReason, StrategySettings, StudyError, analyse, report_markdown,
+    strategy_figure, trial_segments,
 };
 
 const TASKS: [(&str, Motion); 3] = [
@@ -60,7 +60,7 @@ fn one_motion_under_three_labels_does_not_cluster() {
         a.silhouette, a.per_task
     );
     assert!(a.silhouette < 0.25, "silhouette {}", a.silhouette);
-    assert_eq!(a.verdict(), Verdict::NoSubstantialStructure);
+    assert_eq!(a.verdict(), ClusterStrength::NoSubstantialStructure);
     assert!(
         a.sentence().starts_with("Segments do not cluster by task"),
         "{}",

@@ -5,7 +5,7 @@ use serde::Serialize;
 /// How much cluster structure a mean silhouette shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Verdict {
+pub enum ClusterStrength {
     /// Above 0.70.
     Strong,
     /// Above 0.50, up to 0.70.
@@ -16,7 +16,7 @@ pub enum Verdict {
     NoSubstantialStructure,
 }
 
-impl Verdict {
+impl ClusterStrength {
     /// The band `mean_silhouette` falls in (NaN falls in the lowest).
     pub fn from_silhouette(mean_silhouette: f64) -> Self {
         if mean_silhouette > 0.70 {
@@ -62,21 +62,30 @@ mod tests {
 
     #[test]
     fn band_edges_belong_to_the_band_below() {
-        assert_eq!(Verdict::from_silhouette(0.71), Verdict::Strong);
-        assert_eq!(Verdict::from_silhouette(0.70), Verdict::Reasonable);
-        assert_eq!(Verdict::from_silhouette(0.50), Verdict::Weak);
         assert_eq!(
-            Verdict::from_silhouette(0.25),
-            Verdict::NoSubstantialStructure
+            ClusterStrength::from_silhouette(0.71),
+            ClusterStrength::Strong
         );
         assert_eq!(
-            Verdict::from_silhouette(-0.3),
-            Verdict::NoSubstantialStructure
+            ClusterStrength::from_silhouette(0.70),
+            ClusterStrength::Reasonable
         );
         assert_eq!(
-            Verdict::from_silhouette(f64::NAN),
-            Verdict::NoSubstantialStructure
+            ClusterStrength::from_silhouette(0.50),
+            ClusterStrength::Weak
         );
-        assert!(Verdict::Reasonable.clusters() && !Verdict::Weak.clusters());
+        assert_eq!(
+            ClusterStrength::from_silhouette(0.25),
+            ClusterStrength::NoSubstantialStructure
+        );
+        assert_eq!(
+            ClusterStrength::from_silhouette(-0.3),
+            ClusterStrength::NoSubstantialStructure
+        );
+        assert_eq!(
+            ClusterStrength::from_silhouette(f64::NAN),
+            ClusterStrength::NoSubstantialStructure
+        );
+        assert!(ClusterStrength::Reasonable.clusters() && !ClusterStrength::Weak.clusters());
     }
 }
