@@ -152,6 +152,19 @@
 //! interior-point iterations, the energy before and after, the solver time and the mean
 //! palm → tip error. Malformed input (wrong point count, non-finite values, a collapsed palm,
 //! a bad time step) is an `Err` and leaves the command untouched: the caller holds it.
+//!
+//! ## Files
+//!
+//! | file | holds |
+//! |---|---|
+//! | `model_spec.rs`, `model_build.rs`, `model_file.rs`, `urdf_import.rs`, `urdf_reader.rs` | the model format, its validation, the built-in ORCA, URDF import (the project's own reader: links, joints, origins, axes, limits, mimic) |
+//! | `hand_model.rs`, `forward_kinematics.rs`, `jacobian.rs`, `finger.rs` | the validated tree, FK into a reusable state, analytic Jacobians; the five digits |
+//! | `keypoint_layout.rs`, `palm_frame.rs`, `synthetic_keypoints.rs` | human layouts, the shared palm frame, robot-as-human keypoints |
+//! | `human_key_vectors.rs`, `energy.rs`, `one_euro.rs`, `pinch_approach.rs` | input validation and key vectors; the energy's targets (the pinch blend, a pinching finger giving way to the thumb, the way into a pinch) and Huber terms; the speed-adaptive (1€) input filter, counted in frames; how fast the thumb closes on each finger |
+//! | `qp_step.rs`, `box_active_set.rs`, `retargeter.rs` | the box QP (the exact active-set method, certified by KKT, with Clarabel as fallback or for every step); the per-frame Gauss–Newton loop and its outcome |
+//! | `retarget_config.rs`, `calibration_transform.rs`, `embodiment.rs`, `error.rs` | configuration, the per-user transform, embodiments, errors |
+//! | `human_hand/` | the simulated human hand: shape and proportions (non-uniform hands and glove tip markers), poses, FK, pinch poses, motions, task scripts, the simulated glove, the seeded noise |
+//! | `quality/` | retargeting quality over a recording (tip error after a global scale, pinches closed under two definitions, also per finger pair, jerk, max step, limit violations; overall and per digit), for `pomdar eval` |
 
 mod box_active_set;
 mod calibration_transform;

@@ -26,6 +26,24 @@
 //! `hold_timeout_ms` without a new frame, disengage after `disengage_timeout_ms`), repeats the
 //! held command while held or disengaged, and steps the arm mapping ([`arm`]): its step caps
 //! are per tick, so the tick rate sets the arm speeds they allow.
+//!
+//! ## Files
+//!
+//! | file | holds |
+//! |---|---|
+//! | `station.rs` | [`Station`]: the state machine and its one entry, [`Station::step`]; its status and totals (`station_tests.rs`: driven step by step as every loop drives it) |
+//! | `station_input.rs` | what drives a step ([`StationInput`], [`ControlInput`]) and what it gives back ([`StationOutputs`], [`Notice`]) |
+//! | `station_config.rs`, `config_error.rs`, `station_error.rs` | the configuration (TOML, every key checked with its range) and why a station could not be built |
+//! | `frame_gate.rs`, `outlier_check.rs`, `source_order.rs` | **where a glove frame is rejected**: repeats, wrong size, non-finite points, bone lengths, jumps, frames out of their sender's order ([`Rejection`]); a tracker's one-frame outlier put back where its digit predicts it |
+//! | `hand_control.rs` | which accepted frames are retargeted and when (on arrival or at the control rate), and the hand command |
+//! | `watchdog.rs` | **where the watchdog decides hold and disengage**: the glove stream's freshness sets the drive state ([`DriveState`]) |
+//! | `input_gap.rs`, `rate_meter.rs` | which side stalled (the longest gap as received against as sent); event rates for the status |
+//! | `arm/` | the Franka wrist: the clutch and mapper (`clutch.rs`), **a task's arm constraint applied** (`constraint.rs`: fixed, vertical or horizontal axis), step caps, the workspace box, pose checks |
+//! | `output_stage.rs`, `policy_output.rs`, `joint_names.rs`, `hand_convention.rs` (presets in `hand_convention_presets.rs`), `convert.rs` | from commands to the messages sent: hand joint targets under the published names, the lab's `/hand/policy_output` through a hand's command convention, the arm target |
+//! | `network_config.rs`, `robot_link.rs`, `link_clock.rs` | the DDS side of the configuration (domain, interfaces, QoS); the link to the robot's computer and its age check; the relay's clock-offset view |
+//! | `ros_tools/`, `ros_tools_config.rs` | what the lab's ROS tools see: `/tf`, markers, diagnostics |
+//! | `simulated_physics_config.rs` | `[simulated_physics]`: the MuJoCo twin's contact, servo and mount settings |
+//! | `fuzz/` (feature `fuzzing`) | the whole core fuzzed: a seeded hostile world, a reference drive model, invariants checked after every step |
 
 pub mod arm;
 pub mod config_error;
