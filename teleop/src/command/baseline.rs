@@ -19,8 +19,31 @@ use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
 use crate::score::score_inputs::reason;
 
-/// `pomdar baseline` options.
+/// Compute the human baseline table from recorded human trials (embodiment "human").
+///
+/// Per task: the mean and sample standard deviation of the trial time (start → stop) over
+/// recorded trials that were stopped, not aborted, and within the rules' time limit;
+/// practice, aborted and timed-out trials are listed and left out. Trials of another
+/// embodiment are refused by name. Writes the table atomically as TOML (example = false,
+/// a source note with --source, the trial count and the users; per task the number of
+/// participants when every trial names its user), for `pomdar score --baseline`.
+///
+/// Prints the study: per task the trials, mean, std, min–max and participants, then per
+/// participant × task (the trials' user; "(unnamed)" without one) the trial times in
+/// trial-index order. Tasks with fewer than --min-trials trials (default 18: the POMDAR
+/// study's 6 participants × 3 trials) are flagged FEW and warned about on stderr; the
+/// table is still written and the exit status is unchanged. --report FILE also writes the
+/// study as Markdown (atomically; an existing file needs --overwrite, like --out).
+///
+/// Exit status: 0 every file used or left out for a stated reason; 3 some files were
+/// rejected or refused (the table is still written from the rest); 1 nothing usable, or
+/// a file could not be read or written.
+///
+/// Examples:
+///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
+///   pomdar baseline trials/human/ --out baselines/pilot.toml --min-trials 6 --report baselines/pilot_study.md
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct BaselineArgs {
     /// Human trial logs (.mcap, embodiment "human"), or directories searched recursively.
     #[arg(required = true, value_name = "TRIALS")]

@@ -31,8 +31,73 @@ use crate::calibrate::simulated_user::{
 use crate::clock::StationClock;
 use crate::utc_date::{compact_utc, now_unix_s};
 
-/// `pomdar calibrate` options.
+/// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
+///
+/// Three ways to run it:
+///   live       the calibration console: pose by pose, the hand is sent to the pose and
+///              the console shows its instruction; the user copies it and settles
+///              (1.5 s), 1 s of glove keypoints is captured and judged; every capture is
+///              recorded to an MCAP with its quality, then the accepted ones are fitted.
+///              Stop the station first: both would drive the hand.
+///   --from     fit a recorded session again (e.g. with other --settings); sessions
+///              recorded before captures were judged are read as before.
+///   --simulate the whole session on loopback DDS with a synthetic user (hand size,
+///              glove misalignment, 1.5 mm noise) who copies each pose; prints the
+///              recovered and true parameters. --simulate-bad-pose POSE makes the user
+///              shake through that pose's first capture (to see a retry);
+///              --simulate-wrong-pose POSE makes the user stay in the previous pose
+///              through it (to see the fit name it and a redo);
+///              --simulate-hand gives the user a hand unlike the average in proportion.
+///   --model    global (one scale and one rotation, the default) or per-digit (also a
+///              length factor per digit, kept only where it lowers the objective).
+///
+/// The capture-quality meter: jitter (the largest keypoint RMS deviation in the palm
+/// frame, mm), invalid frames (wrong count, non-finite, no palm frame), and frames
+/// received vs expected from the glove's rate while the user settled.
+///   bad   the fit would refuse it: fewer than 20 valid frames, over 20 % invalid, or
+///         jitter over 12 mm (the [capture] settings); the pose must be captured again
+///   poor  usable, but jitter over 85 % of the limit, an invalid frame, or under 80 % of
+///         the expected frames
+///   good  otherwise: accepted at once, the next pose follows
+///
+/// The console is full-screen when stdin and stdout are terminals (else, or with
+/// --plain, lines on stderr). Keys: r captures the pose under review again, space or
+/// Enter accepts a poor capture (a bad one can only be retried), q quits (a session in
+/// progress is abandoned, its log kept), Ctrl-C interrupts. Without a terminal and
+/// without --script nobody decides: poor captures are accepted, bad ones retried
+/// automatically, at most 3 times per pose.
+///
+/// --script FILE plays timed actions instead of keys, one per line, optionally after a
+/// time (seconds since the start, or +S after the previous line): accept, retry, quit,
+/// and `wait STATE [TIMEOUT_S]` with STATE one of waiting_glove, settling, capturing,
+/// review, fitting, complete, failed (default timeout 30 s; a wait that times out stops
+/// the session with an error naming the line). When the script has ended, a complete or
+/// failed session ends the console; a capture left under review is an error.
+///
+/// Once every pose has an accepted capture, the log is finished and fitted (Bayesian
+/// optimisation, then two Nelder–Mead polishes) with its progress in the console; each
+/// pose's error before and after is shown and printed on stdout, and the profile TOML is
+/// written atomically (nothing is written if a capture is refused or the fit fails).
+/// Each pose the fit could not match (a pinch gap over 40 mm or joints over 0.38 rad from
+/// the pose after the fit: [fit_check] in the settings) is then named in words, worst
+/// first; r captures that pose alone again (the session log is continued) and the fit
+/// runs again and says how it changed; q keeps the fit. Without an operator the poses
+/// are only named.
+/// Load the profile with `pomdar station --profile FILE` or `calibration_profile =
+/// "FILE"` in the station configuration.
+///
+/// Exit status: 0 when the profile is written, 130 after Ctrl-C (the session or the fit
+/// stopped: no profile is written, an existing one is left as it was, the session log is
+/// kept), 1 on an error.
+///
+/// Examples:
+///   pomdar calibrate --user alice --glove "rokoko #12" --config launch_configs/station/eth_lab.toml
+///   pomdar calibrate --from profiles/alice-session-20261121T103205Z.mcap --user alice
+///   pomdar calibrate --simulate --hand-scale 1.15 --glove-rpy 10,-5,8 --seed 3 --user sim --out /tmp/sim.toml
+///   pomdar calibrate --simulate --simulate-bad-pose pinch_ring --user sim --out /tmp/sim.toml
+///   pomdar calibrate --simulate --simulate-wrong-pose pinch_ring --user sim --out /tmp/sim.toml
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct CalibrateArgs {
     /// The user's name: written into the profile, and names the default profile file
     /// (profiles/<NAME>.toml).

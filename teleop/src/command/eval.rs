@@ -18,8 +18,35 @@ use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
 use crate::station_setup::load_station_config;
 
-/// `pomdar eval` options.
+/// Retargeting quality on recordings' glove keypoints: how closely the hand follows.
+///
+/// Several recordings (files, or directories searched for .mcap files: an evaluation
+/// set) give a report per recording, then a summary table (live path and retargeter alone,
+/// one row per recording, the worst of each column).
+///
+/// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
+/// through the station's retargeter, configured by --config and calibrated by --profile,
+/// with the recording's time between frames as the time step (the station's input gate
+/// and control loop are left out: every glove frame is scored, comparable with other
+/// retargeters). Then the live path: the recording re-simulated through the station as
+/// `pomdar resim` runs it, and the command in force at each distinct frame scored the same
+/// way, with its difference from the retargeter alone. Prints, overall and per finger: fingertip error after one global scale s* of the human hand (mean, p95;
+/// fingertip-to-palm-centre vectors in each hand's palm frame), pinches (human thumb tip
+/// within 2 cm of a fingertip) and the share the robot closes under 15 mm, jerk (mean
+/// absolute third difference per joint and frame), the largest per-frame joint step,
+/// frames outside the joint limits, and the time per frame. Any layout the station
+/// accepts. Then the metrics without the global scale (a smaller-looking hand does not
+/// score better): per finger the tip error after that finger's own scale, the correlation
+/// of human and robot flexion (palm-centre-to-tip distance), pinches closed with their
+/// frame counts, and the lag (the shift that best aligns robot to human flexion).
+/// --commands TOPIC scores another retargeter's recorded JointState commands instead.
+///
+/// Examples:
+///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
+///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
+///   pomdar eval ../shared/reference/ eval_set/
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct EvalArgs {
     /// The recordings (MCAP) whose glove keypoints are retargeted, or directories searched
     /// for them (an evaluation set, e.g. from `pomdar eval-set`).

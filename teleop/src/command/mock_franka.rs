@@ -9,7 +9,7 @@ use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 
-/// `pomdar mock-franka` options.
+/// A mock Franka: follows pose commands at limited speed, publishes its pose.
 #[derive(Debug, Args)]
 pub struct MockFrankaArgs {
     /// Pose command topic.

@@ -14,7 +14,8 @@ use crate::ros::NetworkConfig;
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
 use crate::station_setup::read_station_config;
 
-/// `pomdar mock-hand` options.
+/// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state
+/// (and with --policy-config, a policy output topic through the inverse of its table).
 #[derive(Debug, Args)]
 pub struct MockHandArgs {
     /// Joint target topic.

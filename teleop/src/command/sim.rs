@@ -8,8 +8,20 @@ use clap::Args;
 
 use super::common::NodeArgs;
 
-/// `pomdar sim` options.
+/// The simulated robot in a MuJoCo task scene (needs the `physics` build).
+///
+/// The ORCA hand and the arm's mount in the task's scene, stepped in real time, on the real
+/// robot's topics: follows hand and arm targets, publishes the hand's measured joint states,
+/// the arm's pose, the task object's pose and the task's progress as the physics measures
+/// it (/pomdar/sim/progress, JSON). The scene is the project's scaffold for --task or a
+/// lab's own MJCF (--scene). Set-up: `bash sim/setup_mujoco.sh`, then build with
+/// `--features physics` (README, "The simulated benchmark").
+///
+/// Example:
+///   pomdar sim --task G4 --config launch_configs/station/eth_lab.toml
+///   pomdar sim --task G4 --write-scene g4.xml
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct SimArgs {
     /// The task (catalog id, e.g. G4): its scene, its arm constraint and how its progress counts.
     #[arg(long, default_value = "G4")]

@@ -9,7 +9,7 @@ use crate::ros::NetworkConfig;
 use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 
-/// `pomdar sim-glove` options.
+/// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
 #[derive(Debug, Args)]
 pub struct SimGloveArgs {
     /// Scripted motion (periodic, the wrist in place).

@@ -10,8 +10,19 @@ use crate::clock::StationClock;
 use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
 
-/// `pomdar station` options.
+/// Run the station node (no simulated parts) until Ctrl-C.
+///
+/// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
+/// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
+/// (launch_configs/station/*.toml). --engage engages once glove input is fresh
+/// (`pomdar trial`, the operator console, runs its own station and engages on the
+/// operator's key); --record logs the run (inputs, outputs, status, events) to an MCAP
+/// file; --profile applies a user's calibration (from `pomdar calibrate`).
+///
+/// Example:
+///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap --profile profiles/alice.toml
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct StationArgs {
     /// Station configuration file (launch_configs/station/*.toml).
     #[arg(long, value_name = "FILE")]

@@ -16,8 +16,27 @@ use crate::console::session_dir::check_name;
 use crate::console::view::instruction;
 use crate::score::score_inputs::ScoringFileArgs;
 
-/// `pomdar study` options.
+/// The human study: a participant does each task of a plan with their own hand.
+///
+/// The baseline a robot's speed is scored against comes from people: in the POMDAR study
+/// each participant does every task 3 times with their right hand, wearing the glove.
+/// For each task in --tasks, in order, this runs the trial console as `pomdar trial
+/// --embodiment human` would: the task's instruction and where the participant is in the
+/// plan are shown; no robot, no retargeting; the glove's keypoints and wrist pose are
+/// recorded with the trial's timing and events (one MCAP per trial, embodiment "human",
+/// the participant as the user) in <out>/<participant>/human/<task>; a trial starts once
+/// the glove is fresh and fast enough (space, or `start` in a script). Defaults: no
+/// practice, 3 trials per task. Run the same command again to resume: complete tasks are
+/// skipped, the interrupted one resumes at its next trial. Then `pomdar baseline` makes
+/// the baseline table and `pomdar study-report` checks the participants' strategies.
+/// Exit status: 0 study complete, 130 stopped (Ctrl-C, SIGTERM, q) before the end, 1 on
+/// an error.
+///
+/// Examples:
+///   pomdar study --participant p01 --operator bob --tasks V1,H2,C1,G2
+///   pomdar study --participant sim1 --operator me --tasks V1,C1,G2 --simulate --simulate-motion open-close,pinches,abduction
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct StudyArgs {
     /// The participant (names the session directories and goes into every log as the user).
     #[arg(long, value_name = "NAME")]

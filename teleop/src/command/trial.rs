@@ -69,8 +69,52 @@ const TRIAL_LOG_FLUSH_INTERVAL_NS: i64 = 500_000_000;
 /// Exit status after Ctrl-C (or SIGTERM).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
-/// `pomdar trial` options.
+/// The operator console for timed trials: practice, then a recorded series, per task.
+///
+/// Runs the station in this process and shows, full-screen: the task and what to mark,
+/// the embodiment, the calibration profile, live health (glove rate, input age, latency,
+/// engaged/held, watchdog, rejected frames, arm), the countdown and the running timer, and
+/// after each trial its time, correctness, score (with a baseline), the series' mean ±
+/// std and the trial's feedback (`pomdar review`: holds, pinches the robot did not close,
+/// the wrist at its limit, …; nothing for a clean trial). Each trial is its own MCAP log
+/// in the session directory (<out>/<user>/<embodiment>/<task>), its review figure and
+/// JSON in review/, with session.json (the manifest) written after every change and
+/// report/ (as `pomdar score --out`, ending with the trials worst first and their
+/// feedback) when the plan is done. Run the same
+/// command again to resume an interrupted session: a trial cut short by quit, Ctrl-C or a
+/// crash is kept aside (*.interrupted) and run again.
+///
+/// --embodiment human is a human-study session (see `pomdar study`): no robot, no
+/// retargeting, the glove's keypoints and wrist recorded; the start checks only the glove;
+/// no practice and 3 trials unless --practice / --trials say otherwise.
+///
+/// Keys: e engage / clutch out · space start (after the countdown) / stop · + one notch or
+/// curve · - take one back · p type a value (degrees, mm, grasp level 0 / 0.5 / 1) · d drop
+/// · a abort (scored as aborted) · r redo (abort and run again, or set the last trial
+/// aside) · n note · q quit (twice during a trial) · Ctrl-C quit now. A trial does not
+/// start while the station is not engaged, the glove input is stale or slower than
+/// --min-glove-rate.
+///
+/// Without a terminal (or with --plain) it prints a line per change and reads commands
+/// from stdin, one per line: engage, disengage, start, stop, progress [V], unmark, drop,
+/// abort, redo, note TEXT, quit. --script FILE plays timed commands instead:
+///   # seconds since the start, or +S after the previous line
+///   1.0  engage
+///   wait ready 10        # wait (at most 10 s) for a state: waiting_engage, ready,
+///   +0.5 start           #   countdown, running, finishing, summary, complete
+///   wait running 10
+///   +2   progress
+///   +1   stop
+///   wait summary 10
+/// Exit status: 0 when the console ends normally, 130 after Ctrl-C or SIGTERM, 1 on an
+/// error (a script's wait timing out, a bad file).
+///
+/// Examples:
+///   pomdar trial --task V1 --embodiment orca_full --user alice --operator bob --profile profiles/alice.toml --baseline baselines/eth_2026.toml
+///   pomdar trial --task G2 --user sim --operator me --simulate --practice 1 --trials 3
+///   pomdar trial --task V1 --embodiment human --user p01 --operator bob
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct TrialArgs {
     /// The task ID (V1–V3, H1–H5, C1–C4, G1–G6; the catalog's IDs).
     #[arg(long, value_name = "ID")]
