@@ -11,13 +11,13 @@ use scoring::{
     compute_baseline, render_study_markdown, render_study_text,
 };
 
-use super::common::mcap_files_under;
-use super::score::EXIT_SOME_REJECTED;
+use super::shared_args::mcap_files_under;
 use crate::atomic_file::write_atomically;
 use crate::score::load_trial::load_trial_log;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
 use crate::score::score_inputs::reason;
+use crate::score::trial_files::EXIT_SOME_REJECTED;
 
 /// Compute the human baseline table from recorded human trials (embodiment "human").
 ///

@@ -17,7 +17,6 @@ use retarget::HandModel;
 use retarget::human_hand::HandVariation;
 use tokio::sync::watch;
 
-use super::trial::EXIT_INTERRUPTED;
 use crate::calibrate::CalibrateError;
 use crate::calibrate::calibration_console::ConsoleFront;
 use crate::calibrate::calibration_script::load_calibration_script;
@@ -29,6 +28,7 @@ use crate::calibrate::simulated_user::{
     synthetic_user, true_transform,
 };
 use crate::clock::StationClock;
+use crate::tui::terminal_shell::EXIT_INTERRUPTED;
 use crate::utc_date::{compact_utc, now_unix_s};
 
 /// Calibrate a user's glove to the robot hand: seven poses, a fitted scale and rotation.
@@ -177,7 +177,7 @@ pub struct CalibrateArgs {
     pub domain_id: Option<u16>,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
     /// Live session: how long to wait for the glove's first keypoints, seconds.
     #[arg(long, value_name = "S", default_value_t = 10.0)]
     pub glove_wait_s: f64,
@@ -504,7 +504,7 @@ fn run_in_console(
         fit_in_console,
         ctrl_c: shutdown,
     } = run;
-    crate::command::common::run_async(async {
+    crate::command::shared_args::run_async(async {
         let clock = StationClock::new();
         let model = HandModel::orca_v1_right();
         match user {

@@ -69,15 +69,15 @@ pub fn main() -> ExitCode {
             return exit_code(command::baseline::baseline(args));
         }
         Command::Trial(args) => {
-            return exit_code(command::common::run_async(command::trial::trial(args)));
+            return exit_code(command::shared_args::run_async(command::trial::trial(args)));
         }
         Command::Study(args) => {
-            return exit_code(command::common::run_async(command::study::study(args)));
+            return exit_code(command::shared_args::run_async(command::study::study(args)));
         }
         Command::StudyReport(args) => {
             return exit_code(command::study_report::study_report(args));
         }
-        Command::Demo(args) => command::common::run_async(command::demo::demo(args)),
+        Command::Demo(args) => command::shared_args::run_async(command::demo::demo(args)),
         Command::Calibrate(args) => return exit_code(command::calibrate::calibrate(args)),
         Command::Resim(args) => command::resim::resim(args),
         Command::Eval(args) => command::eval::eval(args),
@@ -85,22 +85,28 @@ pub fn main() -> ExitCode {
         Command::Review(args) => command::review::review(args),
         Command::EvalSet(args) => command::eval_set::eval_set(args),
         Command::Recover(args) => command::recover::recover(args),
-        Command::Replay(args) => command::common::run_async(command::replay::replay(args)),
+        Command::Replay(args) => command::shared_args::run_async(command::replay::replay(args)),
         Command::Probe(args) => {
-            return exit_code(command::common::run_async(command::probe::run(args)));
+            return exit_code(command::shared_args::run_async(command::probe::run(args)));
         }
-        Command::Relay(args) => command::common::run_async(command::relay::relay(args)),
-        Command::Ingress(command) => command::common::run_async(command::ingress::run(command)),
-        Command::Station(args) => command::common::run_async(command::station::station(args)),
-        Command::SimGlove(args) => command::common::run_async(command::sim_glove::sim_glove(args)),
+        Command::Relay(args) => command::shared_args::run_async(command::relay::relay(args)),
+        Command::Ingress(command) => {
+            command::shared_args::run_async(command::ingress::run(command))
+        }
+        Command::Station(args) => command::shared_args::run_async(command::station::station(args)),
+        Command::SimGlove(args) => {
+            command::shared_args::run_async(command::sim_glove::sim_glove(args))
+        }
         Command::HandCheck(args) => {
-            command::common::run_async(command::hand_check::hand_check(args))
+            command::shared_args::run_async(command::hand_check::hand_check(args))
         }
-        Command::MockHand(args) => command::common::run_async(command::mock_hand::mock_hand(args)),
-        Command::Sim(args) => command::common::run_async(command::sim::sim(args)),
+        Command::MockHand(args) => {
+            command::shared_args::run_async(command::mock_hand::mock_hand(args))
+        }
+        Command::Sim(args) => command::shared_args::run_async(command::sim::sim(args)),
         Command::SimBench(args) => return exit_code(command::sim_bench::sim_bench(args)),
         Command::MockFranka(args) => {
-            command::common::run_async(command::mock_franka::mock_franka(args))
+            command::shared_args::run_async(command::mock_franka::mock_franka(args))
         }
     };
     exit_code(result.map(|()| ExitCode::SUCCESS))

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use retarget::human_hand::MotionKind;
 
-use super::common::{MotionArg, ViewArgs};
+use super::shared_args::{MotionArg, ViewArgs};
 use crate::demo::PhysicsTask;
 use crate::demo::{DemoOptions, DemoSummary, run_demo};
 use crate::ros::default_domain_id;
@@ -101,7 +101,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             .as_deref()
             .map(load_glove_script)
             .transpose()?,
-        jitter_m: glove_jitter_m(args.glove_jitter_mm, args.glove_script.is_some())?,
+        jitter_m: crate::sim::glove_jitter::glove_jitter_m(
+            args.glove_jitter_mm,
+            args.glove_script.is_some(),
+        )?,
         ..SimGloveConfig::default()
     };
     if !(args.duration > 0.0 && args.duration <= 86_400.0) {
@@ -211,21 +214,6 @@ fn print_summary(summary: &DemoSummary, recorded: Option<&std::path::Path>, cont
             p.correctness.map_or("-".into(), |c| format!("{c:.2}")),
             p.realtime_factor
         );
-    }
-}
-
-/// The glove's keypoint noise, metres: `--glove-jitter-mm`, else 1 mm, or none for a script.
-pub(crate) fn glove_jitter_m(jitter_mm: Option<f64>, scripted: bool) -> anyhow::Result<f64> {
-    match jitter_mm {
-        Some(mm) if !(0.0..=50.0).contains(&mm) => {
-            anyhow::bail!("--glove-jitter-mm {mm} must be in [0, 50] mm")
-        }
-        Some(mm) => Ok(mm * 1e-3),
-        // A worn glove is never perfectly still: a script's still phases carry the noise of a
-        // hand at rest, or the station would take their identical frames for a stalled stream
-        // and release the arm after its disengage timeout.
-        None if scripted => Ok(crate::sim::sim_glove_node::REST_JITTER_M),
-        None => Ok(SimGloveConfig::default().jitter_m),
     }
 }
 

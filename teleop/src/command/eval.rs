@@ -8,7 +8,7 @@ use clap::Args;
 use retarget::HandModel;
 use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
-use super::common::readable_mcap_files;
+use super::shared_args::readable_mcap_files;
 use crate::eval::external::{evaluate_commands, external_table};
 use crate::eval::outlier_study::outlier_study;
 use crate::eval::profile_scales::{profile_scales, profile_scales_table};

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::readable_mcap_files;
+use super::shared_args::readable_mcap_files;
 use crate::atomic_file::write_atomically;
 use crate::eval::eval_set::build_set;
 use crate::station_setup::load_station_config;

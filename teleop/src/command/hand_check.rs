@@ -6,7 +6,7 @@ use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::atomic_file::write_atomically;
 use crate::hand_check::check_node::{Answers, CheckOutput, run_check};
 use crate::hand_check::hand_check_script::{ANSWER_WORDS, CheckScriptPlayer, load_check_script};
@@ -99,7 +99,7 @@ pub struct HandCheckArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
 }
 
 /// `pomdar hand-check`.

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::{Args, Subcommand};
 
 use crate::clock::StationClock;
-use crate::command::common::{NodeArgs, ctrl_c_shutdown};
+use crate::command::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ingress::avp_config::AvpConfig;
 use crate::ingress::avp_node::{avp_source, run_avp_ingress};
 use crate::ingress::ingress_config::{Hand, IngressConfig};

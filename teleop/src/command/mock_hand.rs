@@ -8,7 +8,7 @@ use clap::Args;
 use retarget::HandModel;
 use station::policy_output::PolicyOutput;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};

@@ -2,7 +2,7 @@
 
 use clap::Args;
 
-use super::common::HandSourceArgs;
+use super::shared_args::HandSourceArgs;
 use crate::model_report;
 
 /// Load a hand model, validate it and print its joints, limits, frames and embodiments.

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use clap::Args;
 
-use crate::command::common::{NodeArgs, ctrl_c_shutdown};
+use crate::command::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ros::NetworkConfig;
 use crate::ros::discovery_probe::{ProbeOptions, probe};
 

@@ -6,7 +6,7 @@ use std::sync::Mutex;
 use anyhow::Context as _;
 use clap::Args;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::WallClock;
 use crate::relay_node::{RelayReport, RelaySettings, run_relay};
 use crate::station_setup::read_station_config;
@@ -40,7 +40,7 @@ pub struct RelayArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
 }
 
 /// `pomdar relay`.

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ros::NetworkConfig;
 
 /// Republish a log's recorded topics over ROS 2 with their original timing.

@@ -12,10 +12,7 @@ use crate::score::compare_files::write_compare_files;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::ScoringFileArgs;
-use crate::score::trial_files::collect_trial_files;
-
-/// Exit status when the run finished but some trial files were rejected.
-pub const EXIT_SOME_REJECTED: u8 = 3;
+use crate::score::trial_files::{EXIT_SOME_REJECTED, collect_trial_files};
 
 /// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
 /// embodiment.

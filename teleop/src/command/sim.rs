@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::NodeArgs;
+use super::shared_args::NodeArgs;
 
 /// The simulated robot in a MuJoCo task scene (needs the `physics` build).
 ///
@@ -82,7 +82,7 @@ pub struct SimArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
 }
 
 /// `pomdar sim`.
@@ -101,7 +101,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
 
     use anyhow::Context as _;
 
-    use super::common::ctrl_c_shutdown;
+    use super::shared_args::ctrl_c_shutdown;
     use crate::clock::StationClock;
     use crate::physics::robot_node::{
         PhysicsRobotConfig, PhysicsRobotReport, PhysicsRobotRun, run_physics_robot,
@@ -215,7 +215,7 @@ fn summary_line(r: &crate::physics::robot_node::PhysicsRobotReport) -> String {
 #[cfg(feature = "physics")]
 fn timed_shutdown(seconds: f64) -> tokio::sync::watch::Receiver<bool> {
     let (tx, rx) = tokio::sync::watch::channel(false);
-    let mut ctrl_c = super::common::ctrl_c_shutdown();
+    let mut ctrl_c = super::shared_args::ctrl_c_shutdown();
     tokio::spawn(async move {
         let wait = std::time::Duration::from_secs_f64(seconds.max(0.0));
         tokio::select! {
@@ -255,7 +255,7 @@ fn lockstep(
         anyhow::bail!("--runs {} must be in [1, 1000]", args.runs);
     }
     let script = load_glove_script(script)?;
-    let jitter_m = super::demo::glove_jitter_m(args.glove_jitter_mm, true)?;
+    let jitter_m = crate::sim::glove_jitter::glove_jitter_m(args.glove_jitter_mm, true)?;
     if args.runs == 1 {
         let run = lockstep_run(
             station,

@@ -3,7 +3,7 @@
 use clap::Args;
 use retarget::human_hand::MotionKind;
 
-use super::common::{MotionArg, NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{MotionArg, NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::glove_script_file::load_glove_script;

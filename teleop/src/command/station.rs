@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use tokio::sync::mpsc;
 
-use super::common::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
+use super::shared_args::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
@@ -46,7 +46,7 @@ pub struct StationArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
     /// The live view.
     #[command(flatten)]
     pub view: ViewArgs,

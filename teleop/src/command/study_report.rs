@@ -9,12 +9,12 @@ use std::process::ExitCode;
 use clap::Args;
 use study::{StrategyAnalysis, StrategySettings, TrialMotion, analyse, strategy_figure};
 
-use super::common::mcap_files_under;
-use super::score::EXIT_SOME_REJECTED;
+use super::shared_args::mcap_files_under;
 use crate::atomic_file::write_atomically;
 use crate::score::ScoreFileError;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
+use crate::score::trial_files::EXIT_SOME_REJECTED;
 use crate::study_logs::{StudyTrial, read_study_trial};
 
 /// The human study's strategy check: do participants do each task the same way?
