@@ -133,9 +133,7 @@ pub(crate) fn mcap_files_under(
 /// The `.mcap` files in `paths` (files, or directories searched), for a command that reads
 /// every one: a path that cannot be read stops it, named with the reason, rather than being
 /// left out of its figures.
-pub(crate) fn readable_mcap_files(
-    paths: &[PathBuf],
-) -> anyhow::Result<Vec<PathBuf>> {
+pub(crate) fn readable_mcap_files(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
     let found = mcap_files_under(paths)?;
     if !found.problems.is_empty() {
         let problems: Vec<String> = found

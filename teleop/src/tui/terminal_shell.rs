@@ -80,7 +80,6 @@ impl Wakeups {
             signals: Signals(Some((interrupt, terminate))),
         })
     }
-
 }
 
 impl Signals {
