@@ -1,7 +1,5 @@
 //! `pomdar baseline`: the human baseline table from recorded human trials.
 
-use std::collections::BTreeSet;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -126,27 +124,6 @@ fn read_records(
     Ok((records, rejected))
 }
 
-/// The table's source note: `--source`, then the count of trials averaged and the users of
-/// the recorded human trials.
-fn source_note(source: Option<&str>, records: &[TrialRecord], used: usize) -> String {
-    let users: BTreeSet<&str> = records
-        .iter()
-        .filter(|r| r.embodiment == HUMAN_EMBODIMENT && !r.practice)
-        .filter_map(|r| r.user.as_deref())
-        .collect();
-    let mut note = source.map_or(String::new(), |s| format!("{s}; "));
-    let _ = write!(
-        note,
-        "pomdar baseline over {used} recorded human trials (users: {})",
-        if users.is_empty() {
-            "not recorded".to_string()
-        } else {
-            users.into_iter().collect::<Vec<_>>().join(", ")
-        }
-    );
-    note
-}
-
 /// `pomdar baseline`.
 pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     let inputs = ScoringInputs::load(args.catalog.as_deref(), args.rules.as_deref(), None)?;
@@ -154,7 +131,8 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     let (records, rejected) = read_records(&args.paths, &inputs)?;
     let mut result = compute_baseline(&records, &inputs.catalog, &inputs.rules, "");
     let used = result.used.len();
-    result.table.header.source = source_note(args.source.as_deref(), &records, used);
+    result.table.header.source =
+        crate::score::baseline_source::source_note(args.source.as_deref(), &records, used);
     let study = baseline_study(&result, &inputs.catalog, args.min_trials);
 
     print!("{}", render_study_text(&study));

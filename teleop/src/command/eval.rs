@@ -9,11 +9,9 @@ use retarget::HandModel;
 use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
 use super::shared_args::readable_mcap_files;
-use crate::eval::external::{evaluate_commands, external_table};
-use crate::eval::outlier_study::outlier_study;
-use crate::eval::profile_scales::{profile_scales, profile_scales_table};
 use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{EvalOptions, evaluate, table};
+use crate::eval_modes::{eval_commands, eval_outlier_study, eval_profile_scales, in_file};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
 use crate::station_setup::load_station_config;
@@ -107,13 +105,33 @@ pub struct EvalArgs {
 pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     if let Some(topic) = &args.commands {
-        return eval_commands(&args, &config, topic);
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_commands(&files, &config, topic, args.json)?);
     }
     if !args.profile_scales.is_empty() {
-        return eval_profile_scales(&args, &config);
+        if let Some(bad) = args
+            .profile_scales
+            .iter()
+            .find(|s| !(s.is_finite() && **s > 0.0))
+        {
+            anyhow::bail!("--profile-scales: {bad} is not a positive scale");
+        }
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_profile_scales(
+            &files,
+            &config,
+            &args.profile_scales,
+            args.json,
+        )?);
     }
     if args.outlier_study {
-        return eval_outlier_study(&args, &config);
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_outlier_study(
+            &files,
+            &config,
+            args.outlier_seed,
+            args.json,
+        )?);
     }
     let options = EvalOptions {
         reach_max_configurations: args.reach.then_some(args.reach_grid),
@@ -153,110 +171,4 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
         print!("{}", summary_table(&set));
     }
     Ok(())
-}
-
-/// `pomdar eval --outlier-study`: per recording, what one-frame outliers do with the outlier
-/// check and without it.
-fn eval_outlier_study(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
-    let files = readable_mcap_files(&args.inputs)?;
-    let mut outputs = Vec::new();
-    for path in &files {
-        let reader = TrialReader::open(path)?;
-        let study = outlier_study(
-            &reader,
-            config,
-            &HandModel::orca_v1_right(),
-            args.outlier_seed,
-        )
-        .map_err(|e| in_file(path, &e))?;
-        if !args.json {
-            println!(
-                "{}: {} one-frame outliers, {} caught; largest joint move toward them {:.3} rad \
-                 with the outlier check, {:.3} rad without; {} sustained pinches compared, closed \
-                 at most {} frame(s) later with the check; {} clean frame(s) caught",
-                path.display(),
-                study.outliers,
-                study.outlier_frames_caught,
-                study.toward_outliers_rad,
-                study.toward_outliers_unchecked_rad,
-                study.pinches_compared,
-                study.closure_delay_max_frames,
-                study.clean_frames_caught,
-            );
-        }
-        outputs.push(serde_json::json!({ "input": path.display().to_string(), "study": study }));
-    }
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&outputs)?);
-    }
-    Ok(())
-}
-
-/// `pomdar eval --commands TOPIC`: another retargeter's recorded commands, per recording.
-fn eval_commands(
-    args: &EvalArgs,
-    config: &station::StationConfig,
-    topic: &str,
-) -> anyhow::Result<()> {
-    let files = readable_mcap_files(&args.inputs)?;
-    let mut outputs = Vec::new();
-    for path in &files {
-        let reader = TrialReader::open(path)?;
-        let output = evaluate_commands(&reader, config, HandModel::orca_v1_right(), topic)
-            .map_err(|e| in_file(path, &e))?;
-        if !args.json {
-            println!("{}", external_table(&output));
-        }
-        outputs.push(output);
-    }
-    if args.json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
-    }
-    Ok(())
-}
-
-/// `pomdar eval --profile-scales S,…`: the retargeter alone under each scale, per recording.
-fn eval_profile_scales(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
-    if let Some(bad) = args
-        .profile_scales
-        .iter()
-        .find(|s| !(s.is_finite() && **s > 0.0))
-    {
-        anyhow::bail!("--profile-scales: {bad} is not a positive scale");
-    }
-    let model = HandModel::orca_v1_right();
-    let mut outputs = Vec::new();
-    for path in &readable_mcap_files(&args.inputs)? {
-        let reader = TrialReader::open(path)?;
-        let rows = profile_scales(&reader, config, &model, &args.profile_scales)
-            .map_err(|e| in_file(path, &e))?;
-        let input = path.display().to_string();
-        if !args.json {
-            println!("{}", profile_scales_table(&input, &rows));
-        }
-        outputs.push(serde_json::json!({ "input": input, "profile_scales": rows }));
-    }
-    if args.json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
-    }
-    Ok(())
-}
-
-/// An evaluation error naming its recording (once: some errors name it already).
-fn in_file(path: &std::path::Path, error: &crate::eval::EvalError) -> anyhow::Error {
-    let text = error.to_string();
-    let name = path.display().to_string();
-    if text.starts_with(&name) {
-        anyhow::anyhow!("{text}")
-    } else {
-        anyhow::anyhow!("{name}: {text}")
-    }
 }

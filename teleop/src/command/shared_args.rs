@@ -8,7 +8,6 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 use clap::Args;
 use retarget::human_hand::MotionKind;
-use tokio::sync::watch;
 
 use crate::console::session_options::ConsoleSettings;
 use crate::ros::{NetworkConfig, NetworkOverride};
@@ -96,16 +95,7 @@ pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::
         .block_on(future)
 }
 
-/// A shutdown signal that turns true on Ctrl-C.
-pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
-    let (tx, rx) = watch::channel(false);
-    tokio::spawn(async move {
-        if tokio::signal::ctrl_c().await.is_ok() {
-            tx.send(true).ok();
-        }
-    });
-    rx
-}
+pub(crate) use crate::tui::terminal_shell::ctrl_c_shutdown;
 
 /// The `.mcap` files under `paths` (files, or directories searched recursively) for the
 /// commands that read many recordings (`pomdar baseline`, `study-report`, `eval`, `eval-set`):

@@ -96,3 +96,14 @@ impl Signals {
         }
     }
 }
+
+/// A shutdown signal that turns true on Ctrl-C (for the nodes that watch no terminal).
+pub fn ctrl_c_shutdown() -> tokio::sync::watch::Receiver<bool> {
+    let (tx, rx) = tokio::sync::watch::channel(false);
+    tokio::spawn(async move {
+        if tokio::signal::ctrl_c().await.is_ok() {
+            tx.send(true).ok();
+        }
+    });
+    rx
+}
