@@ -42,8 +42,13 @@ use crate::mcap_log::{
 use crate::ros::RosNode;
 use crate::tui::script::ScriptError;
 use crate::tui::terminal::Input;
+use crate::tui::terminal_shell::{Next, Wakeups};
 use station::convert::{KeypointMessage, header};
 use station::{KeypointFormat, StationConfig};
+
+/// What one wake-up of the session's loop brought: the operator's actions and the session's
+/// effects so far (the consoles' shared turn, [`crate::tui::terminal_shell::Turn`]).
+type Turn = crate::tui::terminal_shell::Turn<CalibrationAction, Effect>;
 
 /// How often the commanded pose is re-sent, seconds.
 const RESEND_S: f64 = 0.1;
@@ -186,7 +191,7 @@ pub async fn run_session(
         started: Instant::now(),
         end: SessionEnd::default(),
     };
-    let mut tick = tokio::time::interval(Duration::from_millis(50));
+    let mut wakeups = Wakeups::tick_only();
     loop {
         let mut turn = Turn::default();
         tokio::select! {
@@ -207,7 +212,7 @@ pub async fn run_session(
                     run.pose_sent(joint_pub.async_publish(message).await);
                 }
             }
-            _ = tick.tick() => {}
+            _ = wakeups.tick.tick() => {}
             Some(input) = run.front.next_input() => run.key_pressed(&input, &mut turn.actions),
             Some(p) = run.fit.progress_rx.recv() => run.session.fit_progressed(p),
             result = joined(&mut run.fit.task), if run.fit.task.is_some() => {
@@ -329,23 +334,6 @@ impl Drop for UnstartedLog {
             std::fs::remove_file(&self.path).ok();
         }
     }
-}
-
-/// What happens after a turn of the session's loop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Next {
-    /// Wait for the next key, frame, tick or fit result.
-    Continue,
-    /// Leave the console.
-    Quit,
-}
-
-/// What one wake-up of the session's loop brought: the operator's actions and the session's
-/// effects so far.
-#[derive(Default)]
-struct Turn {
-    actions: Vec<CalibrationAction>,
-    effects: Vec<Effect>,
 }
 
 /// The session log while it is written.

@@ -24,7 +24,7 @@ use crate::station_node::recorder::RecordingOptions;
 use crate::station_node::ros_node::{OperatorCommand, StationEvent};
 use crate::tui::script_player::ScriptPlayer;
 use crate::tui::terminal::Input;
-use crate::tui::terminal_shell::{Next, Wakeups};
+use crate::tui::terminal_shell::{Next, TurnLoop, Wakeups};
 
 /// What one wake-up of the trial console brought.
 type Turn = crate::tui::terminal_shell::Turn<Action, Effect>;
@@ -57,17 +57,10 @@ pub(super) struct TrialConsole {
     pub(super) end: ConsoleEnd,
 }
 
-impl TrialConsole {
-    /// Turns until the console quits: wait for something, then act on it.
-    pub(super) async fn run(&mut self) -> Result<(), SessionError> {
-        loop {
-            let mut turn = Turn::default();
-            self.wait(&mut turn).await?;
-            if self.finish_turn(turn)? == Next::Quit {
-                return Ok(());
-            }
-        }
-    }
+impl TurnLoop for TrialConsole {
+    type Action = Action;
+    type Effect = Effect;
+    type Error = SessionError;
 
     /// Waits for a tick, the station's status or events, a key or line, or a signal; an
     /// error when the station stops.
@@ -89,6 +82,34 @@ impl TrialConsole {
         Ok(())
     }
 
+    /// The rest of a turn: the script's and the operator's actions and the clock go to the
+    /// session, its effects are carried out, the report written when the plan is complete,
+    /// the console shown.
+    fn finish_turn(&mut self, mut turn: Turn) -> Result<Next, SessionError> {
+        let now = self.clock.now_ns();
+        // The newest status, even when this turn woke for something else: a turn that waited
+        // on the disk must not take the station for silent.
+        if self.station.status_rx.has_changed().unwrap_or(false) {
+            self.status_changed();
+        }
+        self.session.health.latest_input_ns = self.station.latest_input.get();
+        self.play_script(&mut turn.actions);
+        self.act(turn.actions, &mut turn.effects, now);
+        let session = &mut self.session;
+        turn.effects.extend(session.flow.tick(&session.health, now));
+        let mut next = self.carry_out(turn.effects);
+        self.session.write_report_once_complete();
+        if self.done_unattended() {
+            next = Next::Quit;
+        }
+        let session = &mut self.session;
+        session.message_log.append_new(&mut session.flow);
+        self.operator.show(&self.session, now)?;
+        Ok(next)
+    }
+}
+
+impl TrialConsole {
     fn status_changed(&mut self) {
         if let Some(status) = self.station.status_rx.borrow_and_update().as_ref() {
             self.session.health = Health::from_status(status, self.clock.now_ns());
@@ -153,32 +174,6 @@ impl TrialConsole {
                 ServiceAction::TrialAbort => Action::Abort,
             }),
         }
-    }
-
-    /// The rest of a turn: the script's and the operator's actions and the clock go to the
-    /// session, its effects are carried out, the report written when the plan is complete,
-    /// the console shown.
-    fn finish_turn(&mut self, mut turn: Turn) -> Result<Next, SessionError> {
-        let now = self.clock.now_ns();
-        // The newest status, even when this turn woke for something else: a turn that waited
-        // on the disk must not take the station for silent.
-        if self.station.status_rx.has_changed().unwrap_or(false) {
-            self.status_changed();
-        }
-        self.session.health.latest_input_ns = self.station.latest_input.get();
-        self.play_script(&mut turn.actions);
-        self.act(turn.actions, &mut turn.effects, now);
-        let session = &mut self.session;
-        turn.effects.extend(session.flow.tick(&session.health, now));
-        let mut next = self.carry_out(turn.effects);
-        self.session.write_report_once_complete();
-        if self.done_unattended() {
-            next = Next::Quit;
-        }
-        let session = &mut self.session;
-        session.message_log.append_new(&mut session.flow);
-        self.operator.show(&self.session, now)?;
-        Ok(next)
     }
 
     /// The script's due action in the current screen; a script that failed interrupts.

@@ -27,7 +27,7 @@ use crate::ros::{NetworkConfig, default_domain_id};
 use crate::score::score_inputs::ScoringInputs;
 use crate::sim::glove_script_file::load_glove_script;
 use crate::station_node::recorder::config_digest;
-use crate::tui::terminal_shell::Wakeups;
+use crate::tui::terminal_shell::{Wakeups, run_turns};
 use crate::view::live_view::start_live_view;
 
 /// One task's console session; `study` lines are added to the setting shown (the study's
@@ -100,7 +100,7 @@ pub async fn run_session(
         clock,
         end: ConsoleEnd::default(),
     };
-    console.run().await?;
+    run_turns(&mut console).await?;
     let end = console.finish().await;
     if let Some(view) = view {
         view.stop().await;

@@ -2,7 +2,7 @@
 //! simulated time, once (its events and a summary) or over `--runs` consecutive seeds (a line
 //! each and the spread of completion times).
 
-use super::run_report::{print_run, print_spread, start_note};
+use super::run_report::start_note;
 use super::{SimRequest, SimRunError};
 use crate::physics::lockstep::run_lockstep;
 use crate::sim::glove_script_file::load_glove_script;
@@ -102,4 +102,53 @@ fn lockstep_run(
         outcome,
         correctness,
     })
+}
+
+/// A single run: its events and a summary line.
+fn print_run(run: &LockstepRun) {
+    let (task, outcome) = (&run.task, &run.outcome);
+    for event in &outcome.events {
+        let value = event.value.map_or(String::new(), |v| format!(" {v}"));
+        println!(
+            "{:>7.2} s  {}{value} {}",
+            event.sim_time_s, event.event, event.unit
+        );
+    }
+    println!(
+        "{} ({}): progress {} {}, correctness {:.3} over {:.1} simulated s ({} hand commands, {} arm targets)",
+        task.id,
+        task.name,
+        outcome.progress,
+        task.correctness.progress_unit(),
+        run.correctness,
+        outcome.sim_time_s,
+        outcome.hand_commands,
+        outcome.arm_targets
+    );
+}
+
+/// Several runs: how many scored correctness 1, and when the successful ones were done.
+fn print_spread(completions: &[Option<f64>], args: &SimRequest, jitter_m: f64) {
+    let mut done: Vec<f64> = completions.iter().flatten().copied().collect();
+    done.sort_by(f64::total_cmp);
+    let spread = match (done.first(), done.last()) {
+        (Some(min), Some(max)) => format!(
+            "; done at {min:.2} / {:.2} / {max:.2} s (min / median / max)",
+            done[done.len() / 2]
+        ),
+        _ => String::new(),
+    };
+    let starts = if args.perturb_start {
+        ", starts moved up to 5 mm and 3°"
+    } else {
+        ""
+    };
+    println!(
+        "correctness 1 in {} of {} runs (seeds {}–{}, glove noise {:.1} mm{starts}){spread}",
+        done.len(),
+        completions.len(),
+        args.seed,
+        args.seed.wrapping_add(args.runs - 1),
+        jitter_m * 1e3
+    );
 }

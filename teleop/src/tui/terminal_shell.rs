@@ -43,6 +43,35 @@ impl<A, E> Default for Turn<A, E> {
     }
 }
 
+/// A console run by [`run_turns`]: each turn it waits for what wakes it, then finishes the
+/// turn (acts on it, shows itself) and says whether it goes on.
+pub trait TurnLoop {
+    /// The operator's actions.
+    type Action;
+    /// What the session asks to be done.
+    type Effect;
+    /// What stops the console.
+    type Error;
+    /// Waits for a tick, a key, an event or a signal, and notes what it brought in `turn`.
+    fn wait(
+        &mut self,
+        turn: &mut Turn<Self::Action, Self::Effect>,
+    ) -> impl Future<Output = Result<(), Self::Error>>;
+    /// Acts on what the turn brought and shows the console.
+    fn finish_turn(&mut self, turn: Turn<Self::Action, Self::Effect>) -> Result<Next, Self::Error>;
+}
+
+/// Turns until the console quits: wait for something, then act on it.
+pub async fn run_turns<L: TurnLoop>(console: &mut L) -> Result<(), L::Error> {
+    loop {
+        let mut turn = Turn::default();
+        console.wait(&mut turn).await?;
+        if console.finish_turn(turn)? == Next::Quit {
+            return Ok(());
+        }
+    }
+}
+
 /// What wakes a console besides its station or node and its operator: its tick and, when it
 /// watches them itself, SIGINT and SIGTERM.
 pub struct Wakeups {
