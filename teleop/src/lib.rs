@@ -14,6 +14,7 @@ pub mod demo;
 pub mod device_thread;
 pub mod disk_wait;
 pub mod eval;
+pub mod eval_modes;
 pub mod hand_check;
 pub mod hand_source;
 pub mod ingress;
@@ -33,6 +34,8 @@ pub mod score;
 pub mod sim;
 #[cfg(feature = "physics")]
 pub mod sim_bench;
+#[cfg(feature = "physics")]
+pub mod sim_runs;
 pub mod station_node;
 pub mod station_setup;
 pub mod station_topics;

@@ -1,5 +1,6 @@
 //! Helpers shared by the workspace integration tests in `tests/tests/`.
 
+pub mod command_rule;
 pub mod cyclone_peer;
 pub mod dependency_rule;
 pub mod deployment_guide;

@@ -19,6 +19,11 @@
 //! | `ctrl_c.rs` | the process's one Ctrl-C handler (installed first, works without an async runtime), as a watch channel |
 //! | `error.rs` | the one error type, [`CalibrateError`] |
 
+pub mod calibrate_console_run;
+pub mod calibrate_report;
+pub mod calibrate_request;
+pub mod calibrate_run;
+pub mod calibrate_run_error;
 pub mod calibration_console;
 pub mod calibration_screen;
 pub mod calibration_script;

@@ -42,8 +42,13 @@ use crate::mcap_log::{
 use crate::ros::RosNode;
 use crate::tui::script::ScriptError;
 use crate::tui::terminal::Input;
+use crate::tui::terminal_shell::{Next, TurnLoop, Wakeups, run_turns};
 use station::convert::{KeypointMessage, header};
 use station::{KeypointFormat, StationConfig};
+
+/// What one wake-up of the session's loop brought: the operator's actions and the session's
+/// effects so far (the consoles' shared turn, [`crate::tui::terminal_shell::Turn`]).
+type Turn = crate::tui::terminal_shell::Turn<CalibrationAction, Effect>;
 
 /// How often the commanded pose is re-sent, seconds.
 const RESEND_S: f64 = 0.1;
@@ -150,11 +155,11 @@ pub async fn run_session(
     let mut keypoints = match (&array_sub, &poses_sub) {
         (Some(sub), _) => sub
             .async_stream()
-            .map(|r| r.map(|(m, i)| (KeypointMessage::Array(m), i.source_timestamp())))
+            .map(|r| r.map(|(m, i)| (KeypointMessage::Array(m), source_ns(&i))))
             .boxed(),
         (None, Some(sub)) => sub
             .async_stream()
-            .map(|r| r.map(|(m, i)| (KeypointMessage::Poses(m), i.source_timestamp())))
+            .map(|r| r.map(|(m, i)| (KeypointMessage::Poses(m), source_ns(&i))))
             .boxed(),
         (None, None) => futures::stream::pending().boxed(),
     };
@@ -186,39 +191,75 @@ pub async fn run_session(
         started: Instant::now(),
         end: SessionEnd::default(),
     };
-    let mut tick = tokio::time::interval(Duration::from_millis(50));
-    loop {
-        let mut turn = Turn::default();
+    let mut turns = CalibrationLoop {
+        run: &mut run,
+        shutdown: &mut shutdown,
+        keypoints: &mut keypoints,
+        joint_pub: &joint_pub,
+        wakeups: Wakeups::tick_only(),
+    };
+    run_turns(&mut turns).await?;
+    run.finish()
+}
+
+/// The glove frame's source time, ns, when its sender stamped it.
+fn source_ns(info: &ros2_client::MessageInfo) -> Option<i64> {
+    info.source_timestamp().map(|t| t.to_nanos())
+}
+
+/// The session's turn loop for [`run_turns`]: what wakes it (Ctrl-C or the shutdown, a glove
+/// frame, the pose's resend, the tick, a key, the fit's progress and end) around the session.
+struct CalibrationLoop<'r, 'a, K> {
+    run: &'r mut SessionRun<'a>,
+    shutdown: &'r mut watch::Receiver<bool>,
+    /// The glove's keypoint messages with their source time, ns.
+    keypoints: &'r mut K,
+    joint_pub: &'r ros2_client::Publisher<JointState>,
+    wakeups: Wakeups,
+}
+
+impl<K, E> TurnLoop for CalibrationLoop<'_, '_, K>
+where
+    K: futures::Stream<Item = Result<(KeypointMessage, Option<i64>), E>> + Unpin,
+{
+    type Action = CalibrationAction;
+    type Effect = Effect;
+    type Error = CalibrateError;
+
+    async fn wait(&mut self, turn: &mut Turn) -> Result<(), CalibrateError> {
+        let run = &mut *self.run;
+        let clock = run.clock;
         tokio::select! {
-            changed = shutdown.changed(), if !run.end.interrupted => {
-                if changed.is_err() || *shutdown.borrow() {
+            changed = self.shutdown.changed(), if !run.end.interrupted => {
+                if changed.is_err() || *self.shutdown.borrow() {
                     run.end.interrupted = true;
                 }
             }
-            item = keypoints.next() => {
+            item = self.keypoints.next() => {
                 if let Some(Ok((message, source))) = item {
                     let now = clock.now_ns();
-                    let source_ns = source.map_or(now, |t| t.to_nanos());
+                    let source_ns = source.unwrap_or(now);
                     turn.effects.extend(run.keypoints_received(&message, now, source_ns)?);
                 }
             }
             _ = run.hand.resend.tick() => {
                 if let Some(message) = run.pose_to_resend()? {
-                    run.pose_sent(joint_pub.async_publish(message).await);
+                    run.pose_sent(self.joint_pub.async_publish(message).await);
                 }
             }
-            _ = tick.tick() => {}
+            _ = self.wakeups.tick.tick() => {}
             Some(input) = run.front.next_input() => run.key_pressed(&input, &mut turn.actions),
             Some(p) = run.fit.progress_rx.recv() => run.session.fit_progressed(p),
             result = joined(&mut run.fit.task), if run.fit.task.is_some() => {
                 turn.effects.extend(run.fit_finished(result));
             }
         }
-        if run.finish_turn(turn)? == Next::Quit {
-            break;
-        }
+        Ok(())
     }
-    run.finish()
+
+    fn finish_turn(&mut self, turn: Turn) -> Result<Next, CalibrateError> {
+        self.run.finish_turn(turn)
+    }
 }
 
 /// Each pose's joint targets, in capture order.
@@ -329,23 +370,6 @@ impl Drop for UnstartedLog {
             std::fs::remove_file(&self.path).ok();
         }
     }
-}
-
-/// What happens after a turn of the session's loop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Next {
-    /// Wait for the next key, frame, tick or fit result.
-    Continue,
-    /// Leave the console.
-    Quit,
-}
-
-/// What one wake-up of the session's loop brought: the operator's actions and the session's
-/// effects so far.
-#[derive(Default)]
-struct Turn {
-    actions: Vec<CalibrationAction>,
-    effects: Vec<Effect>,
 }
 
 /// The session log while it is written.

@@ -1,7 +1,5 @@
 //! `pomdar baseline`: the human baseline table from recorded human trials.
 
-use std::collections::BTreeSet;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -11,16 +9,39 @@ use scoring::{
     compute_baseline, render_study_markdown, render_study_text,
 };
 
-use super::common::mcap_files_under;
-use super::score::EXIT_SOME_REJECTED;
+use super::shared_args::mcap_files_under;
 use crate::atomic_file::write_atomically;
 use crate::score::load_trial::load_trial_log;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
 use crate::score::score_inputs::reason;
+use crate::score::trial_files::EXIT_SOME_REJECTED;
 
-/// `pomdar baseline` options.
+/// Compute the human baseline table from recorded human trials (embodiment "human").
+///
+/// Per task: the mean and sample standard deviation of the trial time (start → stop) over
+/// recorded trials that were stopped, not aborted, and within the rules' time limit;
+/// practice, aborted and timed-out trials are listed and left out. Trials of another
+/// embodiment are refused by name. Writes the table atomically as TOML (example = false,
+/// a source note with --source, the trial count and the users; per task the number of
+/// participants when every trial names its user), for `pomdar score --baseline`.
+///
+/// Prints the study: per task the trials, mean, std, min–max and participants, then per
+/// participant × task (the trials' user; "(unnamed)" without one) the trial times in
+/// trial-index order. Tasks with fewer than --min-trials trials (default 18: the POMDAR
+/// study's 6 participants × 3 trials) are flagged FEW and warned about on stderr; the
+/// table is still written and the exit status is unchanged. --report FILE also writes the
+/// study as Markdown (atomically; an existing file needs --overwrite, like --out).
+///
+/// Exit status: 0 every file used or left out for a stated reason; 3 some files were
+/// rejected or refused (the table is still written from the rest); 1 nothing usable, or
+/// a file could not be read or written.
+///
+/// Examples:
+///   pomdar baseline trials/human/ --source "ETH lab, 6 participants, Nov 2026" --out baselines/eth_2026.toml
+///   pomdar baseline trials/human/ --out baselines/pilot.toml --min-trials 6 --report baselines/pilot_study.md
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct BaselineArgs {
     /// Human trial logs (.mcap, embodiment "human"), or directories searched recursively.
     #[arg(required = true, value_name = "TRIALS")]
@@ -103,27 +124,6 @@ fn read_records(
     Ok((records, rejected))
 }
 
-/// The table's source note: `--source`, then the count of trials averaged and the users of
-/// the recorded human trials.
-fn source_note(source: Option<&str>, records: &[TrialRecord], used: usize) -> String {
-    let users: BTreeSet<&str> = records
-        .iter()
-        .filter(|r| r.embodiment == HUMAN_EMBODIMENT && !r.practice)
-        .filter_map(|r| r.user.as_deref())
-        .collect();
-    let mut note = source.map_or(String::new(), |s| format!("{s}; "));
-    let _ = write!(
-        note,
-        "pomdar baseline over {used} recorded human trials (users: {})",
-        if users.is_empty() {
-            "not recorded".to_string()
-        } else {
-            users.into_iter().collect::<Vec<_>>().join(", ")
-        }
-    );
-    note
-}
-
 /// `pomdar baseline`.
 pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     let inputs = ScoringInputs::load(args.catalog.as_deref(), args.rules.as_deref(), None)?;
@@ -131,7 +131,8 @@ pub fn baseline(args: BaselineArgs) -> anyhow::Result<ExitCode> {
     let (records, rejected) = read_records(&args.paths, &inputs)?;
     let mut result = compute_baseline(&records, &inputs.catalog, &inputs.rules, "");
     let used = result.used.len();
-    result.table.header.source = source_note(args.source.as_deref(), &records, used);
+    result.table.header.source =
+        crate::score::baseline_source::source_note(args.source.as_deref(), &records, used);
     let study = baseline_study(&result, &inputs.catalog, args.min_trials);
 
     print!("{}", render_study_text(&study));

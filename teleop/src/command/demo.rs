@@ -5,17 +5,29 @@ use std::path::PathBuf;
 use clap::Args;
 use retarget::human_hand::MotionKind;
 
-use super::common::{MotionArg, ViewArgs};
+use super::shared_args::{MotionArg, ViewArgs};
 use crate::demo::PhysicsTask;
-use crate::demo::{DemoOptions, DemoSummary, run_demo};
+use crate::demo::{DemoOptions, run_demo};
 use crate::ros::default_domain_id;
 use crate::score::score_inputs::ScoringInputs;
 use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::SimGloveConfig;
 use crate::station_setup::load_station_config;
 
-/// `pomdar demo` options.
+/// The whole pipeline on loopback DDS: simulated glove → station → mock hand and arm.
+///
+/// Runs in one process on its own ROS domain id (never the lab's 0 by default), prints a
+/// status line every second and a summary at the end: input and output rates, end-to-end
+/// latency (glove publish → joint target received) p50/p99, solver time, rejected frames,
+/// fingertip error.
+///
+/// Examples:
+///   pomdar demo
+///   pomdar demo --duration 60 --motion pinches
+///   pomdar demo --duration 5 --json
+///   pomdar demo --out logs/        # also record the run to logs/demo-<time>.mcap
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct DemoArgs {
     /// How long the simulated glove plays, seconds.
     #[arg(long, default_value_t = 20.0)]
@@ -89,7 +101,10 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             .as_deref()
             .map(load_glove_script)
             .transpose()?,
-        jitter_m: glove_jitter_m(args.glove_jitter_mm, args.glove_script.is_some())?,
+        jitter_m: crate::sim::glove_jitter::glove_jitter_m(
+            args.glove_jitter_mm,
+            args.glove_script.is_some(),
+        )?,
         ..SimGloveConfig::default()
     };
     if !(args.duration > 0.0 && args.duration <= 86_400.0) {
@@ -140,81 +155,13 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
     } else {
-        print_summary(&outcome.summary, outcome.recorded.as_deref(), &control);
+        crate::demo::summary_text::print_summary(
+            &outcome.summary,
+            outcome.recorded.as_deref(),
+            &control,
+        );
     }
     Ok(())
-}
-
-/// The demo's summary for a person.
-fn print_summary(summary: &DemoSummary, recorded: Option<&std::path::Path>, control: &str) {
-    let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2} ms"));
-    println!("summary over {:.1} s:", summary.duration_s);
-    println!(
-        "  glove frames       {:.1} /s over {:.1} s of sending",
-        summary.input_rate_hz, summary.glove_sending_s
-    );
-    println!(
-        "  joint targets      {:.1} /s ({} received)",
-        summary.output_rate_hz, summary.hand_targets
-    );
-    println!("  arm targets        {}", summary.arm_targets);
-    println!(
-        "  end-to-end latency p50 {}, p99 {} (glove publish → joint target received, {control})",
-        ms(summary.latency_ms_p50),
-        ms(summary.latency_ms_p99)
-    );
-    println!(
-        "  control step       p50 {}, p99 {}",
-        ms(summary.solver_ms_p50),
-        ms(summary.solver_ms_p99)
-    );
-    println!("  rejected frames    {}", summary.rejected_frames);
-    if let Some(gap) = &summary.longest_input_gap {
-        println!(
-            "  longest glove gap  {:.0} ms as received ({:.0} ms as sent)",
-            gap.received_ms, gap.sent_ms
-        );
-    }
-    if let Some(path) = recorded {
-        println!("  recorded           {}", path.display());
-        if summary.log_dropped > 0 {
-            println!(
-                "  not logged         {} messages (the disk fell behind)",
-                summary.log_dropped
-            );
-        }
-    }
-    println!(
-        "  fingertip error    {} (palm-to-tip key vectors, uncalibrated)",
-        summary
-            .fingertip_error_mm
-            .map_or("-".into(), |v| format!("{v:.1} mm"))
-    );
-    if let Some(p) = &summary.physics {
-        println!(
-            "  task {}           progress {} {}, correctness {} (measured by the physics); physics {:.1}× real time",
-            p.task,
-            p.progress,
-            p.unit,
-            p.correctness.map_or("-".into(), |c| format!("{c:.2}")),
-            p.realtime_factor
-        );
-    }
-}
-
-/// The glove's keypoint noise, metres: `--glove-jitter-mm`, else 1 mm, or none for a script.
-pub(crate) fn glove_jitter_m(jitter_mm: Option<f64>, scripted: bool) -> anyhow::Result<f64> {
-    match jitter_mm {
-        Some(mm) if !(0.0..=50.0).contains(&mm) => {
-            anyhow::bail!("--glove-jitter-mm {mm} must be in [0, 50] mm")
-        }
-        Some(mm) => Ok(mm * 1e-3),
-        // A worn glove is never perfectly still: a script's still phases carry the noise of a
-        // hand at rest, or the station would take their identical frames for a stalled stream
-        // and release the arm after its disengage timeout.
-        None if scripted => Ok(crate::sim::sim_glove_node::REST_JITTER_M),
-        None => Ok(SimGloveConfig::default().jitter_m),
-    }
 }
 
 /// `--physics`: the task from the catalog, and the scene.

@@ -8,18 +8,43 @@ use clap::Args;
 use retarget::HandModel;
 use retarget::quality::REACH_GRID_MAX_CONFIGURATIONS;
 
-use super::common::readable_mcap_files;
-use crate::eval::external::{evaluate_commands, external_table};
-use crate::eval::outlier_study::outlier_study;
-use crate::eval::profile_scales::{profile_scales, profile_scales_table};
+use super::shared_args::readable_mcap_files;
 use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{EvalOptions, evaluate, table};
+use crate::eval_modes::{eval_commands, eval_outlier_study, eval_profile_scales, in_file};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
 use crate::station_setup::load_station_config;
 
-/// `pomdar eval` options.
+/// Retargeting quality on recordings' glove keypoints: how closely the hand follows.
+///
+/// Several recordings (files, or directories searched for .mcap files: an evaluation
+/// set) give a report per recording, then a summary table (live path and retargeter alone,
+/// one row per recording, the worst of each column).
+///
+/// Each distinct keypoint frame (repeats of the ingress's re-publishing are dropped) goes
+/// through the station's retargeter, configured by --config and calibrated by --profile,
+/// with the recording's time between frames as the time step (the station's input gate
+/// and control loop are left out: every glove frame is scored, comparable with other
+/// retargeters). Then the live path: the recording re-simulated through the station as
+/// `pomdar resim` runs it, and the command in force at each distinct frame scored the same
+/// way, with its difference from the retargeter alone. Prints, overall and per finger: fingertip error after one global scale s* of the human hand (mean, p95;
+/// fingertip-to-palm-centre vectors in each hand's palm frame), pinches (human thumb tip
+/// within 2 cm of a fingertip) and the share the robot closes under 15 mm, jerk (mean
+/// absolute third difference per joint and frame), the largest per-frame joint step,
+/// frames outside the joint limits, and the time per frame. Any layout the station
+/// accepts. Then the metrics without the global scale (a smaller-looking hand does not
+/// score better): per finger the tip error after that finger's own scale, the correlation
+/// of human and robot flexion (palm-centre-to-tip distance), pinches closed with their
+/// frame counts, and the lag (the shift that best aligns robot to human flexion).
+/// --commands TOPIC scores another retargeter's recorded JointState commands instead.
+///
+/// Examples:
+///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
+///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
+///   pomdar eval ../shared/reference/ eval_set/
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct EvalArgs {
     /// The recordings (MCAP) whose glove keypoints are retargeted, or directories searched
     /// for them (an evaluation set, e.g. from `pomdar eval-set`).
@@ -80,13 +105,33 @@ pub struct EvalArgs {
 pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
     let config = load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     if let Some(topic) = &args.commands {
-        return eval_commands(&args, &config, topic);
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_commands(&files, &config, topic, args.json)?);
     }
     if !args.profile_scales.is_empty() {
-        return eval_profile_scales(&args, &config);
+        if let Some(bad) = args
+            .profile_scales
+            .iter()
+            .find(|s| !(s.is_finite() && **s > 0.0))
+        {
+            anyhow::bail!("--profile-scales: {bad} is not a positive scale");
+        }
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_profile_scales(
+            &files,
+            &config,
+            &args.profile_scales,
+            args.json,
+        )?);
     }
     if args.outlier_study {
-        return eval_outlier_study(&args, &config);
+        let files = readable_mcap_files(&args.inputs)?;
+        return Ok(eval_outlier_study(
+            &files,
+            &config,
+            args.outlier_seed,
+            args.json,
+        )?);
     }
     let options = EvalOptions {
         reach_max_configurations: args.reach.then_some(args.reach_grid),
@@ -126,110 +171,4 @@ pub fn eval(args: EvalArgs) -> anyhow::Result<()> {
         print!("{}", summary_table(&set));
     }
     Ok(())
-}
-
-/// `pomdar eval --outlier-study`: per recording, what one-frame outliers do with the outlier
-/// check and without it.
-fn eval_outlier_study(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
-    let files = readable_mcap_files(&args.inputs)?;
-    let mut outputs = Vec::new();
-    for path in &files {
-        let reader = TrialReader::open(path)?;
-        let study = outlier_study(
-            &reader,
-            config,
-            &HandModel::orca_v1_right(),
-            args.outlier_seed,
-        )
-        .map_err(|e| in_file(path, &e))?;
-        if !args.json {
-            println!(
-                "{}: {} one-frame outliers, {} caught; largest joint move toward them {:.3} rad \
-                 with the outlier check, {:.3} rad without; {} sustained pinches compared, closed \
-                 at most {} frame(s) later with the check; {} clean frame(s) caught",
-                path.display(),
-                study.outliers,
-                study.outlier_frames_caught,
-                study.toward_outliers_rad,
-                study.toward_outliers_unchecked_rad,
-                study.pinches_compared,
-                study.closure_delay_max_frames,
-                study.clean_frames_caught,
-            );
-        }
-        outputs.push(serde_json::json!({ "input": path.display().to_string(), "study": study }));
-    }
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&outputs)?);
-    }
-    Ok(())
-}
-
-/// `pomdar eval --commands TOPIC`: another retargeter's recorded commands, per recording.
-fn eval_commands(
-    args: &EvalArgs,
-    config: &station::StationConfig,
-    topic: &str,
-) -> anyhow::Result<()> {
-    let files = readable_mcap_files(&args.inputs)?;
-    let mut outputs = Vec::new();
-    for path in &files {
-        let reader = TrialReader::open(path)?;
-        let output = evaluate_commands(&reader, config, HandModel::orca_v1_right(), topic)
-            .map_err(|e| in_file(path, &e))?;
-        if !args.json {
-            println!("{}", external_table(&output));
-        }
-        outputs.push(output);
-    }
-    if args.json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
-    }
-    Ok(())
-}
-
-/// `pomdar eval --profile-scales S,…`: the retargeter alone under each scale, per recording.
-fn eval_profile_scales(args: &EvalArgs, config: &station::StationConfig) -> anyhow::Result<()> {
-    if let Some(bad) = args
-        .profile_scales
-        .iter()
-        .find(|s| !(s.is_finite() && **s > 0.0))
-    {
-        anyhow::bail!("--profile-scales: {bad} is not a positive scale");
-    }
-    let model = HandModel::orca_v1_right();
-    let mut outputs = Vec::new();
-    for path in &readable_mcap_files(&args.inputs)? {
-        let reader = TrialReader::open(path)?;
-        let rows = profile_scales(&reader, config, &model, &args.profile_scales)
-            .map_err(|e| in_file(path, &e))?;
-        let input = path.display().to_string();
-        if !args.json {
-            println!("{}", profile_scales_table(&input, &rows));
-        }
-        outputs.push(serde_json::json!({ "input": input, "profile_scales": rows }));
-    }
-    if args.json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
-    }
-    Ok(())
-}
-
-/// An evaluation error naming its recording (once: some errors name it already).
-fn in_file(path: &std::path::Path, error: &crate::eval::EvalError) -> anyhow::Error {
-    let text = error.to_string();
-    let name = path.display().to_string();
-    if text.starts_with(&name) {
-        anyhow::anyhow!("{text}")
-    } else {
-        anyhow::anyhow!("{name}: {text}")
-    }
 }

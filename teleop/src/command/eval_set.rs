@@ -5,13 +5,30 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::readable_mcap_files;
+use super::shared_args::readable_mcap_files;
 use crate::atomic_file::write_atomically;
 use crate::eval::eval_set::build_set;
 use crate::station_setup::load_station_config;
 
-/// `pomdar eval-set` options.
+/// Build an evaluation set: transformed copies of real recordings for `pomdar eval`.
+///
+/// Each recording's distinct keypoint frames are written again as they would come from
+/// other users and gloves: a smaller hand (0.85×) with the glove turned 15°, a larger hand
+/// (1.2×) turned −12°, a noisy glove (2 mm per coordinate) dropping 10 % of its frames,
+/// 30 Hz and 120 Hz (re-sampled linearly), and, for the lab's 22 points, its 21-point
+/// layout. Besides, --synthetic-users (4 by default) users of the project's simulated
+/// glove, each hand with its own proportions (thumb ±15 %, index and middle ±10 %, palm
+/// breadth ±10 %, the thumb's base moved, the glove's tip markers ±5 mm off the tips),
+/// whose pinches are real contacts of the simulated hand and on whom nothing was tuned
+/// (a seed no one looked at gives users no one tuned on). One MCAP per recording in --out
+/// and set.json listing them; the sources are not copied (evaluate them beside the set).
+///
+/// Example:
+///   pomdar eval-set ../shared/reference/ --out eval_set/
+///   pomdar eval ../shared/reference/ eval_set/
+///   pomdar eval-set --synthetic-users 8 --seed 2027 --out held_out/   (users only)
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct EvalSetArgs {
     /// The real recordings (MCAP) the set is made from, or directories searched for them
     /// (none: only the synthetic users).

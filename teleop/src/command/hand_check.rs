@@ -6,7 +6,7 @@ use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::atomic_file::write_atomically;
 use crate::hand_check::check_node::{Answers, CheckOutput, run_check};
 use crate::hand_check::hand_check_script::{ANSWER_WORDS, CheckScriptPlayer, load_check_script};
@@ -15,8 +15,55 @@ use crate::hand_check::table_file::table_text;
 use crate::station_setup::read_station_config;
 use crate::utc_date::{iso8601_utc, now_unix_s};
 
-/// `pomdar hand-check` options.
+/// Check a hand's command conventions on the hand, joint by joint, and write the table
+/// verified.
+///
+/// The table is the station configuration's [[policy_output.joints]]: for each slot of
+/// the array the consumer of the policy output topic reads (the ETH lab's hand-control
+/// node in launch_configs/station/eth_lab.toml, orca_core in orca_core.toml), the
+/// station joint, sign, offset, clamp range and units, where each number comes from and
+/// whether it was checked. Stop the station first: both would drive the hand.
+///
+/// The hand goes to a neutral pose (each joint at the value nearest the URDF zero inside
+/// its URDF limits and the consumer's range), then each joint in the table's order moves
+/// a small step (--step-rad, at most 0.15 rad) slowly (--move-s each way, at least 1 s),
+/// holds, and comes back, sent at --rate-hz through the table on the consumer's topic,
+/// while the others hold still. The terminal shows the progress ("joint 6 of 17:
+/// index_abd") and what the operator should see ("the index finger moves towards the
+/// middle finger"), then asks. Answers, typed on stdin (one a line) or from --script:
+///   yes (y)     it moved as named: the next joint
+///   no (n)      it moved the other way; then
+///     flip (f)  flip its sign in the table and move it again (confirm it with yes)
+///     keep (k)  keep the sign and move it again
+///   repeat (r)  move it again
+///   quit (q)    stop
+/// The check settles directions (signs) only: a wrong offset or zero (orca_core's
+/// ref_zero) shows in the neutral pose, which the operator should look at first; a
+/// flipped joint keeps its offset and range.
+///
+/// When every joint is confirmed, --out is written atomically: the configuration file
+/// with its [policy_output] replaced by the table with every row verified = true (and
+/// any flipped sign, noted), verified_by = --user and verified_at (UTC); other tables
+/// and comments are kept. If any joint is not confirmed (quit, Ctrl-C, stdin or the
+/// script ended) nothing is written and the exit status is 1, naming the joints left.
+///
+/// --script FILE: answers one a line, optionally after a time (seconds since the start,
+/// or +S after the previous line), and `wait PHASE [TIMEOUT_S]` with PHASE one of
+/// settling, moving, asking, offer_flip, complete, quit (default timeout 30 s):
+///   wait asking 30
+///   yes
+///   wait asking 30
+///   no
+///   flip
+///
+/// Try it without a hand: `pomdar mock-hand --policy-config FILE` follows the same
+/// topic through the inverse of the table.
+///
+/// Examples:
+///   pomdar hand-check --config launch_configs/station/eth_lab.toml --user ana --out lab/eth_lab_verified.toml
+///   pomdar hand-check --config launch_configs/station/orca_core.toml --user ana --out /tmp/orca.toml --script check.script
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct HandCheckArgs {
     /// The station configuration whose [[policy_output.joints]] table is checked
     /// (launch_configs/station/eth_lab.toml, orca_core.toml).
@@ -52,7 +99,7 @@ pub struct HandCheckArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
 }
 
 /// `pomdar hand-check`.

@@ -6,13 +6,13 @@ use std::path::PathBuf;
 use clap::{Args, Subcommand};
 
 use crate::clock::StationClock;
-use crate::command::common::{NodeArgs, ctrl_c_shutdown};
+use crate::command::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ingress::avp_config::AvpConfig;
 use crate::ingress::avp_node::{avp_source, run_avp_ingress};
 use crate::ingress::ingress_config::{Hand, IngressConfig};
 use crate::ingress::rokoko_node::{rokoko_source, run_rokoko_ingress, status_line};
 
-/// The glove streams `pomdar ingress` reads.
+/// Hand-tracking ingress: a glove (Rokoko) or headset (Apple Vision Pro) stream in, the lab's ROS 2 keypoint topics out.
 #[derive(Debug, Subcommand)]
 pub enum IngressCommand {
     /// Rokoko Studio Live "custom streaming" (JSON v3 over UDP) to the lab's topics.

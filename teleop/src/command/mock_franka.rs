@@ -4,12 +4,12 @@ use std::sync::{Arc, Mutex};
 
 use clap::Args;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 
-/// `pomdar mock-franka` options.
+/// A mock Franka: follows pose commands at limited speed, publishes its pose.
 #[derive(Debug, Args)]
 pub struct MockFrankaArgs {
     /// Pose command topic.

@@ -8,13 +8,14 @@ use clap::Args;
 use retarget::HandModel;
 use station::policy_output::PolicyOutput;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
 use crate::station_setup::read_station_config;
 
-/// `pomdar mock-hand` options.
+/// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state
+/// (and with --policy-config, a policy output topic through the inverse of its table).
 #[derive(Debug, Args)]
 pub struct MockHandArgs {
     /// Joint target topic.

@@ -5,12 +5,25 @@ use std::time::Duration;
 
 use clap::Args;
 
-use crate::command::common::{NodeArgs, ctrl_c_shutdown};
+use crate::command::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ros::NetworkConfig;
 use crate::ros::discovery_probe::{ProbeOptions, probe};
 
-/// `pomdar probe` options.
+/// Check DDS discovery from this host: which publishers it sees, and at what rate.
+///
+/// Joins the domain on the given interfaces, waits for a publisher of each topic, counts
+/// its samples for --duration seconds and prints every discovered publisher with the
+/// addresses it announced (its host) and each topic's rate; for stamped messages also
+/// how old they were on arrival (receive time − header stamp) and how many were older
+/// than --age-limit-ms, and the topic's silences (pauses of 250 ms or more). With
+/// --reliable it subscribes as a robot driver does. Exit status 0 when every topic was
+/// heard, 2 when one was not discovered or not heard (docs/DEPLOYMENT.md says what to
+/// check).
+///
+/// Example:
+///   pomdar probe --topics /pomdar/hand/joint_targets,/franka/end_effector_pose_cmd --interface 10.251.0.3
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct ProbeArgs {
     /// Topics to listen to, comma-separated (e.g. /pomdar/hand/joint_targets).
     #[arg(long, value_delimiter = ',', required = true)]

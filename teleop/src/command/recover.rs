@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-/// `pomdar recover` options.
+/// Repair an interrupted log (NAME.mcap.part) up to its last flushed chunk.
+///
+/// Prints what was recovered and what was lost; never modifies the input.
 #[derive(Debug, Args)]
 pub struct RecoverArgs {
     /// The interrupted log (`NAME.mcap.part`).

@@ -6,13 +6,30 @@ use std::sync::Mutex;
 use anyhow::Context as _;
 use clap::Args;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::WallClock;
 use crate::relay_node::{RelayReport, RelaySettings, run_relay};
 use crate::station_setup::read_station_config;
 
-/// `pomdar relay` options.
+/// On the robot's computer: the station's commands onto the robot's own topics.
+///
+/// With `[robot_link] relay_prefix` set, the station sends its robot commands best effort
+/// on relay topics (the prefix + the robot's topic): a cut cable loses what was sent into
+/// it and nothing old is resent when it returns. The relay republishes each command on the
+/// robot's topic with the configuration's output.qos (reliable for the lab's drivers), on
+/// this computer, and drops any command older than `[robot_link] max_age_ms` (100 ms) on
+/// arrival, by the older of its send time and its header stamp (a hand command's glove
+/// frame): the lab's clocks must be kept in step (chrony). It
+/// estimates the offset between the two clocks from the smallest command ages and warns,
+/// naming it, once it takes a quarter of that limit. Drops and refused publishes are
+/// reported every 5 s at most; a summary on Ctrl-C. Twice a second it publishes its status
+/// on `<relay_prefix>/relay_status` (the robot's drivers listening, the offset), which the
+/// station reads. docs/DEPLOYMENT.md, "When a link fails".
+///
+/// Example:
+///   pomdar relay --config launch_configs/station/deploy_station.toml --interface 10.251.0.3
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct RelayArgs {
     /// The station's configuration (the same file the station runs with): its
     /// [robot_link] relay_prefix and max_age_ms, the robot's topics and output.qos.
@@ -23,7 +40,7 @@ pub struct RelayArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
 }
 
 /// `pomdar relay`.

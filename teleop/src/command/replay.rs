@@ -4,11 +4,15 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::common::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::ros::NetworkConfig;
 
-/// `pomdar replay` options.
+/// Republish a log's recorded topics over ROS 2 with their original timing.
+///
+/// Example:
+///   pomdar replay rokoko_orca_2024-11-20.mcap --topics /ingress/mano,/ingress/wrist --rate 1
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct ReplayArgs {
     /// The log (MCAP) to republish.
     pub input: PathBuf,

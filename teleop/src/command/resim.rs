@@ -8,8 +8,21 @@ use retarget::HandModel;
 
 use crate::station_setup::load_station_config;
 
-/// `pomdar resim` options.
+/// Re-simulate a recorded log's glove input through the station, deterministically.
+///
+/// The station's processing is fed from the log with the log's clock, in process; the
+/// outputs (joint targets, policy output, arm targets) are written to a new MCAP. Use it to
+/// re-retarget recorded glove data with a new configuration. A log the station recorded
+/// carries its timer ticks and the operator's engage/disengage (/pomdar/station_control):
+/// with the run's configuration it reproduces the run's commands byte for byte. A plain
+/// glove recording gets ticks on the log's clock and engages on its first fresh frame.
+/// Accepts the lab's 22- and 21-point layouts. Same log + same config = byte-identical
+/// output.
+///
+/// Example:
+///   pomdar resim trial.mcap --config launch_configs/station/eth_lab.toml --out resim.mcap --stats-json stats.json
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct ResimArgs {
     /// The recorded log (MCAP) whose glove input is re-simulated.
     pub input: PathBuf,

@@ -10,8 +10,28 @@ use review::FeedbackSettings;
 use crate::station_setup::load_station_config;
 use crate::trial_review::review_trial_file;
 
-/// `pomdar review` options.
+/// What happened in a trial, for the operator: one figure and a short JSON per log, and
+/// feedback sentences.
+///
+/// The figure (NAME.review.png and .svg, beside the log or in --out) shows on one time
+/// axis from the trial's start to its stop: the station's drive state (engaged, held on a
+/// stalled glove with the glove's gap, disengaged), the arm's clutch and refused steps,
+/// the human's pinches (green: the robot closed it, under 15 mm; red: it did not); the
+/// progress marks and drops; the glove's rate; the input age with the hold timeout and
+/// the rejected frames; the thumb–finger distances, human (dashed) and robot; and, when
+/// the hand's measured state was logged, the tracking error per digit. NAME.review.json
+/// holds the same facts and the feedback: short sentences said only past a threshold
+/// ("held 2× (glove gaps 180–420 ms)", "index pinch did not close in 4 of 6 attempts
+/// (robot 18 mm apart)", "wrist at its limit 22 % of the time", "2.4 s without progress
+/// before the drop at 9.1 s"), none for a clean trial; the thresholds are README's table
+/// (--feedback FILE overrides them). The operator console does the same after each trial.
+///
+/// Examples:
+///   pomdar review sessions/alice/orca_full/G4/G4-t03.mcap
+///   pomdar review sessions/alice/orca_full/G4/*.mcap --out review/
+///   pomdar review run.mcap --json | jq .feedback
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct ReviewArgs {
     /// Trial logs (MCAP) the station recorded.
     #[arg(value_name = "TRIAL", required = true)]

@@ -12,13 +12,55 @@ use crate::score::compare_files::write_compare_files;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::report_files::write_report_files;
 use crate::score::score_inputs::ScoringFileArgs;
-use crate::score::trial_files::collect_trial_files;
+use crate::score::trial_files::{EXIT_SOME_REJECTED, collect_trial_files};
 
-/// Exit status when the run finished but some trial files were rejected.
-pub const EXIT_SOME_REJECTED: u8 = 3;
-
-/// `pomdar score` options.
+/// Score trial logs the POMDAR way: 0.8 · correctness + 0.2 · speed, per trial, task and
+/// embodiment.
+///
+/// Reads each trial's pomdar_trial metadata (task, embodiment, practice, user, ...) and its
+/// events on /pomdar/trial_events, through the MCAP summary (only the chunks holding events
+/// are decompressed). Per trial: time = stop − start (aborted: abort − start); correctness
+/// from the progress events per the task's kind (notches or curves passed / total,
+/// degrees / 360, millimetres / 200 for H4 and H5, grasp level 0 / 0.5 / 1, a drop = 0.5);
+/// speed = baseline time / trial time (unbounded above). Aborted or timed-out trials follow
+/// the rules file (default: correctness reached, speed term 0). Practice trials are shown
+/// but never averaged. Per task × embodiment: mean ± sample std over recorded trials; per
+/// embodiment: the overall score as the mean over attempted tasks and as the mean over all
+/// 18 with missing tasks = 0, with the embodiment's DoF.
+///
+/// Without --baseline, or for a task the baseline lacks, there is no score, only
+/// correctness, and every report says so; a baseline marked example = true is flagged in
+/// every report. A file that cannot be scored (not MCAP, truncated, no pomdar_trial record,
+/// missing start or stop, events out of order, unknown task, a progress value the task does
+/// not allow, ...) is named with its reason on stderr and in the reports; the other files
+/// are still scored. Interrupted recordings (*.mcap.part) are skipped with a note.
+///
+/// Prints the table on stdout (or the JSON report with --json); progress on stderr for
+/// large sets. Exit status: 0 every file scored; 3 some files rejected (reports still
+/// written); 1 the run failed (bad catalog, rules or baseline file, no trial files, a
+/// report or figure could not be written).
+///
+/// --compare FIELD puts groups of trials side by side instead (the source ablation: the
+/// same station, controller and robot with keypoints from Rokoko gloves or from Apple
+/// Vision Pro): the groups are the values of the trials' pomdar_trial metadata entry FIELD
+/// (keypoint_source, user, station_version, ...; trials without it form "(missing)", and
+/// the report says how many). Per task × embodiment × group: n and mean ± sample std of
+/// correctness, time and score (score only with a baseline), over the same recorded
+/// trials and scores as the report; per group the difference from the reference group
+/// (the first value in sorted order, or --compare-reference VALUE) with Welch's 95 %
+/// interval (none when a group has fewer than 2 trials there). With --out it writes
+/// compare.md, compare.csv, compare.json and the grouped-bar figures compare_score and
+/// compare_correctness (.svg, .png) instead of the report's files. Fewer than two groups,
+/// or a reference that is not a group, stops the run (status 1).
+///
+/// Examples:
+///   pomdar score trials/ --baseline baselines/eth_2026.toml
+///   pomdar score trials/orca_full trials/orca_5 --baseline baselines/eth_2026.toml --out report/
+///   pomdar score trials/ --rules launch_configs/scoring/default_rules.toml --json > scores.json
+///   pomdar score trials/ --baseline baselines/eth_2026.toml --compare keypoint_source --out reports/ablation/
+///   pomdar score trials/ --baseline baselines/eth_2026.toml --compare keypoint_source --compare-reference rokoko --json
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct ScoreArgs {
     /// Trial logs (.mcap), or directories searched recursively for them.
     #[arg(required = true, value_name = "PATHS")]

@@ -8,8 +8,24 @@ use clap::Args;
 
 use crate::score::score_inputs::ScoringFileArgs;
 
-/// `pomdar sim-bench` options.
+/// The benchmark without a teleoperator: every embodiment scored in simulation (needs the
+/// `physics` build).
+///
+/// Per embodiment and task, programmed practice: a seeded cross-entropy search over the
+/// task's family of glove strategies (its script with the start placement, the approach,
+/// the reach, which digits close and how far, and the timing varied), each practice trial
+/// a lock-step run through the station core (retargeting to the embodiment, its other
+/// joints locked) into the physics, scored the POMDAR way. Then recorded runs of the best
+/// strategy at the glove's noise with moved starts, timed by the physics' completion
+/// event. Writes the report `pomdar score` writes, the strategies chosen and the paper's
+/// findings checked; shows a line per task and embodiment; same seed, same report.
+///
+/// Examples:
+///   pomdar sim-bench --embodiment all --out reports/sim_bench/
+///   pomdar sim-bench --embodiment orca_2,orca_full --tasks G4,H5,C1 --budget 12 --out quick/
+///   pomdar sim-bench --shard 2/4 --out shard2/   (then: pomdar sim-bench --merge shard*/ --out all/)
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct SimBenchArgs {
     /// Embodiments: orca_2, orca_3, orca_5, orca_full (the built-in catalog), a
     /// comma-separated list of them, or all.

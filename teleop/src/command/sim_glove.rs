@@ -3,13 +3,13 @@
 use clap::Args;
 use retarget::human_hand::MotionKind;
 
-use super::common::{MotionArg, NodeArgs, ctrl_c_shutdown};
+use super::shared_args::{MotionArg, NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
 
-/// `pomdar sim-glove` options.
+/// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
 #[derive(Debug, Args)]
 pub struct SimGloveArgs {
     /// Scripted motion (periodic, the wrist in place).

@@ -5,13 +5,24 @@ use std::path::PathBuf;
 use clap::Args;
 use tokio::sync::mpsc;
 
-use super::common::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
+use super::shared_args::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_setup::load_station_config;
 
-/// `pomdar station` options.
+/// Run the station node (no simulated parts) until Ctrl-C.
+///
+/// Subscribes to the glove keypoints and wrist pose, publishes hand joint targets, the
+/// lab's /hand/policy_output, the arm target and a JSON status, as the config file says
+/// (launch_configs/station/*.toml). --engage engages once glove input is fresh
+/// (`pomdar trial`, the operator console, runs its own station and engages on the
+/// operator's key); --record logs the run (inputs, outputs, status, events) to an MCAP
+/// file; --profile applies a user's calibration (from `pomdar calibrate`).
+///
+/// Example:
+///   pomdar station --config launch_configs/station/eth_lab.toml --engage --record run.mcap --profile profiles/alice.toml
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct StationArgs {
     /// Station configuration file (launch_configs/station/*.toml).
     #[arg(long, value_name = "FILE")]
@@ -35,7 +46,7 @@ pub struct StationArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: super::shared_args::GuardArgs,
     /// The live view.
     #[command(flatten)]
     pub view: ViewArgs,

@@ -9,15 +9,36 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use super::common::{MotionArg, NodeArgs};
-use super::trial::{ConsoleArgs, EXIT_INTERRUPTED, HUMAN_PROTOCOL, TrialArgs, run_session};
+use super::shared_args::{ConsoleArgs, GuardArgs, MotionArg, NodeArgs};
 use crate::console::manifest::{MANIFEST_FILE, Manifest};
 use crate::console::session_dir::check_name;
+use crate::console::session_options::HUMAN_PROTOCOL;
 use crate::console::view::instruction;
+use crate::console::{SessionOptions, SimulationOptions, run_session};
 use crate::score::score_inputs::ScoringFileArgs;
+use crate::tui::terminal_shell::EXIT_INTERRUPTED;
 
-/// `pomdar study` options.
+/// The human study: a participant does each task of a plan with their own hand.
+///
+/// The baseline a robot's speed is scored against comes from people: in the POMDAR study
+/// each participant does every task 3 times with their right hand, wearing the glove.
+/// For each task in --tasks, in order, this runs the trial console as `pomdar trial
+/// --embodiment human` would: the task's instruction and where the participant is in the
+/// plan are shown; no robot, no retargeting; the glove's keypoints and wrist pose are
+/// recorded with the trial's timing and events (one MCAP per trial, embodiment "human",
+/// the participant as the user) in <out>/<participant>/human/<task>; a trial starts once
+/// the glove is fresh and fast enough (space, or `start` in a script). Defaults: no
+/// practice, 3 trials per task. Run the same command again to resume: complete tasks are
+/// skipped, the interrupted one resumes at its next trial. Then `pomdar baseline` makes
+/// the baseline table and `pomdar study-report` checks the participants' strategies.
+/// Exit status: 0 study complete, 130 stopped (Ctrl-C, SIGTERM, q) before the end, 1 on
+/// an error.
+///
+/// Examples:
+///   pomdar study --participant p01 --operator bob --tasks V1,H2,C1,G2
+///   pomdar study --participant sim1 --operator me --tasks V1,C1,G2 --simulate --simulate-motion open-close,pinches,abduction
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct StudyArgs {
     /// The participant (names the session directories and goes into every log as the user).
     #[arg(long, value_name = "NAME")]
@@ -69,19 +90,19 @@ pub struct StudyArgs {
     pub node: NodeArgs,
     /// The RTPS datagram guard.
     #[command(flatten)]
-    pub guard: super::common::GuardArgs,
+    pub guard: GuardArgs,
 }
 
 impl StudyArgs {
     /// The `pomdar trial` session of the plan's task number `index`.
-    fn task_session(&self, index: usize) -> TrialArgs {
+    fn task_session(&self, index: usize) -> SessionOptions {
         let motion = self
             .simulate_motion
             .get(index)
             .or(self.simulate_motion.last())
             .copied()
             .unwrap_or(MotionArg::TaskLike);
-        TrialArgs {
+        SessionOptions {
             task: self.tasks[index].clone(),
             embodiment: station::HUMAN_EMBODIMENT.to_string(),
             user: self.participant.clone(),
@@ -92,19 +113,19 @@ impl StudyArgs {
             config: self.config.clone(),
             profile: None,
             scoring: self.scoring.clone(),
-            console: self.console.clone(),
-            simulate: self.simulate,
-            simulate_motion: motion,
-            // A study's glove is a participant's: it plays motions, not task scripts.
-            simulate_glove_script: None,
-            physics: false,
-            scene: None,
-            simulate_glove_jitter_mm: None,
-            simulate_hand_scale: self.simulate_hand_scale,
-            node: self.node.clone(),
-            guard: self.guard.clone(),
+            console: self.console.settings(),
+            network: self.node.overrides(),
+            simulation: self.simulate.then(|| SimulationOptions {
+                motion: motion.into(),
+                // A study's glove is a participant's: it plays motions, not task scripts.
+                glove_script: None,
+                physics: false,
+                scene: None,
+                glove_jitter_mm: None,
+            }),
+            simulated_hand_scale: self.simulate_hand_scale,
             // The human study drives no robot: nothing to view.
-            view: crate::command::common::ViewArgs { view: None },
+            view: None,
         }
     }
 

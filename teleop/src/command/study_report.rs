@@ -9,16 +9,35 @@ use std::process::ExitCode;
 use clap::Args;
 use study::{StrategyAnalysis, StrategySettings, TrialMotion, analyse, strategy_figure};
 
-use super::common::mcap_files_under;
-use super::score::EXIT_SOME_REJECTED;
+use super::shared_args::mcap_files_under;
 use crate::atomic_file::write_atomically;
 use crate::score::ScoreFileError;
 use crate::score::parallel_files::{process_files, progress_style};
 use crate::score::score_inputs::ScoringInputs;
+use crate::score::trial_files::EXIT_SOME_REJECTED;
 use crate::study_logs::{StudyTrial, read_study_trial};
 
-/// `pomdar study-report` options.
+/// The human study's strategy check: do participants do each task the same way?
+///
+/// Reads the recorded human trials (embodiment "human"; practice and aborted trials left
+/// out) and cuts each trial's glove keypoints into 1.5 s segments. Each frame's keypoints
+/// are expressed in the palm frame and divided by the participant's hand length (so hand
+/// size, glove placement and where the hand is in the room do not count); a segment's
+/// features are the mean and the standard deviation of those coordinates (the posture and
+/// the movement). A PCA of the standardised features gives the first 3 principal
+/// components. Writes to --out: strategy_pc1_pc2 and strategy_pc1_pc3 (.svg and .png: one
+/// point per segment, coloured by task), report.md (variance explained, per-task
+/// separation, the trial files used and left out) and strategy.json. The separation is
+/// the silhouette of the segments' task labels on the kept components, read with Kaufman
+/// & Rousseeuw's bands: > 0.70 strong, > 0.50 reasonable, > 0.25 weak, otherwise no
+/// substantial structure. Exit status: 0 every file read; 3 some files could not be read
+/// (the report is still written from the rest); 1 nothing to analyse (fewer than 2 tasks,
+/// too few segments), or a file could not be written.
+///
+/// Example:
+///   pomdar study-report sessions/ --out reports/study_strategy
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct StudyReportArgs {
     /// Human trial logs (.mcap, embodiment "human"), or directories searched recursively
     /// (e.g. the sessions directory of `pomdar study`).

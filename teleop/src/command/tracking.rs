@@ -18,8 +18,27 @@ use crate::station_setup::load_station_config;
 /// Measured samples over all joints above which the comparison shows its progress.
 const PROGRESS_SAMPLES: usize = 200_000;
 
-/// `pomdar tracking` options.
+/// How closely the hand followed its commands in a trial log: commanded vs measured, per
+/// joint.
+///
+/// Reads the station's joint targets ([output] joint_targets_topic) and the hand's
+/// measured state ([input] hand_state_topic), both sensor_msgs/JointState as the station
+/// recorded them, with their names mapped onto the model's joints. Per joint: commands and
+/// measured samples, the RMS and largest |command in force − measured| (degrees; the
+/// command in force is the last one sent at or before the measurement), the lag that best
+/// aligns the measured angle with the command (the highest correlation over 0–300 ms, in
+/// whole milliseconds) and the share of time the error exceeds --threshold-deg (5°).
+/// Prints a table (or JSON with --json); --out DIR writes tracking.svg and tracking.png
+/// (one panel per joint: commanded and measured angle over time, titled with the joint
+/// and its RMS error) and tracking.json, each atomically. A log without measured states
+/// is an error naming the file and the topic looked at.
+///
+/// Examples:
+///   pomdar tracking sessions/alice/orca_full/V1/V1-t03.mcap
+///   pomdar tracking run.mcap --out report/tracking --json > tracking.json
+///   pomdar tracking run.mcap --config launch_configs/station/eth_lab.toml --threshold-deg 3
 #[derive(Debug, Args)]
+#[command(verbatim_doc_comment)]
 pub struct TrackingArgs {
     /// The trial log (MCAP) the station recorded, with the hand's measured state.
     #[arg(value_name = "TRIAL")]

@@ -12,6 +12,7 @@ use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
 pub mod robot;
+pub mod summary_text;
 
 use crate::device_thread::spawn_device;
 use crate::ros::NetworkConfig;

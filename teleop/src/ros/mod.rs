@@ -6,6 +6,7 @@ pub mod discovery_probe;
 pub mod domain_lease;
 mod endpoint;
 mod error;
+mod network_override;
 mod participant;
 pub mod participant_guard;
 pub mod probe_timing;
@@ -14,6 +15,7 @@ pub mod teardown;
 
 pub use endpoint::{RosNode, Stamped, TriggerRequest, TriggerResponse};
 pub use error::RosError;
+pub use network_override::NetworkOverride;
 pub use participant::{NetworkContext, default_domain_id, domain_id};
 pub use qos::QosProfileOf;
 pub use station::convert;

@@ -15,6 +15,7 @@
 //! | `synthetic_trial.rs` | trial logs written as the station writes them, for the benchmark and tests |
 //! | `error.rs` | `ScoreFileError` (the run's own files), `TrialFileError` (a trial not scored) |
 
+pub mod baseline_source;
 pub mod compare_files;
 mod error;
 pub mod load_trial;

@@ -38,6 +38,10 @@ fn part_note(path: &Path) -> FileProblem {
     }
 }
 
+/// Exit status of the commands that read many trial files (`pomdar score`, `baseline`,
+/// `study-report`) when the run finished but some files were rejected.
+pub const EXIT_SOME_REJECTED: u8 = 3;
+
 /// Collects the trial files under `paths`.
 pub fn collect_trial_files(paths: &[PathBuf]) -> TrialFiles {
     let mut out = TrialFiles::default();

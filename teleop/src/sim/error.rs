@@ -16,6 +16,12 @@ pub enum SimError {
         #[source]
         source: retarget::Error,
     },
+    /// The glove's keypoint noise asked for is outside its range.
+    #[error("--glove-jitter-mm {mm} must be in [0, 50] mm")]
+    GloveJitter {
+        /// The noise asked for, mm.
+        mm: f64,
+    },
     /// The station configuration's arm start pose is not a valid pose.
     #[error("arm: {source}")]
     ArmStartPose {

@@ -3,6 +3,7 @@
 //! node on its own DDS participant, exactly as separate processes would be.
 
 mod error;
+pub mod glove_jitter;
 pub mod glove_script_file;
 pub mod mock_franka;
 pub mod mock_hand;

@@ -28,6 +28,15 @@ pub enum TuiError {
         #[source]
         source: std::io::Error,
     },
+    /// A signal (SIGINT, SIGTERM) cannot be watched.
+    #[error("cannot watch {signal}: {source}")]
+    Signal {
+        /// The signal's name.
+        signal: &'static str,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
     /// A script file cannot be read.
     #[error("cannot read the script {path}: {source}")]
     ReadScript {

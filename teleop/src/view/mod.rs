@@ -12,6 +12,7 @@
 mod address;
 #[cfg(feature = "view")]
 mod error;
+pub mod live_view;
 #[cfg(feature = "view")]
 mod server;
 #[cfg(feature = "view")]

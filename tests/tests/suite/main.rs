@@ -8,6 +8,7 @@ mod calibrate_cli;
 mod calibrate_console;
 mod calibrate_interrupt;
 mod calibrate_redo;
+mod command_rule;
 mod console_interrupt;
 mod console_random_kills;
 mod console_screen;

@@ -1,12 +1,17 @@
-//! What the node commands share: DDS settings, the glove's motions, the async runtime and
-//! Ctrl-C.
+//! What the commands share: the flag structs (DDS settings, the datagram guard, the glove's
+//! motions, the live view, the hand model, the trial console's settings) and the few wiring
+//! helpers over them (the async runtime, Ctrl-C, the recordings named on a command line). Not
+//! a command: every command may use it, it uses none.
+
+use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::Args;
 use retarget::human_hand::MotionKind;
-use tokio::sync::watch;
 
-use crate::ros::NetworkConfig;
+use crate::console::session_options::ConsoleSettings;
+use crate::ros::{NetworkConfig, NetworkOverride};
+use crate::view::live_view::{LiveView, start_live_view};
 
 /// The glove's scripted motions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -46,15 +51,16 @@ pub struct NodeArgs {
 }
 
 impl NodeArgs {
-    pub(crate) fn network(&self, base: &NetworkConfig) -> NetworkConfig {
-        NetworkConfig {
-            domain_id: self.domain_id.or(base.domain_id),
-            interfaces: if self.interfaces.is_empty() {
-                base.interfaces.clone()
-            } else {
-                self.interfaces.clone()
-            },
+    /// `--domain-id` and `--interface`, to lay over a configuration's network.
+    pub(crate) fn overrides(&self) -> NetworkOverride {
+        NetworkOverride {
+            domain_id: self.domain_id,
+            interfaces: self.interfaces.clone(),
         }
+    }
+
+    pub(crate) fn network(&self, base: &NetworkConfig) -> NetworkConfig {
+        self.overrides().apply(base)
     }
 }
 
@@ -89,22 +95,13 @@ pub fn run_async<T>(future: impl Future<Output = anyhow::Result<T>>) -> anyhow::
         .block_on(future)
 }
 
-/// A shutdown signal that turns true on Ctrl-C.
-pub(crate) fn ctrl_c_shutdown() -> watch::Receiver<bool> {
-    let (tx, rx) = watch::channel(false);
-    tokio::spawn(async move {
-        if tokio::signal::ctrl_c().await.is_ok() {
-            tx.send(true).ok();
-        }
-    });
-    rx
-}
+pub(crate) use crate::tui::terminal_shell::ctrl_c_shutdown;
 
 /// The `.mcap` files under `paths` (files, or directories searched recursively) for the
 /// commands that read many recordings (`pomdar baseline`, `study-report`, `eval`, `eval-set`):
 /// `.part` files skipped with a note; an error when there is nothing to read.
 pub(crate) fn mcap_files_under(
-    paths: &[std::path::PathBuf],
+    paths: &[PathBuf],
 ) -> anyhow::Result<crate::score::trial_files::TrialFiles> {
     let found = crate::score::trial_files::collect_trial_files(paths);
     for s in &found.skipped {
@@ -126,9 +123,7 @@ pub(crate) fn mcap_files_under(
 /// The `.mcap` files in `paths` (files, or directories searched), for a command that reads
 /// every one: a path that cannot be read stops it, named with the reason, rather than being
 /// left out of its figures.
-pub(crate) fn readable_mcap_files(
-    paths: &[std::path::PathBuf],
-) -> anyhow::Result<Vec<std::path::PathBuf>> {
+pub(crate) fn readable_mcap_files(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
     let found = mcap_files_under(paths)?;
     if !found.problems.is_empty() {
         let problems: Vec<String> = found
@@ -154,69 +149,10 @@ pub struct ViewArgs {
     pub view: Option<crate::view::ViewAddress>,
 }
 
-/// A running live view and the tap the station feeds it through.
-#[derive(Debug)]
-#[cfg_attr(not(feature = "view"), allow(dead_code))] // never started without the feature
-pub(crate) struct LiveView {
-    /// Give this to the station's hooks.
-    pub(crate) tap: crate::station_node::tap::Tap,
-    #[cfg(feature = "view")]
-    server: crate::view::ViewServer,
-}
-
-#[cfg(feature = "view")]
-/// Messages the tap holds for a live view that falls behind, before the oldest are dropped
-/// (several seconds of every topic at the station's rates).
-const TAP_CAPACITY: usize = 4096;
-
 impl ViewArgs {
     /// Start the live view if `--view` was given.
     pub(crate) async fn start(&self) -> anyhow::Result<Option<LiveView>> {
-        let Some(address) = self.view else {
-            return Ok(None);
-        };
-        start_view(address).await.map(Some)
-    }
-}
-
-#[cfg(feature = "view")]
-async fn start_view(address: crate::view::ViewAddress) -> anyhow::Result<LiveView> {
-    let tap = crate::station_node::tap::Tap::new(TAP_CAPACITY);
-    let server = crate::view::ViewServer::start(address, tap.subscribe()).await?;
-    Ok(LiveView { tap, server })
-}
-
-#[cfg(not(feature = "view"))]
-async fn start_view(address: crate::view::ViewAddress) -> anyhow::Result<LiveView> {
-    anyhow::bail!(
-        "--view {address}: this pomdar was built without the live view; rebuild with `cargo build --release -p teleop --features view`"
-    )
-}
-
-#[cfg_attr(not(feature = "view"), allow(dead_code))]
-impl LiveView {
-    /// The line to show on start: where to point the Foxglove app.
-    pub(crate) fn announcement(&self) -> String {
-        #[cfg(feature = "view")]
-        return self.server.announcement();
-        #[cfg(not(feature = "view"))]
-        String::new()
-    }
-
-    /// Stop the view after the station (a no-op without the `view` feature, which never
-    /// starts one).
-    pub(crate) async fn stop(self) {
-        #[cfg(feature = "view")]
-        {
-            let report = self.server.stop().await;
-            if report.counts.lagged > 0 {
-                eprintln!(
-                    "live view: fell behind and dropped {} of {} messages",
-                    report.counts.lagged,
-                    report.counts.lagged + report.counts.forwarded
-                );
-            }
-        }
+        Ok(start_live_view(self.view).await?)
     }
 }
 
@@ -226,14 +162,14 @@ impl LiveView {
 pub struct HandSourceArgs {
     /// A model file in the project's TOML format (see `retarget::model_spec`).
     #[arg(long, value_name = "FILE", conflicts_with_all = ["urdf", "import"])]
-    pub model: Option<std::path::PathBuf>,
+    pub model: Option<PathBuf>,
     /// The robot's URDF, instead of the built-in hand (needs --import); a station also
     /// publishes it on /robot_description.
     #[arg(long, value_name = "FILE", requires = "import")]
-    pub urdf: Option<std::path::PathBuf>,
+    pub urdf: Option<PathBuf>,
     /// The import file naming the URDF's frames (launch_configs/hands/*.toml).
     #[arg(long, value_name = "FILE", requires = "urdf")]
-    pub import: Option<std::path::PathBuf>,
+    pub import: Option<PathBuf>,
 }
 
 impl HandSourceArgs {
@@ -247,6 +183,41 @@ impl HandSourceArgs {
                 import: import.clone(),
             },
             _ => HandSource::BuiltinOrcaV1Right,
+        }
+    }
+}
+
+/// How the trial console runs: shared by `pomdar trial` and `pomdar study`.
+#[derive(Debug, Clone, Args)]
+pub struct ConsoleArgs {
+    /// Countdown before a trial starts, seconds (0–30).
+    #[arg(long, value_name = "S", default_value_t = 3.0)]
+    pub countdown: f64,
+    /// Refuse to start a trial while new glove frames arrive slower than this, Hz.
+    #[arg(long, value_name = "HZ", default_value_t = 20.0)]
+    pub min_glove_rate: f64,
+    /// Refuse to start a trial while the last glove frame is older than this, ms.
+    #[arg(long, value_name = "MS", default_value_t = 200.0)]
+    pub max_input_age: f64,
+    /// Timed operator actions from a file instead of (or besides) the keyboard; see
+    /// `pomdar trial --help` for the format (a study plays it once for each task).
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// Print lines instead of the full-screen console (the default without a terminal);
+    /// without --script, commands are read from stdin, one per line.
+    #[arg(long)]
+    pub plain: bool,
+}
+
+impl ConsoleArgs {
+    /// The console's settings.
+    pub(crate) fn settings(&self) -> ConsoleSettings {
+        ConsoleSettings {
+            countdown: self.countdown,
+            min_glove_rate: self.min_glove_rate,
+            max_input_age: self.max_input_age,
+            script: self.script.clone(),
+            plain: self.plain,
         }
     }
 }

@@ -1,12 +1,12 @@
-//! `pomdar trial --simulate --physics`: the simulated robot in the task's MuJoCo scene instead
-//! of the mock robot. Its physics marks the trial's progress: each event it measures reaches
+//! The trial console's link to the simulated robot (`pomdar trial --simulate --physics`): the
+//! robot in the task's MuJoCo scene instead of the mock robot. Its physics marks the trial's progress: each event it measures reaches
 //! the console as the operator's own mark would (`p VALUE`, `d`), so the log, the summary and
 //! `pomdar score` are unchanged and the operator can still correct a mark. Every trial starts
 //! from the scene's initial state, and a glove task script plays from the trial's start.
 
 use tokio::sync::{mpsc, watch};
 
-use crate::console::keys::Action;
+use super::keys::Action;
 use crate::sim::progress_message::ProgressMessage;
 
 /// What starting the simulated robot gives the console: its task, the link, and the glove's
@@ -69,7 +69,7 @@ pub(crate) fn spawn_physics_robot(
     scene: Option<&std::path::Path>,
     clock: crate::clock::StationClock,
     shutdown: &watch::Receiver<bool>,
-) -> anyhow::Result<PhysicsParts> {
+) -> Result<PhysicsParts, super::session_error::SessionError> {
     use crate::physics::robot_node::{PhysicsRobotOptions, spawn_physics_robot as spawn};
     use crate::physics::setup::{ProjectScene, SceneSource, load_task};
     let source = match scene {
