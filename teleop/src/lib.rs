@@ -34,7 +34,7 @@ pub mod sim;
 #[cfg(feature = "physics")]
 pub mod sim_bench;
 pub mod station_node;
-pub mod station_setup;
+pub mod station_driver;
 pub mod station_topics;
 pub mod study_logs;
 pub mod test_knob;

@@ -245,7 +245,7 @@ fn calibrate_until_interrupted(args: CalibrateArgs) -> anyhow::Result<()> {
 /// The fit's options from the flags: the station configuration, the calibration settings,
 /// the profile's path, the user and the glove (the session is set later).
 fn fit_options(args: &CalibrateArgs) -> anyhow::Result<FitOptions> {
-    let station = crate::station_setup::load_station_config(args.config.as_deref(), None)?;
+    let station = crate::station_driver::setup::load_station_config(args.config.as_deref(), None)?;
     let settings = match &args.settings {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
             .with_context(|| format!("calibration settings {}", path.display()))?,

@@ -16,7 +16,7 @@ use crate::eval::summary::{SetOutput, summary_table};
 use crate::eval::{EvalOptions, evaluate, table};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// `pomdar eval` options.
 #[derive(Debug, Args)]

@@ -12,7 +12,7 @@ use super::common::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
-use crate::station_setup::read_station_config;
+use crate::station_driver::setup::read_station_config;
 
 /// `pomdar mock-hand` options.
 #[derive(Debug, Args)]

@@ -9,7 +9,7 @@ use clap::Args;
 use super::common::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::WallClock;
 use crate::relay_node::{RelayReport, RelaySettings, run_relay};
-use crate::station_setup::read_station_config;
+use crate::station_driver::setup::read_station_config;
 
 /// `pomdar relay` options.
 #[derive(Debug, Args)]

@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use clap::Args;
 use review::FeedbackSettings;
 
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 use crate::trial_review::review_trial_file;
 
 /// `pomdar review` options.

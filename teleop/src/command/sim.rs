@@ -96,7 +96,7 @@ pub async fn sim(args: SimArgs) -> anyhow::Result<()> {
     };
     use crate::physics::setup::{ProjectScene, SceneSource, load_task, project_scene_xml};
     use crate::score::score_inputs::ScoringInputs;
-    use crate::station_setup::load_station_config;
+    use crate::station_driver::setup::load_station_config;
 
     // The simulated robot is driven like the real one: guarded the same way.
     args.guard.apply();
@@ -299,7 +299,7 @@ fn lockstep_run(
     let duration_s = args.duration.unwrap_or(script.duration_s() + 2.0);
     let glove = glove_config.glove()?;
     let mut config = station.clone();
-    config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
+    config.arm.constraint = crate::station_driver::station_constraint(task.arm);
     let outcome = run_lockstep(
         &config,
         model,

@@ -267,7 +267,7 @@ pub async fn run_session(
     let config = station_config_for(args, &task)?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
-    crate::station_setup::build_station(&config, model.clone())?;
+    crate::station_driver::setup::build_station(&config, model.clone())?;
     let script = args
         .console
         .script
@@ -386,7 +386,7 @@ fn task_of(args: &TrialArgs, inputs: &ScoringInputs) -> anyhow::Result<TaskSpec>
 /// engaged by the operator only.
 fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<StationConfig> {
     let mut config =
-        crate::station_setup::load_station_config(args.config.as_deref(), args.profile.as_deref())?;
+        crate::station_driver::setup::load_station_config(args.config.as_deref(), args.profile.as_deref())?;
     config.network = args.node.network(&config.network);
     if args.simulate {
         config.network = NetworkConfig {
@@ -399,7 +399,7 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
         // No robot: nothing is retargeted, so no user's calibration applies.
         config.calibration_profile = None;
     }
-    config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
+    config.arm.constraint = crate::station_driver::station_constraint(task.arm);
     config.control.auto_engage = false;
     config.validate()?;
     Ok(config)

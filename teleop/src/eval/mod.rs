@@ -16,7 +16,7 @@ use retarget::{
 };
 use serde::Serialize;
 
-use crate::station_setup::{describe, load_profile};
+use crate::station_driver::setup::{describe, load_profile};
 pub use error::EvalError;
 use live_path::{LivePathReport, live_path};
 use variants::TimedFrame;
