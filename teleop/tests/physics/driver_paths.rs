@@ -22,7 +22,9 @@ const TOLERANCE: f64 = 1e-9;
 const DURATION_S: f64 = 3.0;
 
 /// A profile with scale 1.08 and a rotation (roll, pitch, yaw all non-zero).
-const PROFILE: &str = r#"user = "driver-paths"
+fn profile_toml() -> String {
+    let mut text = String::from(
+        r#"user = "driver-paths"
 date = "2026-11-30T16:00:00Z"
 glove = "simulated"
 model = "orca_v1_right"
@@ -39,14 +41,24 @@ yaw_rad = 0.08
 before_rad = 0.2
 after_rad = 0.05
 evaluations = 10
-
-[[pose]]
-name = "pinch_index"
-joint_rms_before_rad = 0.25
-joint_rms_after_rad = 0.07
-pinch_gap_before_mm = 14.0
-pinch_gap_after_mm = 2.1
-"#;
+"#,
+    );
+    let poses = [
+        "pinch_index",
+        "pinch_middle",
+        "pinch_ring",
+        "pinch_little",
+        "open",
+        "open_spread",
+        "closed",
+    ];
+    for name in poses {
+        text.push_str(&format!(
+            "\n[[pose]]\nname = \"{name}\"\njoint_rms_before_rad = 0.2\njoint_rms_after_rad = 0.1\npinch_gap_before_mm = 10.0\npinch_gap_after_mm = 5.0\n"
+        ));
+    }
+    text
+}
 
 /// A scratch directory removed on drop.
 struct Scratch(PathBuf);
@@ -247,7 +259,7 @@ fn assert_on_vertical_axis(name: &str, config: &StationConfig, targets: &[Point3
 fn a_profile_and_a_task_constraint_give_the_same_commands_on_every_path() {
     let scratch = Scratch::new("driver-paths");
     let profile = scratch.0.join("profile.toml");
-    std::fs::write(&profile, PROFILE).unwrap();
+    std::fs::write(&profile, profile_toml()).unwrap();
     let config = station_config(Some(&profile));
     let (glove, rate_hz) = glove(&config);
     let log = scratch.0.join("glove.mcap");
