@@ -14,6 +14,7 @@ pub mod demo;
 pub mod device_thread;
 pub mod disk_wait;
 pub mod eval;
+pub mod fnv;
 pub mod hand_check;
 pub mod hand_source;
 pub mod ingress;
@@ -33,8 +34,8 @@ pub mod score;
 pub mod sim;
 #[cfg(feature = "physics")]
 pub mod sim_bench;
-pub mod station_node;
 pub mod station_driver;
+pub mod station_node;
 pub mod station_topics;
 pub mod study_logs;
 pub mod test_knob;

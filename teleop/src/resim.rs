@@ -25,10 +25,10 @@ use station::{
 
 use crate::mcap_log::{LogError, LoggedMessage, TrialReader, TrialWriter};
 use crate::samples::Samples;
-use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
 use crate::station_driver::{
     Engage, McapSink, SetupError, TickSchedule, build_station, route, set_engage, tick_period_ns,
 };
+use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
 
 /// A log that cannot be re-simulated.
 #[derive(Debug, thiserror::Error)]

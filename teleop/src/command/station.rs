@@ -7,8 +7,8 @@ use tokio::sync::mpsc;
 
 use super::common::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
-use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 use crate::station_driver::setup::load_station_config;
+use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
 
 /// `pomdar station` options.
 #[derive(Debug, Args)]

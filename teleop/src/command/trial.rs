@@ -385,8 +385,10 @@ fn task_of(args: &TrialArgs, inputs: &ScoringInputs) -> anyhow::Result<TaskSpec>
 /// the network (loopback with `--simulate`), the embodiment and the task's arm constraint;
 /// engaged by the operator only.
 fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<StationConfig> {
-    let mut config =
-        crate::station_driver::setup::load_station_config(args.config.as_deref(), args.profile.as_deref())?;
+    let mut config = crate::station_driver::setup::load_station_config(
+        args.config.as_deref(),
+        args.profile.as_deref(),
+    )?;
     config.network = args.node.network(&config.network);
     if args.simulate {
         config.network = NetworkConfig {

@@ -56,18 +56,12 @@ struct LivePathScore<'a> {
 }
 
 impl LivePathScore<'_> {
-    fn after_step(
-        &mut self,
-        input: &StationInput,
-        now_ns: i64,
-        station: &Station,
-        fresh: bool,
-    ) {
+    fn after_step(&mut self, input: &StationInput, now_ns: i64, station: &Station, fresh: bool) {
         self.fresh += u64::from(fresh);
         let StationInput::Keypoints(frame) = input else {
             return;
         };
-        if self.previous.as_ref() == Some(&frame.points) {
+        if station::frame_gate::repeats(self.previous.as_deref(), &frame.points) {
             return;
         }
         self.previous = Some(frame.points.clone());
@@ -159,7 +153,9 @@ pub fn commands_in_force(
     let mut commands = Vec::new();
     drive_station(&mut station, log, |timed, _, station| {
         if matches!(timed.input, StationInput::Keypoints(_)) {
-            let q = station.command_in_force().map(|c| c.q.iter().copied().collect());
+            let q = station
+                .command_in_force()
+                .map(|c| c.q.iter().copied().collect());
             commands.push((timed.now_ns, q));
         }
     });

@@ -89,7 +89,8 @@ pub fn distinct_frames(
                 source,
             })?
             .points();
-        if frames.last().is_none_or(|last| last.points != points) {
+        let previous = frames.last().map(|last| last.points.as_slice());
+        if !station::frame_gate::repeats(previous, &points) {
             frames.push(TimedFrame {
                 t_ns: message.log_time_ns,
                 points,

@@ -78,7 +78,8 @@ impl OutputSink for McapSink<'_> {
 
     fn hand(&mut self, now_ns: i64, hand: &HandMessages, _fresh: bool) -> Result<(), LogError> {
         let topic = &self.config.output.joint_targets_topic;
-        self.writer.write(topic, now_ns, now_ns, &hand.joint_state)?;
+        self.writer
+            .write(topic, now_ns, now_ns, &hand.joint_state)?;
         self.hand_commands += 1;
         if let Some(policy) = &hand.policy {
             let topic = &self.config.policy_output.topic;

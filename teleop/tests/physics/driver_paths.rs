@@ -122,7 +122,9 @@ fn record_glove(path: &Path, config: &StationConfig, glove: &SimGlove, rate_hz: 
             poses: points.iter().map(point_pose).collect(),
         };
         let input = &config.input;
-        writer.write(&input.wrist_topic, now_ns, now_ns, &wrist).unwrap();
+        writer
+            .write(&input.wrist_topic, now_ns, now_ns, &wrist)
+            .unwrap();
         writer
             .write(&input.keypoints_topic, now_ns, now_ns, &keypoints)
             .unwrap();
@@ -239,7 +241,10 @@ fn assert_same_commands(name: &str, a: &[(i64, Vec<f64>)], b: &[(i64, Vec<f64>)]
             .zip(qb)
             .map(|(x, y)| (x - y).abs())
             .fold(0.0, f64::max);
-        assert!(worst <= TOLERANCE, "{name}: at {ta} ns the commands differ by {worst}");
+        assert!(
+            worst <= TOLERANCE,
+            "{name}: at {ta} ns the commands differ by {worst}"
+        );
     }
 }
 
@@ -251,7 +256,10 @@ fn assert_on_vertical_axis(name: &str, config: &StationConfig, targets: &[Point3
     };
     for target in targets {
         let off_axis = (target - first).cross(&axis).norm();
-        assert!(off_axis <= TOLERANCE, "{name}: an arm target {off_axis} m off the axis");
+        assert!(
+            off_axis <= TOLERANCE,
+            "{name}: an arm target {off_axis} m off the axis"
+        );
     }
 }
 
