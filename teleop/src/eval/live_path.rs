@@ -141,6 +141,10 @@ fn live_station(
     Ok((station, log))
 }
 
+/// A glove frame's log time (ns) and the hand command in force after it (joint angles, the
+/// model's order; `None` before the station engaged).
+pub type CommandAtFrame = (i64, Option<Vec<f64>>);
+
 /// The hand command in force (joint angles, the model's order) after each glove frame of
 /// `reader`'s log that the live path scores, with the frame's log time (ns); a frame before the
 /// station engaged has none.
@@ -148,14 +152,12 @@ pub fn commands_in_force(
     reader: &TrialReader,
     config: &StationConfig,
     model: HandModel,
-) -> Result<Vec<(i64, Option<Vec<f64>>)>, EvalError> {
+) -> Result<Vec<CommandAtFrame>, EvalError> {
     let (mut station, log) = live_station(reader, config, model)?;
     let mut commands = Vec::new();
     drive_station(&mut station, log, |timed, _, station| {
         if matches!(timed.input, StationInput::Keypoints(_)) {
-            let q = station
-                .command_in_force()
-                .map(|c| c.q.iter().copied().collect());
+            let q = station.command_in_force().map(|c| c.q.clone());
             commands.push((timed.now_ns, q));
         }
     });
