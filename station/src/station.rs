@@ -26,7 +26,7 @@ use msgs::Pose;
 use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel, Retargeter};
 use serde::Serialize;
 
-use crate::arm::{ArmError, Constraint};
+use crate::arm::Constraint;
 use crate::convert::pose_to_isometry;
 use crate::frame_gate::{FrameGate, Verdict};
 use crate::hand_control::{Counters, HandCommand, HandControl, KeypointFrame};
@@ -408,24 +408,9 @@ impl Station {
                 *self
                     .totals
                     .arm_refused
-                    .entry(arm_error_name(&error).to_string())
+                    .entry(error.name().to_string())
                     .or_default() += 1;
             }
-        }
-    }
-}
-
-/// The name of an arm refusal in the status.
-fn arm_error_name(error: &ArmError) -> &'static str {
-    match error {
-        ArmError::NonFinitePose { .. } => "non_finite_pose",
-        ArmError::ImplausiblePosition { .. } => "implausible_position",
-        ArmError::NonUnitQuaternion { .. } => "non_unit_quaternion",
-        ArmError::NonFiniteTarget => "non_finite_target",
-        ArmError::OutsideWorkspace { .. } => "outside_workspace",
-        ArmError::ConstraintChangeWhileEngaged => "constraint_change",
-        ArmError::InFile { .. } | ArmError::Syntax { .. } | ArmError::ConfigRange { .. } => {
-            "configuration"
         }
     }
 }
