@@ -299,7 +299,7 @@ fn lockstep_run(
     let duration_s = args.duration.unwrap_or(script.duration_s() + 2.0);
     let glove = glove_config.glove()?;
     let mut config = station.clone();
-    config.arm.constraint = crate::station_driver::station_constraint(task.arm);
+    config.arm.constraint = task.arm;
     let outcome = run_lockstep(
         &config,
         model,

@@ -401,7 +401,7 @@ fn station_config_for(args: &TrialArgs, task: &TaskSpec) -> anyhow::Result<Stati
         // No robot: nothing is retargeted, so no user's calibration applies.
         config.calibration_profile = None;
     }
-    config.arm.constraint = crate::station_driver::station_constraint(task.arm);
+    config.arm.constraint = task.arm;
     config.control.auto_engage = false;
     config.validate()?;
     Ok(config)

@@ -11,5 +11,5 @@ pub mod ticks;
 
 pub use setup::{SetupError, build_station};
 pub use sinks::{McapSink, OutputSink, route};
-pub use task_config::{Engage, constrain_for_task, set_engage, station_constraint};
+pub use task_config::{Engage, constrain_for_task, set_engage};
 pub use ticks::{TickSchedule, steps_per_tick, tick_period, tick_period_ns};

@@ -1,10 +1,9 @@
 //! The task → station configuration step every path takes before it builds a station: the
-//! catalog task's arm constraint as the station's [`Constraint`], and who engages the arm
+//! catalog task's arm constraint (the station's own type), and who engages the arm
 //! ([`Engage`]: the operator, or the station itself on its first fresh frame).
 
-use scoring::{ArmConstraint, TaskSpec};
+use scoring::TaskSpec;
 use station::StationConfig;
-use station::arm::Constraint;
 
 /// Who engages the station's arm.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,19 +15,9 @@ pub enum Engage {
     OnFirstFrame,
 }
 
-/// The station's arm constraint for a catalog task's.
-pub fn station_constraint(arm: ArmConstraint) -> Constraint {
-    match arm {
-        ArmConstraint::Fixed => Constraint::Fixed,
-        ArmConstraint::VerticalAxis => Constraint::VerticalAxis,
-        ArmConstraint::HorizontalAxis => Constraint::HorizontalAxis,
-        ArmConstraint::Free => Constraint::Free,
-    }
-}
-
 /// `config` with `task`'s arm constraint.
 pub fn constrain_for_task(config: &mut StationConfig, task: &TaskSpec) {
-    config.arm.constraint = station_constraint(task.arm);
+    config.arm.constraint = task.arm;
 }
 
 /// `config` engaging as `engage` says.
@@ -38,18 +27,18 @@ pub fn set_engage(config: &mut StationConfig, engage: Engage) {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use station::arm::Constraint;
+
     use super::*;
 
     #[test]
-    fn every_catalog_constraint_maps_to_the_station_constraint_of_the_same_name() {
-        for (arm, expected) in [
-            (ArmConstraint::Fixed, Constraint::Fixed),
-            (ArmConstraint::VerticalAxis, Constraint::VerticalAxis),
-            (ArmConstraint::HorizontalAxis, Constraint::HorizontalAxis),
-            (ArmConstraint::Free, Constraint::Free),
-        ] {
-            assert_eq!(station_constraint(arm), expected);
-        }
+    fn a_task_gives_the_station_its_constraint() {
+        let catalog = scoring::TaskCatalog::builtin();
+        let mut config = StationConfig::default();
+        constrain_for_task(&mut config, catalog.get("V1").unwrap());
+        assert_eq!(config.arm.constraint, Constraint::VerticalAxis);
     }
 
     #[test]
