@@ -11,9 +11,7 @@
 use std::time::Instant;
 
 use retarget::quality::Reachability;
-use retarget::{
-    CalibrationTransform, EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter,
-};
+use retarget::{CalibrationTransform, HandModel, QualityRecorder, QualityReport, Retargeter};
 use serde::Serialize;
 
 use crate::station_driver::setup::{describe, load_profile};
@@ -168,18 +166,13 @@ pub fn build_retargeter(
     retarget_config: retarget::RetargetConfig,
     transform: Option<CalibrationTransform>,
 ) -> Result<Retargeter, EvalError> {
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        retarget_config,
-        &EmbodimentCatalog::builtin(),
+    use station::retargeter_setup::RetargeterSetupError;
+    station::retargeter_setup::build_retargeter(model.clone(), retarget_config, transform).map_err(
+        |e| match e {
+            RetargeterSetupError::Model(source) => EvalError::Retargeter { source },
+            RetargeterSetupError::Calibration(source) => EvalError::Calibration { source },
+        },
     )
-    .map_err(|source| EvalError::Retargeter { source })?;
-    if let Some(transform) = transform {
-        retargeter
-            .set_calibration(transform)
-            .map_err(|source| EvalError::Calibration { source })?;
-    }
-    Ok(retargeter)
 }
 
 /// The frames retargeted one after the other and recorded for the metrics.
