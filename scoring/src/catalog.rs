@@ -44,17 +44,19 @@ impl Configuration {
     }
 }
 
-/// How the arm is constrained during the task.
+/// How the arm may move during a task (POMDAR: `fixed` for C4/H4/H5, `vertical_axis` for
+/// V1–V3 and C1–C3, `horizontal_axis` for H1–H3, `free` for the grasp tasks G1–G6); the
+/// station's arm mapping applies it (`station::arm::Constraint` is this type).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ArmConstraint {
-    /// The arm holds its pose.
+    /// Position and orientation stay at the pose latched at engage.
     Fixed,
-    /// The arm moves along the vertical axis only.
+    /// Translation only along the station's `vertical_axis` through the latched position.
     VerticalAxis,
-    /// The arm moves along the horizontal axis only.
+    /// Translation only along the station's `horizontal_axis` through the latched position.
     HorizontalAxis,
-    /// The arm moves freely.
+    /// The full relative pose (orientation per the station's orientation policy).
     Free,
 }
 

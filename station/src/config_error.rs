@@ -1,6 +1,6 @@
 //! What is wrong with a station configuration: the key, the value and what is allowed.
 
-use crate::arm::ArmError;
+use crate::arm::ArmConfigError;
 
 /// A station configuration that does not parse or does not validate.
 #[derive(Debug, thiserror::Error)]
@@ -27,7 +27,7 @@ pub enum ConfigError {
     Retarget(#[from] retarget::Error),
     /// The arm section is not usable.
     #[error("arm: {0}")]
-    Arm(#[from] ArmError),
+    Arm(#[from] ArmConfigError),
 }
 
 impl ConfigError {

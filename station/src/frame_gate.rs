@@ -114,6 +114,12 @@ impl GateConfig {
     }
 }
 
+/// Whether `points` repeat `previous` (the same frame published again, not a new one): the
+/// one repeat test of the station's gate and of every tool that counts distinct frames.
+pub fn repeats(previous: Option<&[Point3<f64>]>, points: &[Point3<f64>]) -> bool {
+    previous == Some(points)
+}
+
 /// Why a frame was turned away.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -220,7 +226,7 @@ impl FrameGate {
     /// interval): the jump allowance grows with that time. A `New` frame becomes the reference
     /// for the next.
     pub fn judge_after(&mut self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> Verdict {
-        if self.held.as_deref() == Some(points) {
+        if repeats(self.held.as_deref(), points) {
             // The held frame again (the ingress republishes every frame): still held.
             return Verdict::Repeat;
         }
@@ -288,7 +294,7 @@ impl FrameGate {
         {
             return Verdict::Rejected(Rejection::NonFinite);
         }
-        if self.last.as_deref() == Some(points) {
+        if repeats(self.last.as_deref(), points) {
             return Verdict::Repeat;
         }
         let wrist = points[layout.wrist()];

@@ -63,6 +63,7 @@ pub mod outlier_check;
 pub mod output_stage;
 pub mod policy_output;
 pub mod rate_meter;
+pub mod retargeter_setup;
 pub mod robot_link;
 pub mod ros_tools;
 pub mod ros_tools_config;

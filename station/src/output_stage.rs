@@ -5,7 +5,7 @@ use msgs::{Float32MultiArray, JointState, MultiArrayDimension, MultiArrayLayout,
 use nalgebra::Isometry3;
 use retarget::HandModel;
 
-use crate::arm::{ArmError, ArmMapper};
+use crate::arm::{ArmMapper, ArmRefusal};
 use crate::convert::{header, isometry_to_pose};
 use crate::hand_control::HandCommand;
 use crate::policy_output::PolicyOutput;
@@ -30,7 +30,7 @@ pub enum ArmStep {
     /// A target to send.
     Target(PoseStamped),
     /// The arm mapping refused this tick's input (the arm holds: nothing is sent).
-    Refused(ArmError),
+    Refused(ArmRefusal),
 }
 
 /// Where the arm's inputs stand on a tick.
@@ -140,7 +140,7 @@ impl OutputStage {
         state: DriveState,
         inputs: ArmInputs,
         now_ns: i64,
-    ) -> (ArmStep, Option<ArmError>) {
+    ) -> (ArmStep, Option<ArmRefusal>) {
         let engage_error = self.follow_state(state, inputs);
         let Some(wrist) = inputs
             .glove_wrist
@@ -169,7 +169,7 @@ impl OutputStage {
         (step, engage_error)
     }
 
-    fn follow_state(&mut self, state: DriveState, inputs: ArmInputs) -> Option<ArmError> {
+    fn follow_state(&mut self, state: DriveState, inputs: ArmInputs) -> Option<ArmRefusal> {
         let was = self.previous_state;
         self.previous_state = state;
         match (was, state) {

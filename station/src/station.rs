@@ -23,16 +23,17 @@
 //! or arm message is sent.
 
 use msgs::Pose;
-use retarget::{CalibrationTransform, EmbodimentCatalog, HandModel, Retargeter};
+use retarget::{CalibrationTransform, HandModel, Retargeter};
 use serde::Serialize;
 
-use crate::arm::{ArmError, Constraint};
+use crate::arm::Constraint;
 use crate::convert::pose_to_isometry;
 use crate::frame_gate::{FrameGate, Verdict};
 use crate::hand_control::{Counters, HandCommand, HandControl, KeypointFrame};
 use crate::input_gap::{GapMeter, InputGap};
 use crate::output_stage::{ArmInputs, ArmStep, OutputStage};
 use crate::rate_meter::RateMeter;
+use crate::retargeter_setup::build_retargeter;
 use crate::station_config::{ControlConfig, ControlMode, StationConfig};
 use crate::station_error::StationError;
 use crate::station_input::{ControlInput, Notice, StationInput, StationOutputs};
@@ -135,7 +136,10 @@ impl Station {
         let output = OutputStage::new(config, &model)?;
         let drives_robot = config.drives_robot();
         let retargeter = if drives_robot {
-            Some(Self::retargeter_for(config, model, calibration)?)
+            Some(
+                build_retargeter(model, config.retarget.clone(), calibration)
+                    .map_err(|e| StationError::Retargeter(e.into_cause()))?,
+            )
         } else {
             None
         };
@@ -163,22 +167,6 @@ impl Station {
             },
             totals: Totals::default(),
         })
-    }
-
-    fn retargeter_for(
-        config: &StationConfig,
-        model: HandModel,
-        calibration: Option<CalibrationTransform>,
-    ) -> Result<Retargeter, StationError> {
-        let mut retargeter = Retargeter::new(
-            model,
-            config.retarget.clone(),
-            &EmbodimentCatalog::builtin(),
-        )?;
-        if let Some(transform) = calibration {
-            retargeter.set_calibration(transform)?;
-        }
-        Ok(retargeter)
     }
 
     /// The retargeter (model, configuration); `None` in a human study.
@@ -408,24 +396,9 @@ impl Station {
                 *self
                     .totals
                     .arm_refused
-                    .entry(arm_error_name(&error).to_string())
+                    .entry(error.name().to_string())
                     .or_default() += 1;
             }
-        }
-    }
-}
-
-/// The name of an arm refusal in the status.
-fn arm_error_name(error: &ArmError) -> &'static str {
-    match error {
-        ArmError::NonFinitePose { .. } => "non_finite_pose",
-        ArmError::ImplausiblePosition { .. } => "implausible_position",
-        ArmError::NonUnitQuaternion { .. } => "non_unit_quaternion",
-        ArmError::NonFiniteTarget => "non_finite_target",
-        ArmError::OutsideWorkspace { .. } => "outside_workspace",
-        ArmError::ConstraintChangeWhileEngaged => "constraint_change",
-        ArmError::InFile { .. } | ArmError::Syntax { .. } | ArmError::ConfigRange { .. } => {
-            "configuration"
         }
     }
 }

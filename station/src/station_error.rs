@@ -1,6 +1,6 @@
 //! Why a station could not be built for a configuration and a hand model.
 
-use crate::arm::ArmError;
+use crate::arm::ArmConfigError;
 use crate::config_error::ConfigError;
 
 /// A station that cannot be built: its configuration, the hand model, the calibration.
@@ -24,5 +24,5 @@ pub enum StationError {
     Retargeter(#[from] retarget::Error),
     /// The arm mapping refused its configuration.
     #[error("arm: {0}")]
-    Arm(#[from] ArmError),
+    Arm(#[from] ArmConfigError),
 }

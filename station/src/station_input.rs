@@ -3,7 +3,7 @@
 use msgs::{Pose, PoseStamped};
 use serde::{Deserialize, Serialize};
 
-use crate::arm::ArmError;
+use crate::arm::ArmRefusal;
 use crate::frame_gate::Verdict;
 use crate::hand_control::KeypointFrame;
 use crate::output_stage::HandMessages;
@@ -45,7 +45,7 @@ pub enum ControlInput {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Notice {
     /// The arm clutch could not engage (the hand is driven, the arm is not).
-    ArmNotEngaged(ArmError),
+    ArmNotEngaged(ArmRefusal),
     /// Another publisher drives the arm command topic: no arm targets until it stops.
     ArmBlocked,
 }

@@ -33,7 +33,7 @@ use teleop::eval::eval_set::write_recording;
 use teleop::eval::live_path::{HandAsHeld, live_path_against};
 use teleop::eval::variants::TimedFrame;
 use teleop::mcap_log::TrialReader;
-use teleop::station_setup::load_station_config;
+use teleop::station_driver::setup::load_station_config;
 
 /// The first user's seed: users from here on were never looked at while choosing a setting.
 const FIRST_SEED: u64 = 5000;

@@ -52,25 +52,25 @@ fn events_for(kind: CorrectnessKind, duration_s: f64, rng: &mut SplitMix64) -> V
     let mut marks: Vec<Value> = Vec::new();
     match kind {
         CorrectnessKind::Notches { count } | CorrectnessKind::Curves { count } => {
-            let reached = if rng.unit() < 0.6 {
+            let reached = if rng.next_f64() < 0.6 {
                 count
             } else {
-                (rng.unit() * f64::from(count + 1)) as u32
+                (rng.next_f64() * f64::from(count + 1)) as u32
             };
             marks.extend((0..reached).map(|_| json!({"event": "progress", "value": 1})));
         }
         CorrectnessKind::Rotation { .. } => {
-            for _ in 0..(4 + (rng.unit() * 5.0) as usize) {
-                marks.push(json!({"event": "progress", "value": (rng.unit() * 90.0).round()}));
+            for _ in 0..(4 + (rng.next_f64() * 5.0) as usize) {
+                marks.push(json!({"event": "progress", "value": (rng.next_f64() * 90.0).round()}));
             }
         }
         CorrectnessKind::Distance { .. } => {
             for _ in 0..3 {
-                marks.push(json!({"event": "progress", "value": (rng.unit() * 70.0).round()}));
+                marks.push(json!({"event": "progress", "value": (rng.next_f64() * 70.0).round()}));
             }
         }
         CorrectnessKind::Grasp {} => {
-            let r = rng.unit();
+            let r = rng.next_f64();
             if r < 0.6 {
                 marks.push(json!({"event": "progress", "value": 0.5}));
                 marks.push(json!({"event": "progress", "value": 1.0}));
@@ -80,7 +80,7 @@ fn events_for(kind: CorrectnessKind, duration_s: f64, rng: &mut SplitMix64) -> V
             }
         }
     }
-    if rng.unit() < 0.1 {
+    if rng.next_f64() < 0.1 {
         marks.push(json!({"event": "note", "text": "glove re-seated"}));
     }
     let mut events = vec![(start, json!({"event": "start"}))];
@@ -88,7 +88,7 @@ fn events_for(kind: CorrectnessKind, duration_s: f64, rng: &mut SplitMix64) -> V
     for (i, m) in marks.into_iter().enumerate() {
         events.push((start + step * (i + 1) as f64, m));
     }
-    if rng.unit() < 0.03 {
+    if rng.next_f64() < 0.03 {
         events.push((
             end - 0.2,
             json!({"event": "abort", "reason": "object fell off"}),
@@ -143,7 +143,7 @@ fn plan(root: &Path) -> Vec<Planned> {
             let practice = usize::from(practice_left > 0);
             practice_left -= practice;
             for i in 0..practice + RECORDED {
-                let duration = 10.0 + 50.0 * rng.unit();
+                let duration = 10.0 + 50.0 * rng.next_f64();
                 let path = root.join(format!(
                     "trials/{e}/{}/{e}_{}_{i:02}.mcap",
                     task.id, task.id
@@ -154,7 +154,7 @@ fn plan(root: &Path) -> Vec<Planned> {
     }
     for task in &catalog.tasks {
         for user in ["h1", "h2", "h3"] {
-            let duration = 5.0 + 20.0 * rng.unit();
+            let duration = 5.0 + 20.0 * rng.next_f64();
             let path = root.join(format!("human/{}/human_{}_{user}.mcap", task.id, task.id));
             add(path, "human", task, false, user, 0, duration, &mut rng);
         }

@@ -15,6 +15,7 @@ pub mod device_thread;
 pub mod disk_wait;
 pub mod eval;
 pub mod eval_modes;
+pub mod fnv;
 pub mod hand_check;
 pub mod hand_source;
 pub mod ingress;
@@ -36,8 +37,8 @@ pub mod sim;
 pub mod sim_bench;
 #[cfg(feature = "physics")]
 pub mod sim_runs;
+pub mod station_driver;
 pub mod station_node;
-pub mod station_setup;
 pub mod station_topics;
 pub mod study_logs;
 pub mod test_knob;

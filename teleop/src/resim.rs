@@ -25,8 +25,10 @@ use station::{
 
 use crate::mcap_log::{LogError, LoggedMessage, TrialReader, TrialWriter};
 use crate::samples::Samples;
+use crate::station_driver::{
+    Engage, McapSink, SetupError, TickSchedule, build_station, route, set_engage, tick_period_ns,
+};
 use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
-use crate::station_setup::{SetupError, build_station};
 
 /// A log that cannot be re-simulated.
 #[derive(Debug, thiserror::Error)]
@@ -201,7 +203,7 @@ pub fn log_inputs(reader: &TrialReader, config: &StationConfig) -> Result<LogInp
     let origin = if messages.iter().any(|m| m.topic == STATION_CONTROL_TOPIC) {
         InputOrigin::Recorded
     } else {
-        config.control.auto_engage = true;
+        set_engage(&mut config, Engage::OnFirstFrame);
         InputOrigin::LogClock
     };
     let mut inputs = Vec::with_capacity(messages.len());
@@ -226,16 +228,17 @@ pub fn log_inputs(reader: &TrialReader, config: &StationConfig) -> Result<LogInp
 /// `inputs` with a tick every `1 / rate_hz` from the first one's time; a tick goes before the
 /// inputs received after it, up to the last input.
 fn with_log_clock_ticks(inputs: Vec<TimedInput>, rate_hz: f64) -> Vec<TimedInput> {
-    let period_ns = (1e9 / rate_hz).round() as i64;
-    let mut next_tick = inputs.first().map(|i| i.now_ns + period_ns);
+    let period_ns = tick_period_ns(rate_hz);
+    let mut ticks = inputs
+        .first()
+        .map(|i| TickSchedule::starting_at(i.now_ns + period_ns, period_ns));
     let mut merged = Vec::with_capacity(inputs.len() * 2);
     for input in inputs {
-        while let Some(t) = next_tick.filter(|t| *t <= input.now_ns) {
+        while let Some(t) = ticks.as_mut().and_then(|s| s.due(input.now_ns)) {
             merged.push(TimedInput {
                 now_ns: t,
                 input: StationInput::Control(ControlInput::Tick),
             });
-            next_tick = Some(t + period_ns);
         }
         merged.push(input);
     }
@@ -262,6 +265,7 @@ pub fn resim(
         ..ResimStats::default()
     };
     let mut step_ms = Samples::default();
+    let mut sink = McapSink::new(writer, &log.config);
     for TimedInput { now_ns, input } in log.inputs {
         stats.frames_read += u64::from(matches!(input, StationInput::Keypoints(_)));
         let started = Instant::now();
@@ -269,8 +273,10 @@ pub fn resim(
         if outputs.fresh_frame_received_ns.is_some() {
             step_ms.push(started.elapsed().as_secs_f64() * 1e3);
         }
-        write_outputs(writer, &log.config, &outputs, now_ns, &mut stats)?;
+        route(&outputs, now_ns, &mut sink)?;
     }
+    stats.joint_targets = sink.hand_commands;
+    stats.arm_targets = sink.arm_targets;
     let counters = station.counters();
     stats.frames_new = counters.frames_new;
     stats.frames_repeated = counters.frames_repeated;
@@ -279,32 +285,6 @@ pub fn resim(
     stats.step_ms_p50 = step_ms.percentile(0.5);
     stats.step_ms_p99 = step_ms.percentile(0.99);
     Ok(stats)
-}
-
-/// Write one step's outputs, stamped `now_ns`, in the order the station node sends them.
-fn write_outputs(
-    writer: &mut TrialWriter,
-    config: &StationConfig,
-    outputs: &StationOutputs,
-    now_ns: i64,
-    stats: &mut ResimStats,
-) -> Result<(), LogError> {
-    for notice in &outputs.notices {
-        eprintln!("{notice}");
-    }
-    if let Some(hand) = &outputs.hand {
-        let topic = &config.output.joint_targets_topic;
-        writer.write(topic, now_ns, now_ns, &hand.joint_state)?;
-        stats.joint_targets += 1;
-        if let Some(policy) = &hand.policy {
-            writer.write(&config.policy_output.topic, now_ns, now_ns, policy)?;
-        }
-    }
-    if let Some(arm) = &outputs.arm {
-        writer.write(&config.output.arm_target_topic, now_ns, now_ns, arm)?;
-        stats.arm_targets += 1;
-    }
-    Ok(())
 }
 
 /// Step a station through `log` and hand each step's outputs to `visit`, with the station after

@@ -257,7 +257,8 @@ pub fn guide_blocks_and_station_config(root: &std::path::Path) -> (Vec<HostBlock
         .skip_while(|w| *w != "--config")
         .nth(1)
         .expect("the guide's station command has no --config");
-    let config = teleop::station_setup::read_station_config(&root.join(config_path)).unwrap();
+    let config =
+        teleop::station_driver::setup::read_station_config(&root.join(config_path)).unwrap();
     let hosts: Vec<&str> = blocks.iter().map(|b| b.host.as_str()).collect();
     assert_eq!(
         hosts,

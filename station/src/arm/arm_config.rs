@@ -17,7 +17,7 @@
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::arm_error::ArmError;
+use super::arm_error::ArmConfigError;
 use super::constraint::{Constraint, OrientationPolicy, ResolvedConstraint};
 use super::pose_check::QUATERNION_NORM_TOLERANCE;
 use super::workspace_box::WorkspaceBox;
@@ -133,8 +133,8 @@ impl Default for StartPose {
 
 impl ArmConfig {
     /// Parse and validate a TOML configuration; missing keys take their defaults.
-    pub fn from_toml_str(text: &str) -> Result<ArmConfig, ArmError> {
-        let config: ArmConfig = toml::from_str(text).map_err(|e| ArmError::Syntax {
+    pub fn from_toml_str(text: &str) -> Result<ArmConfig, ArmConfigError> {
+        let config: ArmConfig = toml::from_str(text).map_err(|e| ArmConfigError::Syntax {
             reason: e.to_string().trim_end().to_string(),
         })?;
         config.validate()?;
@@ -142,7 +142,7 @@ impl ArmConfig {
     }
 
     /// Check every value against its allowed range.
-    pub fn validate(&self) -> Result<(), ArmError> {
+    pub fn validate(&self) -> Result<(), ArmConfigError> {
         let (lo, hi) = TRANSLATION_SCALE_RANGE;
         if !(self.translation_scale >= lo && self.translation_scale <= hi) {
             return Err(range_error(
@@ -215,7 +215,10 @@ impl ArmConfig {
     }
 
     /// The configured axis of `constraint` (normalised), or `None` for `fixed` and `free`.
-    pub fn axis_of(&self, constraint: Constraint) -> Result<Option<Unit<Vector3<f64>>>, ArmError> {
+    pub fn axis_of(
+        &self,
+        constraint: Constraint,
+    ) -> Result<Option<Unit<Vector3<f64>>>, ArmConfigError> {
         Ok(match self.resolved_constraint(constraint)? {
             ResolvedConstraint::Axis(axis) => Some(axis),
             ResolvedConstraint::Fixed | ResolvedConstraint::Free => None,
@@ -223,7 +226,7 @@ impl ArmConfig {
     }
 
     /// `glove_to_base` as a unit quaternion.
-    pub fn glove_to_base_rotation(&self) -> Result<UnitQuaternion<f64>, ArmError> {
+    pub fn glove_to_base_rotation(&self) -> Result<UnitQuaternion<f64>, ArmConfigError> {
         rotation_from(
             "glove_to_base",
             self.glove_to_base.rpy_rad,
@@ -232,7 +235,7 @@ impl ArmConfig {
     }
 
     /// `start_pose` as an isometry (robot base frame).
-    pub fn start_pose_isometry(&self) -> Result<Isometry3<f64>, ArmError> {
+    pub fn start_pose_isometry(&self) -> Result<Isometry3<f64>, ArmConfigError> {
         let p = self.start_pose.position_m;
         if !p.iter().all(|v| v.is_finite()) {
             return Err(range_error(
@@ -256,7 +259,7 @@ impl ArmConfig {
     pub(crate) fn resolved_constraint(
         &self,
         constraint: Constraint,
-    ) -> Result<ResolvedConstraint, ArmError> {
+    ) -> Result<ResolvedConstraint, ArmConfigError> {
         Ok(match constraint {
             Constraint::Fixed => ResolvedConstraint::Fixed,
             Constraint::Free => ResolvedConstraint::Free,
@@ -270,15 +273,15 @@ impl ArmConfig {
     }
 }
 
-fn range_error(key: &str, value: impl ToString, allowed: String) -> ArmError {
-    ArmError::ConfigRange {
+fn range_error(key: &str, value: impl ToString, allowed: String) -> ArmConfigError {
+    ArmConfigError::ConfigRange {
         key: key.to_string(),
         value: value.to_string(),
         allowed,
     }
 }
 
-fn positive_up_to(key: &str, value: f64, max: f64) -> Result<(), ArmError> {
+fn positive_up_to(key: &str, value: f64, max: f64) -> Result<(), ArmConfigError> {
     if value > 0.0 && value <= max {
         Ok(())
     } else {
@@ -286,7 +289,7 @@ fn positive_up_to(key: &str, value: f64, max: f64) -> Result<(), ArmError> {
     }
 }
 
-fn unit_axis(key: &str, axis: [f64; 3]) -> Result<Unit<Vector3<f64>>, ArmError> {
+fn unit_axis(key: &str, axis: [f64; 3]) -> Result<Unit<Vector3<f64>>, ArmConfigError> {
     let v = Vector3::from(axis);
     let norm = v.norm();
     if norm.is_finite() && (norm - 1.0).abs() <= AXIS_NORM_TOLERANCE {
@@ -306,7 +309,7 @@ fn rotation_from(
     key: &str,
     rpy_rad: Option<[f64; 3]>,
     quaternion_xyzw: Option<[f64; 4]>,
-) -> Result<UnitQuaternion<f64>, ArmError> {
+) -> Result<UnitQuaternion<f64>, ArmConfigError> {
     match (rpy_rad, quaternion_xyzw) {
         (Some(rpy), None) => {
             if rpy.iter().all(|v| v.is_finite()) {

@@ -9,7 +9,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use super::arm_command::ArmCommand;
 use super::arm_config::ArmConfig;
-use super::arm_error::{ArmError, PoseRole};
+use super::arm_error::ArmConfigError;
+use super::arm_refusal::{ArmRefusal, PoseRole};
 use super::constraint::{AllowedTranslation, Constraint, ResolvedConstraint, constrain};
 use super::pose_check::checked_pose;
 use super::relative_motion::relative_motion;
@@ -27,6 +28,9 @@ pub struct ArmMapper {
     start_pose: Isometry3<f64>,
     workspace: WorkspaceBox,
     constraint: ResolvedConstraint,
+    /// The two axis constraints, resolved at set-up (a constraint change cannot fail on them).
+    vertical_axis: ResolvedConstraint,
+    horizontal_axis: ResolvedConstraint,
     engagement: Option<Engagement>,
     last_command: Option<ArmCommand>,
 }
@@ -41,13 +45,15 @@ struct Engagement {
 
 impl ArmMapper {
     /// A disengaged mapper; fails if the configuration does not validate.
-    pub fn new(config: ArmConfig) -> Result<ArmMapper, ArmError> {
+    pub fn new(config: ArmConfig) -> Result<ArmMapper, ArmConfigError> {
         config.validate()?;
         Ok(ArmMapper {
             glove_to_base: config.glove_to_base_rotation()?,
             start_pose: config.start_pose_isometry()?,
             workspace: config.workspace(),
             constraint: config.resolved_constraint(config.constraint)?,
+            vertical_axis: config.resolved_constraint(Constraint::VerticalAxis)?,
+            horizontal_axis: config.resolved_constraint(Constraint::HorizontalAxis)?,
             config,
             engagement: None,
             last_command: None,
@@ -66,14 +72,19 @@ impl ArmMapper {
 
     /// Change the task constraint (e.g. at the start of a task). Refused while engaged unless
     /// unchanged: a change while engaged would move the target without the operator moving.
-    pub fn set_constraint(&mut self, constraint: Constraint) -> Result<(), ArmError> {
+    pub fn set_constraint(&mut self, constraint: Constraint) -> Result<(), ArmRefusal> {
         if constraint == self.config.constraint {
             return Ok(());
         }
         if self.is_engaged() {
-            return Err(ArmError::ConstraintChangeWhileEngaged);
+            return Err(ArmRefusal::ConstraintChangeWhileEngaged);
         }
-        self.constraint = self.config.resolved_constraint(constraint)?;
+        self.constraint = match constraint {
+            Constraint::Fixed => ResolvedConstraint::Fixed,
+            Constraint::Free => ResolvedConstraint::Free,
+            Constraint::VerticalAxis => self.vertical_axis,
+            Constraint::HorizontalAxis => self.horizontal_axis,
+        };
         self.config.constraint = constraint;
         Ok(())
     }
@@ -100,11 +111,11 @@ impl ArmMapper {
         &mut self,
         glove_wrist: Isometry3<f64>,
         robot_pose: Isometry3<f64>,
-    ) -> Result<(), ArmError> {
+    ) -> Result<(), ArmRefusal> {
         let glove = checked_pose(&glove_wrist, PoseRole::GloveWrist)?;
         let robot = checked_pose(&robot_pose, PoseRole::RobotEndEffector)?;
         if let Some(v) = self.workspace.first_violation(&robot.translation.vector) {
-            return Err(ArmError::OutsideWorkspace {
+            return Err(ArmRefusal::OutsideWorkspace {
                 axis: v.axis,
                 value: v.value,
                 min_m: v.min_m,
@@ -120,7 +131,7 @@ impl ArmMapper {
     }
 
     /// Engage at the configured `start_pose`, for when there is no arm pose feedback.
-    pub fn engage_at_start_pose(&mut self, glove_wrist: Isometry3<f64>) -> Result<(), ArmError> {
+    pub fn engage_at_start_pose(&mut self, glove_wrist: Isometry3<f64>) -> Result<(), ArmRefusal> {
         self.engage(glove_wrist, self.start_pose)
     }
 
@@ -142,7 +153,7 @@ impl ArmMapper {
     /// position, non-unit quaternion): the state is unchanged and the caller holds its last
     /// command. The pose is validated even while disengaged, so rejections are counted the
     /// same way in both states.
-    pub fn step(&mut self, glove_wrist: Isometry3<f64>) -> Result<Option<ArmCommand>, ArmError> {
+    pub fn step(&mut self, glove_wrist: Isometry3<f64>) -> Result<Option<ArmCommand>, ArmRefusal> {
         let glove = checked_pose(&glove_wrist, PoseRole::GloveWrist)?;
         let Some(engagement) = self.engagement.as_mut() else {
             return Ok(None);
@@ -181,7 +192,7 @@ impl ArmMapper {
             UnitQuaternion::new_normalize(orientation.value.into_inner()),
         );
         if !is_finite(&target) {
-            return Err(ArmError::NonFiniteTarget);
+            return Err(ArmRefusal::NonFiniteTarget);
         }
         engagement.previous_target = target;
         let command = ArmCommand {

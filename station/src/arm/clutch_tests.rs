@@ -232,7 +232,7 @@ fn engage_outside_the_box_is_refused_and_changes_nothing() {
         .engage(glove, pose([0.5, 0.0, 0.9], [0.0; 3]))
         .unwrap_err();
     assert!(
-        matches!(e, ArmError::OutsideWorkspace { axis: "z", .. }),
+        matches!(e, ArmRefusal::OutsideWorkspace { axis: "z", .. }),
         "{e}"
     );
     assert_eq!(m.latched().unwrap().1, robot);
@@ -245,7 +245,7 @@ fn an_invalid_glove_pose_is_rejected_and_changes_nothing() {
     let nan = moved(&glove, [f64::NAN, 0.0, 0.0]);
     assert!(matches!(
         m.step(nan),
-        Err(ArmError::NonFinitePose {
+        Err(ArmRefusal::NonFinitePose {
             pose: PoseRole::GloveWrist,
             ..
         })
@@ -256,7 +256,7 @@ fn an_invalid_glove_pose_is_rejected_and_changes_nothing() {
     );
     assert!(matches!(
         m.step(garbled),
-        Err(ArmError::NonUnitQuaternion { .. })
+        Err(ArmRefusal::NonUnitQuaternion { .. })
     ));
     assert_eq!(m.last_command(), Some(&first));
     // The ramp continues from the last good command, not from the rejected input.
@@ -292,7 +292,7 @@ fn constraint_changes_only_while_disengaged() {
     assert_eq!(m.set_constraint(Constraint::Free), Ok(()));
     assert_eq!(
         m.set_constraint(Constraint::Fixed),
-        Err(ArmError::ConstraintChangeWhileEngaged)
+        Err(ArmRefusal::ConstraintChangeWhileEngaged)
     );
     m.disengage();
     m.set_constraint(Constraint::HorizontalAxis).unwrap();

@@ -23,20 +23,10 @@ use serde::{Deserialize, Serialize};
 /// `constrained` flag: it is rounding, not a restriction.
 const CONSTRAINED_FLAG_TOLERANCE: f64 = 1e-12;
 
-/// How the arm may move during a task (POMDAR: `fixed` for C4/H4/H5, `vertical_axis` for
-/// V1–V3 and C1–C3, `horizontal_axis` for H1–H3, `free` for the grasp tasks G1–G6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Constraint {
-    /// Position and orientation stay at the pose latched at engage.
-    Fixed,
-    /// Translation only along `vertical_axis` through the latched position.
-    VerticalAxis,
-    /// Translation only along `horizontal_axis` through the latched position.
-    HorizontalAxis,
-    /// The full relative pose (orientation per the orientation policy).
-    Free,
-}
+/// How the arm may move during a task: the task catalog's own type (`scoring`, the lower
+/// crate: it depends on no other crate of the workspace), so a task's constraint is the
+/// station's without a mapping.
+pub use scoring::ArmConstraint as Constraint;
 
 /// What happens to the glove's relative rotation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

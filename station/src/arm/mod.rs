@@ -98,6 +98,7 @@
 mod arm_command;
 mod arm_config;
 mod arm_error;
+mod arm_refusal;
 mod clutch;
 mod constraint;
 mod pose_check;
@@ -110,7 +111,8 @@ pub use arm_config::{
     AXIS_NORM_TOLERANCE, ArmConfig, MAX_ROTATION_STEP_LIMIT_RAD, MAX_TRANSLATION_STEP_LIMIT_M,
     RotationConfig, StartPose, TRANSLATION_SCALE_RANGE, WORKSPACE_LIMIT_M,
 };
-pub use arm_error::{ArmError, PoseRole};
+pub use arm_error::ArmConfigError;
+pub use arm_refusal::{ArmRefusal, PoseRole};
 pub use clutch::ArmMapper;
 pub use constraint::{Constraint, OrientationPolicy, twist_about_axis};
 pub use pose_check::{

@@ -7,7 +7,7 @@
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 
-use super::arm_error::{ArmError, PoseRole};
+use super::arm_refusal::{ArmRefusal, PoseRole};
 
 /// Largest allowed deviation of an input quaternion's norm from 1.
 ///
@@ -21,7 +21,7 @@ pub const QUATERNION_NORM_TOLERANCE: f64 = 1e-3;
 pub const MAX_ABS_POSITION_M: f64 = 100.0;
 
 /// Check a pose and return it with an exactly renormalised quaternion.
-pub fn checked_pose(pose: &Isometry3<f64>, role: PoseRole) -> Result<Isometry3<f64>, ArmError> {
+pub fn checked_pose(pose: &Isometry3<f64>, role: PoseRole) -> Result<Isometry3<f64>, ArmRefusal> {
     let position = checked_position(&pose.translation.vector, role)?;
     let rotation = checked_rotation(pose.rotation.quaternion(), role)?;
     Ok(Isometry3::from_parts(
@@ -39,7 +39,7 @@ pub fn pose_from_parts(
     position_m: [f64; 3],
     quaternion_xyzw: [f64; 4],
     role: PoseRole,
-) -> Result<Isometry3<f64>, ArmError> {
+) -> Result<Isometry3<f64>, ArmRefusal> {
     let [x, y, z, w] = quaternion_xyzw;
     let position = checked_position(&Vector3::from(position_m), role)?;
     let rotation = checked_rotation(&Quaternion::new(w, x, y, z), role)?;
@@ -49,15 +49,15 @@ pub fn pose_from_parts(
     ))
 }
 
-fn checked_position(p: &Vector3<f64>, role: PoseRole) -> Result<Vector3<f64>, ArmError> {
+fn checked_position(p: &Vector3<f64>, role: PoseRole) -> Result<Vector3<f64>, ArmRefusal> {
     if !p.iter().all(|v| v.is_finite()) {
-        return Err(ArmError::NonFinitePose {
+        return Err(ArmRefusal::NonFinitePose {
             pose: role,
             field: "position",
         });
     }
     if let Some(&value) = p.iter().find(|v| v.abs() > MAX_ABS_POSITION_M) {
-        return Err(ArmError::ImplausiblePosition {
+        return Err(ArmRefusal::ImplausiblePosition {
             pose: role,
             value,
             limit_m: MAX_ABS_POSITION_M,
@@ -66,16 +66,19 @@ fn checked_position(p: &Vector3<f64>, role: PoseRole) -> Result<Vector3<f64>, Ar
     Ok(*p)
 }
 
-fn checked_rotation(q: &Quaternion<f64>, role: PoseRole) -> Result<UnitQuaternion<f64>, ArmError> {
+fn checked_rotation(
+    q: &Quaternion<f64>,
+    role: PoseRole,
+) -> Result<UnitQuaternion<f64>, ArmRefusal> {
     if !q.coords.iter().all(|v| v.is_finite()) {
-        return Err(ArmError::NonFinitePose {
+        return Err(ArmRefusal::NonFinitePose {
             pose: role,
             field: "orientation",
         });
     }
     let norm = q.norm();
     if (norm - 1.0).abs() > QUATERNION_NORM_TOLERANCE {
-        return Err(ArmError::NonUnitQuaternion {
+        return Err(ArmRefusal::NonUnitQuaternion {
             pose: role,
             norm,
             tolerance: QUATERNION_NORM_TOLERANCE,
@@ -104,7 +107,7 @@ mod tests {
     fn rejects_zero_and_doubled_quaternions() {
         for q in [[0.0; 4], [0.0, 0.0, 0.0, 2.0]] {
             let e = pose_from_parts([0.0; 3], q, PoseRole::GloveWrist).unwrap_err();
-            assert!(matches!(e, ArmError::NonUnitQuaternion { .. }), "{e}");
+            assert!(matches!(e, ArmRefusal::NonUnitQuaternion { .. }), "{e}");
         }
     }
 
@@ -118,7 +121,7 @@ mod tests {
         .unwrap_err();
         assert_eq!(
             e,
-            ArmError::NonFinitePose {
+            ArmRefusal::NonFinitePose {
                 pose: PoseRole::RobotEndEffector,
                 field: "position"
             }
@@ -131,7 +134,7 @@ mod tests {
         .unwrap_err();
         assert!(matches!(
             e,
-            ArmError::NonFinitePose {
+            ArmRefusal::NonFinitePose {
                 field: "orientation",
                 ..
             }
@@ -150,6 +153,6 @@ mod tests {
     fn rejects_implausible_positions() {
         let e = pose_from_parts([0.0, 1e3, 0.0], [0.0, 0.0, 0.0, 1.0], PoseRole::GloveWrist)
             .unwrap_err();
-        assert!(matches!(e, ArmError::ImplausiblePosition { value, .. } if value == 1e3));
+        assert!(matches!(e, ArmRefusal::ImplausiblePosition { value, .. } if value == 1e3));
     }
 }

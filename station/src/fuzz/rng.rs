@@ -1,8 +1,10 @@
 //! The fuzzer's random numbers: a seeded xorshift64* generator, so a seed replays a run
-//! exactly (no dependency, no entropy source).
+//! exactly (no entropy source).
 
-/// A seeded pseudo-random generator (xorshift64*; the seed is mixed by one SplitMix64 step so
-/// neighbouring seeds give unrelated streams).
+use retarget::human_hand::SplitMix64;
+
+/// A seeded pseudo-random generator (xorshift64*; the seed is mixed by one step of the
+/// workspace's [`SplitMix64`] so neighbouring seeds give unrelated streams).
 #[derive(Debug, Clone)]
 pub struct FuzzRng {
     state: u64,
@@ -11,10 +13,7 @@ pub struct FuzzRng {
 impl FuzzRng {
     /// A generator for `seed` (any value, zero included).
     pub fn new(seed: u64) -> FuzzRng {
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
+        let z = SplitMix64::new(seed).next_u64();
         FuzzRng {
             state: if z == 0 { 0x2545_F491_4F6C_DD1D } else { z },
         }

@@ -82,7 +82,7 @@ pub fn calibrate_until_interrupted(args: CalibrateRequest) -> Result<(), Calibra
 /// The fit's options from the flags: the station configuration, the calibration settings,
 /// the profile's path, the user and the glove (the session is set later).
 fn fit_options(args: &CalibrateRequest) -> Result<FitOptions, CalibrateRunError> {
-    let station = crate::station_setup::load_station_config(args.config.as_deref(), None)?;
+    let station = crate::station_driver::setup::load_station_config(args.config.as_deref(), None)?;
     let settings = match &args.settings {
         Some(path) => CalibrationSettings::from_toml_str(&read_text(path, "calibration settings")?)
             .map_err(|source| CalibrateRunError::Settings {

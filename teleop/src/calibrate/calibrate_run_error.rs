@@ -13,7 +13,7 @@ pub enum CalibrateRunError {
     Calibrate(#[from] CalibrateError),
     /// The station configuration.
     #[error(transparent)]
-    Setup(#[from] crate::station_setup::SetupError),
+    Setup(#[from] crate::station_driver::setup::SetupError),
     /// `--user` is empty.
     #[error("--user must name the user")]
     NoUser,

@@ -12,7 +12,7 @@ use crate::ros::default_domain_id;
 use crate::score::score_inputs::ScoringInputs;
 use crate::sim::glove_script_file::load_glove_script;
 use crate::sim::sim_glove_node::SimGloveConfig;
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// The whole pipeline on loopback DDS: simulated glove → station → mock hand and arm.
 ///

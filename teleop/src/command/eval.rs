@@ -14,7 +14,7 @@ use crate::eval::{EvalOptions, evaluate, table};
 use crate::eval_modes::{eval_commands, eval_outlier_study, eval_profile_scales, in_file};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// Retargeting quality on recordings' glove keypoints: how closely the hand follows.
 ///

@@ -8,7 +8,7 @@ use clap::Args;
 use super::shared_args::readable_mcap_files;
 use crate::atomic_file::write_atomically;
 use crate::eval::eval_set::build_set;
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// Build an evaluation set: transformed copies of real recordings for `pomdar eval`.
 ///

@@ -12,7 +12,7 @@ use crate::hand_check::check_node::{Answers, CheckOutput, run_check};
 use crate::hand_check::hand_check_script::{ANSWER_WORDS, CheckScriptPlayer, load_check_script};
 use crate::hand_check::session::{HandCheck, Motion};
 use crate::hand_check::table_file::table_text;
-use crate::station_setup::read_station_config;
+use crate::station_driver::setup::read_station_config;
 use crate::utc_date::{iso8601_utc, now_unix_s};
 
 /// Check a hand's command conventions on the hand, joint by joint, and write the table

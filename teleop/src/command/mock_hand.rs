@@ -12,7 +12,7 @@ use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
 use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
-use crate::station_setup::read_station_config;
+use crate::station_driver::setup::read_station_config;
 
 /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state
 /// (and with --policy-config, a policy output topic through the inverse of its table).

@@ -9,7 +9,7 @@ use clap::Args;
 use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::WallClock;
 use crate::relay_node::{RelayReport, RelaySettings, run_relay};
-use crate::station_setup::read_station_config;
+use crate::station_driver::setup::read_station_config;
 
 /// On the robot's computer: the station's commands onto the robot's own topics.
 ///

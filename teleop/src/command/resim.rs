@@ -6,7 +6,7 @@ use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
 
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// Re-simulate a recorded log's glove input through the station, deterministically.
 ///

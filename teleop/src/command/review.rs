@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use clap::Args;
 use review::FeedbackSettings;
 
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 use crate::trial_review::review_trial_file;
 
 /// What happened in a trial, for the operator: one figure and a short JSON per log, and

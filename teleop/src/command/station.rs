@@ -7,8 +7,9 @@ use tokio::sync::mpsc;
 
 use super::shared_args::{HandSourceArgs, NodeArgs, ViewArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
+use crate::station_driver::setup::load_station_config;
+use crate::station_driver::{Engage, set_engage};
 use crate::station_node::ros_node::{OperatorCommand, StationHooks, run_station_observed};
-use crate::station_setup::load_station_config;
 
 /// Run the station node (no simulated parts) until Ctrl-C.
 ///
@@ -56,7 +57,9 @@ pub struct StationArgs {
 pub async fn station(args: StationArgs) -> anyhow::Result<()> {
     let mut config = load_station_config(Some(&args.config), args.profile.as_deref())?;
     config.network = args.node.network(&config.network);
-    config.control.auto_engage |= args.engage;
+    if args.engage {
+        set_engage(&mut config, Engage::OnFirstFrame);
+    }
     // Crafted DATA_FRAG datagrams must not exhaust the station's memory (docs/SECURITY.md).
     args.guard.apply();
     let shutdown = ctrl_c_shutdown();

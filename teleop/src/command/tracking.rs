@@ -13,7 +13,7 @@ use crate::atomic_file::write_atomically;
 use crate::eval::tracking::{TrackingOutput, TrackingTopics, read_tracking, tracking_table};
 use crate::mcap_log::TrialReader;
 use crate::progress_bar::{ProgressBar, ProgressStyle};
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 
 /// Measured samples over all joints above which the comparison shows its progress.
 const PROGRESS_SAMPLES: usize = 200_000;

@@ -40,7 +40,7 @@ pub enum SessionError {
     },
     /// The station's configuration, profile or embodiment.
     #[error(transparent)]
-    Setup(#[from] crate::station_setup::SetupError),
+    Setup(#[from] crate::station_driver::setup::SetupError),
     /// The station's configuration after the session's changes.
     #[error(transparent)]
     Config(#[from] station::ConfigError),
@@ -69,7 +69,7 @@ pub enum SessionError {
     NoPhysics,
     /// The arm's start pose in the station's configuration (`--physics`).
     #[error(transparent)]
-    ArmStart(#[from] station::arm::ArmError),
+    ArmStart(#[from] station::arm::ArmConfigError),
     /// The simulated robot could not start (`--physics`).
     #[cfg(feature = "physics")]
     #[error(transparent)]

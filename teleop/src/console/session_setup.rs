@@ -42,7 +42,7 @@ pub async fn run_session(
     let config = station_config_for(args, &task)?;
     let model = HandModel::orca_v1_right();
     // The profile and the embodiment are checked before any log or node exists.
-    crate::station_setup::build_station(&config, model.clone())?;
+    crate::station_driver::setup::build_station(&config, model.clone())?;
     let script = args
         .console
         .script
@@ -128,8 +128,10 @@ fn station_config_for(
     args: &SessionOptions,
     task: &TaskSpec,
 ) -> Result<StationConfig, SessionError> {
-    let mut config =
-        crate::station_setup::load_station_config(args.config.as_deref(), args.profile.as_deref())?;
+    let mut config = crate::station_driver::setup::load_station_config(
+        args.config.as_deref(),
+        args.profile.as_deref(),
+    )?;
     config.network = args.network.apply(&config.network);
     if args.simulation.is_some() {
         config.network = NetworkConfig {
@@ -142,8 +144,8 @@ fn station_config_for(
         // No robot: nothing is retargeted, so no user's calibration applies.
         config.calibration_profile = None;
     }
-    config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
-    config.control.auto_engage = false;
+    crate::station_driver::constrain_for_task(&mut config, task);
+    crate::station_driver::set_engage(&mut config, crate::station_driver::Engage::ByOperator);
     config.validate()?;
     Ok(config)
 }

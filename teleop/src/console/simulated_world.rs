@@ -122,9 +122,7 @@ fn simulated_hand_scale(options: &SessionOptions) -> f64 {
     }
 }
 
-/// A stable seed from a name (FNV-1a), so a simulated participant is the same every run.
+/// A stable seed from a name, so a simulated participant is the same every run.
 fn name_seed(name: &str) -> u64 {
-    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+    crate::fnv::fnv1a_64(name.as_bytes())
 }

@@ -20,12 +20,13 @@ use crate::sim::SimError;
 use crate::sim::mock_franka::MockFrankaReport;
 use crate::sim::mock_hand::MockHandReport;
 use crate::sim::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
+use crate::station_driver::setup::SetupError;
+use crate::station_driver::{Engage, constrain_for_task, set_engage};
 use crate::station_node::NodeError;
 use crate::station_node::operator::StationHooks;
 use crate::station_node::recorder::RecordingOptions;
 use crate::station_node::ros_node::{OperatorCommand, StationSummary, run_station_observed};
 use crate::station_node::tap::Tap;
-use crate::station_setup::SetupError;
 use robot::{DemoRobot, RobotReports};
 pub use robot::{PhysicsOutcome, PhysicsTask};
 use station::arm::Constraint;
@@ -170,7 +171,7 @@ pub async fn run_demo(options: DemoOptions) -> Result<DemoOutcome, DemoError> {
     let model = HandModel::orca_v1_right();
     // A bad calibration profile stops the demo before any node starts.
     if let Some(path) = &station.calibration_profile {
-        crate::station_setup::load_profile(path, &model, station.retarget.layout)?;
+        crate::station_driver::setup::load_profile(path, &model, station.retarget.layout)?;
     }
     let nodes = DemoNodes::start(&options, &station, model, network, clock)?;
 
@@ -217,9 +218,9 @@ fn demo_station_config(
 ) -> Result<StationConfig, DemoError> {
     let mut station = configured.clone();
     station.network = network.clone();
-    station.control.auto_engage = true;
+    set_engage(&mut station, Engage::OnFirstFrame);
     if let Some(physics) = physics {
-        station.arm.constraint = robot::station_constraint(physics.task.arm);
+        constrain_for_task(&mut station, &physics.task);
     } else if station.arm.constraint == Constraint::Fixed {
         station.arm.constraint = Constraint::Free;
     }

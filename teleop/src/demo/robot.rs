@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use retarget::HandModel;
-use scoring::{ArmConstraint, Mark, TaskSpec};
+use scoring::{Mark, TaskSpec};
 use serde::Serialize;
 use tokio::sync::watch;
 
@@ -18,7 +18,6 @@ use crate::sim::mock_hand::MockHandReport;
 use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
 use crate::sim::progress_message::ProgressMessage;
 use station::StationConfig;
-use station::arm::Constraint;
 
 /// A demo in a simulated task: which task, and the lab's own scene file if not the project's.
 #[derive(Debug, Clone)]
@@ -268,14 +267,4 @@ fn fmt_ms(value: Option<f64>) -> String {
 
 fn lock_clone<T: Clone + Default>(shared: &Arc<Mutex<T>>) -> T {
     shared.lock().map(|r| r.clone()).unwrap_or_default()
-}
-
-/// The station's arm constraint for a catalog task's.
-pub fn station_constraint(arm: ArmConstraint) -> Constraint {
-    match arm {
-        ArmConstraint::Fixed => Constraint::Fixed,
-        ArmConstraint::VerticalAxis => Constraint::VerticalAxis,
-        ArmConstraint::HorizontalAxis => Constraint::HorizontalAxis,
-        ArmConstraint::Free => Constraint::Free,
-    }
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use crate::mcap_log::LogError;
 use crate::resim::ResimError;
-use crate::station_setup::SetupError;
+use crate::station_driver::setup::SetupError;
 
 /// A recording that cannot be evaluated.
 #[derive(Debug, thiserror::Error)]

@@ -10,13 +10,13 @@ use std::time::Instant;
 use nalgebra::Point3;
 use retarget::{HandModel, QualityRecorder, QualityReport};
 use serde::Serialize;
-use station::{StationConfig, StationInput};
+use station::{Station, StationConfig, StationInput};
 
 use super::EvalError;
 use crate::mcap_log::TrialReader;
 use crate::resim::{LogInputs, drive_station, log_inputs};
 use crate::samples::Samples;
-use crate::station_setup::build_station;
+use crate::station_driver::build_station;
 
 /// The live path's figures.
 #[derive(Debug, Clone, Serialize)]
@@ -56,18 +56,12 @@ struct LivePathScore<'a> {
 }
 
 impl LivePathScore<'_> {
-    fn after_step(
-        &mut self,
-        input: &StationInput,
-        now_ns: i64,
-        station: &station::Station,
-        fresh: bool,
-    ) {
+    fn after_step(&mut self, input: &StationInput, now_ns: i64, station: &Station, fresh: bool) {
         self.fresh += u64::from(fresh);
         let StationInput::Keypoints(frame) = input else {
             return;
         };
-        if self.previous.as_ref() == Some(&frame.points) {
+        if station::frame_gate::repeats(self.previous.as_deref(), &frame.points) {
             return;
         }
         self.previous = Some(frame.points.clone());
@@ -105,8 +99,7 @@ pub fn live_path_against(
     model: HandModel,
     as_held: Option<&HandAsHeld>,
 ) -> Result<LivePathReport, EvalError> {
-    let log: LogInputs = log_inputs(reader, config)?;
-    let (mut station, _) = build_station(&log.config, model.clone())?;
+    let (mut station, log) = live_station(reader, config, model.clone())?;
     let mut score = LivePathScore {
         recorder: QualityRecorder::new(model, log.config.retarget.layout),
         as_held,
@@ -133,4 +126,40 @@ pub fn live_path_against(
         step_us_p50: score.step_us.percentile(0.5),
         step_us_p99: score.step_us.percentile(0.99),
     })
+}
+
+/// The station of the live path and the log's inputs for it: built as `pomdar resim` builds
+/// it (the log's layout, its calibration profile, engaging on the first fresh frame for a
+/// glove recording).
+fn live_station(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+) -> Result<(Station, LogInputs), EvalError> {
+    let log = log_inputs(reader, config)?;
+    let (station, _) = build_station(&log.config, model)?;
+    Ok((station, log))
+}
+
+/// A glove frame's log time (ns) and the hand command in force after it (joint angles, the
+/// model's order; `None` before the station engaged).
+pub type CommandAtFrame = (i64, Option<Vec<f64>>);
+
+/// The hand command in force (joint angles, the model's order) after each glove frame of
+/// `reader`'s log that the live path scores, with the frame's log time (ns); a frame before the
+/// station engaged has none.
+pub fn commands_in_force(
+    reader: &TrialReader,
+    config: &StationConfig,
+    model: HandModel,
+) -> Result<Vec<CommandAtFrame>, EvalError> {
+    let (mut station, log) = live_station(reader, config, model)?;
+    let mut commands = Vec::new();
+    drive_station(&mut station, log, |timed, _, station| {
+        if matches!(timed.input, StationInput::Keypoints(_)) {
+            let q = station.command_in_force().map(|c| c.q.clone());
+            commands.push((timed.now_ns, q));
+        }
+    });
+    Ok(commands)
 }

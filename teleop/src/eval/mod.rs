@@ -11,12 +11,10 @@
 use std::time::Instant;
 
 use retarget::quality::Reachability;
-use retarget::{
-    CalibrationTransform, EmbodimentCatalog, HandModel, QualityRecorder, QualityReport, Retargeter,
-};
+use retarget::{CalibrationTransform, HandModel, QualityRecorder, QualityReport, Retargeter};
 use serde::Serialize;
 
-use crate::station_setup::{describe, load_profile};
+use crate::station_driver::setup::{describe, load_profile};
 pub use error::EvalError;
 use live_path::{LivePathReport, live_path};
 use variants::TimedFrame;
@@ -89,7 +87,8 @@ pub fn distinct_frames(
                 source,
             })?
             .points();
-        if frames.last().is_none_or(|last| last.points != points) {
+        let previous = frames.last().map(|last| last.points.as_slice());
+        if !station::frame_gate::repeats(previous, &points) {
             frames.push(TimedFrame {
                 t_ns: message.log_time_ns,
                 points,
@@ -167,18 +166,13 @@ pub fn build_retargeter(
     retarget_config: retarget::RetargetConfig,
     transform: Option<CalibrationTransform>,
 ) -> Result<Retargeter, EvalError> {
-    let mut retargeter = Retargeter::new(
-        model.clone(),
-        retarget_config,
-        &EmbodimentCatalog::builtin(),
+    use station::retargeter_setup::RetargeterSetupError;
+    station::retargeter_setup::build_retargeter(model.clone(), retarget_config, transform).map_err(
+        |e| match e {
+            RetargeterSetupError::Model(source) => EvalError::Retargeter { source },
+            RetargeterSetupError::Calibration(source) => EvalError::Calibration { source },
+        },
     )
-    .map_err(|source| EvalError::Retargeter { source })?;
-    if let Some(transform) = transform {
-        retargeter
-            .set_calibration(transform)
-            .map_err(|source| EvalError::Calibration { source })?;
-    }
-    Ok(retargeter)
 }
 
 /// The frames retargeted one after the other and recorded for the metrics.

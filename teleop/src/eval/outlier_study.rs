@@ -26,7 +26,7 @@ use super::EvalError;
 use super::variants::{TimedFrame, Variant};
 use crate::mcap_log::TrialReader;
 use crate::resim::{LogInputs, drive_station, log_inputs};
-use crate::station_setup::build_station;
+use crate::station_driver::setup::build_station;
 
 /// Outliers injected, and their size (metres).
 const OUTLIERS: usize = 20;

@@ -13,6 +13,7 @@
 //! | `outliers` | one point of a digit leaping 3–6 cm for one frame, at spread frames | a camera tracker misplacing a point (`pomdar eval --outlier-study` only: the human keypoints it scores against would carry the outliers) |
 
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
+use retarget::human_hand::SplitMix64;
 use retarget::{Finger, KeypointLayout};
 
 /// One distinct keypoint frame and its capture time.
@@ -137,21 +138,18 @@ impl Variant {
     }
 }
 
-/// SplitMix64: a small, well-mixed generator, so a seed gives the same set everywhere.
-struct SplitMix(u64);
+/// The workspace's one SplitMix64, drawn as this set always drew it: uniform in (0, 1] and
+/// standard normal by Box–Muller over two such draws, so a seed gives the same set everywhere.
+struct SplitMix(SplitMix64);
 
 impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+    fn new(seed: u64) -> Self {
+        Self(SplitMix64::new(seed))
     }
 
     /// Uniform in (0, 1].
     fn uniform(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64
+        ((self.0.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64
     }
 
     /// Standard normal (Box–Muller).
@@ -162,7 +160,7 @@ impl SplitMix {
 }
 
 fn noisy(frames: &[TimedFrame], sigma_m: f64, drop: f64, seed: u64) -> Vec<TimedFrame> {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix::new(seed);
     let mut out = Vec::with_capacity(frames.len());
     for (i, f) in frames.iter().enumerate() {
         let dropped = rng.uniform() <= drop;
@@ -188,7 +186,7 @@ fn with_outliers(
     (min_m, max_m): (f64, f64),
     seed: u64,
 ) -> Vec<TimedFrame> {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix::new(seed);
     let mut out = frames.to_vec();
     let stretch = frames.len() / count.max(1);
     if stretch < 5 {

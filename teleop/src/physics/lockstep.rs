@@ -7,10 +7,12 @@
 //! (`pomdar sim --task G4 --glove-script FILE --lockstep`), and the tests can check a grasp
 //! without depending on the machine's load.
 
+use msgs::PoseStamped;
 use retarget::HandModel;
 use retarget::human_hand::SimGlove;
 use station::convert::isometry_to_pose;
-use station::{ControlInput, KeypointFrame, StationConfig, StationInput, StationOutputs};
+use station::output_stage::HandMessages;
+use station::{ControlInput, KeypointFrame, Notice, StationConfig, StationInput, StationOutputs};
 
 use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
@@ -18,6 +20,9 @@ use super::setup::SimulatedTask;
 use super::sim_state::SimState;
 use crate::sim::mock_hand::joint_state_target;
 use crate::sim::progress_message::ProgressMessage;
+use crate::station_driver::{
+    Engage, OutputSink, TickSchedule, build_station, route, set_engage, steps_per_tick,
+};
 
 /// What a lock-step trial produced.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -108,17 +113,18 @@ pub fn play_lockstep(
         })?;
     let robot = PhysicsRobotConfig::for_station(config, &loaded, arm_start);
     let mut station_config = config.clone();
-    station_config.control.auto_engage = true;
+    set_engage(&mut station_config, Engage::OnFirstFrame);
     // Built as every live path builds it: with the configured calibration profile.
-    let (mut station, _) = crate::station_setup::build_station(&station_config, model.clone())
-        .map_err(|e| PhysicsError::Progress {
+    let (mut station, _) =
+        build_station(&station_config, model.clone()).map_err(|e| PhysicsError::Progress {
             message: format!("station: {e}"),
         })?;
     let mut sim = SimState::new(loaded.engine, &robot)?;
     let mut outcome = LockstepOutcome::default();
     let limits: Vec<_> = model.limits().collect();
     let dt = 1.0 / play.rate_hz;
-    let tick_every = (play.rate_hz / config.control.rate_hz).round().max(1.0) as u64;
+    let mut ticks =
+        TickSchedule::starting_at(0, steps_per_tick(play.rate_hz, config.control.rate_hz));
     let steps = (play.duration_s / dt).round() as u64;
     let mut taken = 0;
     for k in 0..steps {
@@ -134,7 +140,7 @@ pub fn play_lockstep(
                 source_ns: now_ns,
             }));
         }
-        if k % tick_every == 0 {
+        if ticks.due(k as i64).is_some() {
             inputs.push(StationInput::Control(ControlInput::Tick));
         }
         for input in inputs {
@@ -145,7 +151,13 @@ pub fn play_lockstep(
             if let Some(observer) = play.observer.as_deref_mut() {
                 observer.outputs(now_ns, &outputs);
             }
-            apply(&mut sim, (model, &limits), outputs, &mut outcome);
+            let mut robot_sink = PhysicsSink {
+                sim: &mut sim,
+                model,
+                limits: &limits,
+                outcome: &mut outcome,
+            };
+            let Ok(()) = route(&outputs, now_ns, &mut robot_sink);
         }
         let before = outcome.events.len();
         for event in sim.advance(dt, &robot) {
@@ -171,25 +183,36 @@ pub fn play_lockstep(
     Ok(outcome)
 }
 
-/// Hand commands and arm targets from the station to the simulated robot.
-fn apply(
-    sim: &mut SimState,
-    (model, limits): (&HandModel, &[retarget::Limits]),
-    outputs: StationOutputs,
-    outcome: &mut LockstepOutcome,
-) {
-    if let Some(hand) = outputs.hand {
-        let targets =
-            joint_state_target(model, limits, sim.engine.hand_targets(), &hand.joint_state);
-        if targets.is_some_and(|t| sim.engine.set_hand_targets(&t).is_ok()) {
-            outcome.hand_commands += 1;
-        }
+/// The simulated robot as the station's sink: hand commands become the hand's servo targets,
+/// arm targets the arm's slew target; both counted in the outcome.
+struct PhysicsSink<'a> {
+    sim: &'a mut SimState,
+    model: &'a HandModel,
+    limits: &'a [retarget::Limits],
+    outcome: &'a mut LockstepOutcome,
+}
+
+impl OutputSink for PhysicsSink<'_> {
+    type Error = std::convert::Infallible;
+
+    fn notice(&mut self, _notice: &Notice) -> Result<(), Self::Error> {
+        Ok(())
     }
-    if let Some(arm) = outputs
-        .arm
-        .and_then(|a| station::convert::pose_to_isometry(&a.pose))
-    {
-        sim.arm_target = arm;
-        outcome.arm_targets += 1;
+
+    fn hand(&mut self, _now_ns: i64, hand: &HandMessages, _fresh: bool) -> Result<(), Self::Error> {
+        let current = self.sim.engine.hand_targets();
+        let targets = joint_state_target(self.model, self.limits, current, &hand.joint_state);
+        if targets.is_some_and(|t| self.sim.engine.set_hand_targets(&t).is_ok()) {
+            self.outcome.hand_commands += 1;
+        }
+        Ok(())
+    }
+
+    fn arm(&mut self, _now_ns: i64, arm: &PoseStamped) -> Result<(), Self::Error> {
+        if let Some(target) = station::convert::pose_to_isometry(&arm.pose) {
+            self.sim.arm_target = target;
+            self.outcome.arm_targets += 1;
+        }
+        Ok(())
     }
 }

@@ -39,30 +39,8 @@ pub struct SyntheticTrial {
     pub seed: u64,
 }
 
-/// splitmix64: a small seeded generator (no dependency for test data).
-#[derive(Debug, Clone)]
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    /// A generator from `seed`.
-    pub fn new(seed: u64) -> SplitMix64 {
-        SplitMix64(seed)
-    }
-
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+/// The seeded generator of the test data: the workspace's one SplitMix64.
+pub use retarget::human_hand::SplitMix64;
 
 fn to_ns(seconds: f64) -> i64 {
     (seconds * 1e9).round() as i64
@@ -117,7 +95,7 @@ pub fn write_synthetic_trial(
             }
         } else if t == next_key {
             for v in &mut hand {
-                *v += (rng.unit() as f32 - 0.5) * 0.002;
+                *v += (rng.next_f64() as f32 - 0.5) * 0.002;
             }
             let message = Float32MultiArray {
                 layout: layout.clone(),

@@ -27,7 +27,7 @@ pub enum SimError {
     ArmStartPose {
         /// What is wrong with it.
         #[source]
-        source: station::arm::ArmError,
+        source: station::arm::ArmConfigError,
     },
     /// The simulated robot in a MuJoCo scene failed (`--physics`).
     #[error("simulated robot: {message}")]

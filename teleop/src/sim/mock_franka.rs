@@ -93,25 +93,20 @@ pub async fn run_mock_franka(
 }
 
 /// Move `pose` toward `target` by at most `max_step_m` and `max_turn_rad` (an arm's speed
-/// limits over one period).
+/// limits over one period): the station core's own step limits.
 pub fn slew_pose(
     pose: &mut Isometry3<f64>,
     target: &Isometry3<f64>,
     max_step_m: f64,
     max_turn_rad: f64,
 ) {
-    let delta = target.translation.vector - pose.translation.vector;
-    let moved = if delta.norm() > max_step_m {
-        delta * (max_step_m / delta.norm())
-    } else {
-        delta
-    };
-    pose.translation.vector += moved;
-    let angle = pose.rotation.angle_to(&target.rotation);
-    let t = if angle > 0.0 {
-        (max_turn_rad / angle).min(1.0)
-    } else {
-        1.0
-    };
-    pose.rotation = pose.rotation.slerp(&target.rotation, t);
+    use station::arm::{cap_rotation, cap_translation};
+    let translation = cap_translation(
+        &pose.translation.vector,
+        &target.translation.vector,
+        max_step_m,
+    );
+    let rotation = cap_rotation(&pose.rotation, &target.rotation, max_turn_rad);
+    pose.translation.vector = translation.value;
+    pose.rotation = rotation.value;
 }

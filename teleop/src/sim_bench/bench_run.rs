@@ -120,7 +120,7 @@ fn item_setup<'a>(
         None => run.station.clone(),
     };
     station.retarget.embodiment = item.embodiment.clone();
-    station.arm.constraint = crate::demo::robot::station_constraint(task.arm);
+    crate::station_driver::constrain_for_task(&mut station, task);
     // The keypoints go into the core directly; a trial log records them as the lab's glove
     // sends them.
     station.input.keypoints_format = station::KeypointFormat::Float32MultiArray;

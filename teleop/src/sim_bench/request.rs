@@ -116,8 +116,9 @@ pub fn run_request(mut request: BenchRequest) -> Result<ExitCode, BenchError> {
     if !request.merge.is_empty() {
         return merge(&request);
     }
-    let station = crate::station_setup::load_station_config(request.config.as_deref(), None)
-        .map_err(|e| BenchError::Setup(e.to_string()))?;
+    let station =
+        crate::station_driver::setup::load_station_config(request.config.as_deref(), None)
+            .map_err(|e| BenchError::Setup(e.to_string()))?;
     let (model, hand_description) = hand_model(&request)?;
     let hand_file = request
         .hand

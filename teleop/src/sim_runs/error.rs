@@ -19,10 +19,10 @@ pub enum SimRunError {
     },
     /// The station's configuration.
     #[error(transparent)]
-    Setup(#[from] crate::station_setup::SetupError),
+    Setup(#[from] crate::station_driver::setup::SetupError),
     /// The arm's start pose.
     #[error(transparent)]
-    ArmStart(#[from] station::arm::ArmError),
+    ArmStart(#[from] station::arm::ArmConfigError),
     /// The scene, the engine or the simulated robot.
     #[error(transparent)]
     Physics(#[from] crate::physics::error::PhysicsError),

@@ -86,7 +86,7 @@ fn lockstep_run(
     let duration_s = args.duration.unwrap_or(script.duration_s() + 2.0);
     let glove = glove_config.glove()?;
     let mut config = station.clone();
-    config.arm.constraint = crate::demo::robot::station_constraint(task.arm);
+    crate::station_driver::constrain_for_task(&mut config, &task);
     let outcome = run_lockstep(
         &config,
         model,

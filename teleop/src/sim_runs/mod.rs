@@ -19,7 +19,7 @@ use crate::physics::robot_node::{
 use crate::physics::setup::{ProjectScene, SceneSource, load_task, project_scene_xml};
 use crate::ros::NetworkOverride;
 use crate::score::score_inputs::ScoringInputs;
-use crate::station_setup::load_station_config;
+use crate::station_driver::setup::load_station_config;
 use crate::tui::terminal_shell::ctrl_c_shutdown;
 use lockstep_runs::lockstep;
 use run_report::{start_move, summary_line, timed_shutdown};

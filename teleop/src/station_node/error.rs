@@ -3,7 +3,7 @@
 
 use crate::mcap_log::LogError;
 use crate::ros::RosError;
-use crate::station_setup::SetupError;
+use crate::station_driver::setup::SetupError;
 
 /// The station node could not start, or its recorder failed.
 #[derive(Debug, thiserror::Error)]

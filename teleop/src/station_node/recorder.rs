@@ -33,11 +33,7 @@ pub struct RecordingOptions {
 /// logs were produced with the same configuration.
 pub fn config_digest(config: &StationConfig) -> String {
     let text = serde_json::to_string(config).unwrap_or_default();
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0100_0000_01b3);
-    }
+    let hash = crate::fnv::fnv1a_64(text.as_bytes());
     format!("fnv1a64:{hash:016x}")
 }
 

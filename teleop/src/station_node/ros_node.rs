@@ -42,7 +42,7 @@ use crate::station_node::relay_view::RelayView;
 use crate::station_node::ros_tools_node::{ServiceRequest, ToolEndpoints, ToolScene};
 
 mod tool_steps;
-use crate::station_setup::build_station;
+use crate::station_driver::{build_station, tick_period};
 
 /// Totals when the station stops.
 #[derive(Debug, Clone, PartialEq)]
@@ -306,7 +306,7 @@ impl Endpoints {
                 .map(|r| r.map(|(m, info)| (KeypointMessage::Poses(m), info)))
                 .boxed(),
         };
-        let mut tick = tokio::time::interval(Duration::from_secs_f64(1.0 / config.control.rate_hz));
+        let mut tick = tokio::time::interval(tick_period(config.control.rate_hz));
         tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
         Streams {
             keypoints,

@@ -4,6 +4,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // in tests a panic is the failure report
 
+mod driver_paths;
 mod physics_demo;
 mod physics_engine;
 mod physics_hands;

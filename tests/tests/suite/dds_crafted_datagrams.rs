@@ -82,7 +82,7 @@ impl Subject {
     fn relay() -> Subject {
         let config =
             pomdar_tests::workspace_root().join("launch_configs/station/deploy_station.toml");
-        let link = teleop::station_setup::read_station_config(&config)
+        let link = teleop::station_driver::setup::read_station_config(&config)
             .unwrap()
             .robot_link;
         Subject {

@@ -19,6 +19,7 @@ mod datagram_guard_startup;
 mod dds_crafted_datagrams;
 mod demo_pipeline;
 mod dependency_rule;
+mod driver_paths_live;
 mod eval_cli;
 mod fault_injection;
 mod fault_station_kill;
