@@ -16,7 +16,7 @@ use std::time::Instant;
 use review::FeedbackSettings;
 use station::StationConfig;
 use teleop::demo::{DemoOptions, run_demo};
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 use teleop::trial_review::review_trial_file;
 
 const SECONDS: f64 = 60.0;

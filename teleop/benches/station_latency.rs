@@ -16,7 +16,7 @@
 use station::{ControlMode, StationConfig};
 use teleop::demo::{DemoOptions, DemoSummary, run_demo};
 use teleop::ros::default_domain_id;
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 
 /// User + system CPU seconds of this process so far (Linux `/proc/self/stat`).
 fn cpu_seconds() -> Option<f64> {

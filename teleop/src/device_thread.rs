@@ -18,7 +18,7 @@
 
 use std::future::Future;
 
-use crate::sim::SimError;
+use crate::stand_ins::SimError;
 
 /// Runs `device` to its end on a new thread named `name` with its own runtime (timers and
 /// I/O enabled); the returned task, on the caller's runtime, ends with its result.

@@ -32,7 +32,7 @@ pub mod resim;
 pub mod ros;
 pub mod samples;
 pub mod score;
-pub mod sim;
+pub mod stand_ins;
 #[cfg(feature = "physics")]
 pub mod sim_bench;
 #[cfg(feature = "physics")]

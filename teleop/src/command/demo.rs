@@ -10,8 +10,8 @@ use crate::demo::PhysicsTask;
 use crate::demo::{DemoOptions, run_demo};
 use crate::ros::default_domain_id;
 use crate::score::score_inputs::ScoringInputs;
-use crate::sim::glove_script_file::load_glove_script;
-use crate::sim::sim_glove_node::SimGloveConfig;
+use crate::stand_ins::glove_script_file::load_glove_script;
+use crate::stand_ins::sim_glove_node::SimGloveConfig;
 use crate::station_driver::setup::load_station_config;
 
 /// The whole pipeline on loopback DDS: simulated glove → station → mock hand and arm.
@@ -101,7 +101,7 @@ pub async fn demo(args: DemoArgs) -> anyhow::Result<()> {
             .as_deref()
             .map(load_glove_script)
             .transpose()?,
-        jitter_m: crate::sim::glove_jitter::glove_jitter_m(
+        jitter_m: crate::stand_ins::glove_jitter::glove_jitter_m(
             args.glove_jitter_mm,
             args.glove_script.is_some(),
         )?,

@@ -7,7 +7,7 @@ use clap::Args;
 use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
-use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
+use crate::stand_ins::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
 
 /// A mock Franka: follows pose commands at limited speed, publishes its pose.
 #[derive(Debug, Args)]

@@ -11,7 +11,7 @@ use station::policy_output::PolicyOutput;
 use super::shared_args::{NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
-use crate::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
+use crate::stand_ins::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
 use crate::station_driver::setup::read_station_config;
 
 /// A mock ORCA hand: follows joint targets with a first-order lag, publishes its state

@@ -6,8 +6,8 @@ use retarget::human_hand::MotionKind;
 use super::shared_args::{MotionArg, NodeArgs, ctrl_c_shutdown};
 use crate::clock::StationClock;
 use crate::ros::NetworkConfig;
-use crate::sim::glove_script_file::load_glove_script;
-use crate::sim::sim_glove_node::{SimGloveConfig, run_sim_glove};
+use crate::stand_ins::glove_script_file::load_glove_script;
+use crate::stand_ins::sim_glove_node::{SimGloveConfig, run_sim_glove};
 
 /// Publish simulated glove keypoints and wrist pose (the lab's topics) until Ctrl-C.
 #[derive(Debug, Args)]

@@ -40,7 +40,7 @@ pub(super) struct StationHandles {
     pub(super) shutdown_tx: watch::Sender<bool>,
     _shutdown_rx: watch::Receiver<bool>,
     /// `--simulate`: the hand's, the arm's and the glove's tasks.
-    pub(super) simulated: Vec<JoinHandle<Result<(), crate::sim::SimError>>>,
+    pub(super) simulated: Vec<JoinHandle<Result<(), crate::stand_ins::SimError>>>,
     /// `--physics`: the simulated robot's progress events and resets.
     pub(super) physics: Option<PhysicsLink>,
 }

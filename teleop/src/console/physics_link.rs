@@ -7,12 +7,12 @@
 use tokio::sync::{mpsc, watch};
 
 use super::keys::Action;
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::progress_message::ProgressMessage;
 
 /// What starting the simulated robot gives the console: its task, the link, and the glove's
 /// time origin to play a script from.
 pub(crate) type PhysicsParts = (
-    tokio::task::JoinHandle<Result<(), crate::sim::SimError>>,
+    tokio::task::JoinHandle<Result<(), crate::stand_ins::SimError>>,
     PhysicsLink,
     watch::Receiver<Option<i64>>,
 );
@@ -91,10 +91,10 @@ pub(crate) fn spawn_physics_robot(
     let handle = tokio::spawn(async move {
         match robot.task.await {
             Ok(Ok(())) => Ok(()),
-            Ok(Err(e)) => Err(crate::sim::SimError::Physics {
+            Ok(Err(e)) => Err(crate::stand_ins::SimError::Physics {
                 message: e.to_string(),
             }),
-            Err(e) => Err(crate::sim::SimError::Physics {
+            Err(e) => Err(crate::stand_ins::SimError::Physics {
                 message: format!("the simulated robot's task ended: {e}"),
             }),
         }

@@ -52,7 +52,7 @@ pub enum SessionError {
     Ros(#[from] crate::ros::RosError),
     /// The simulated glove or robot.
     #[error(transparent)]
-    Sim(#[from] crate::sim::SimError),
+    Sim(#[from] crate::stand_ins::SimError),
     /// The live view.
     #[error(transparent)]
     View(#[from] crate::view::live_view::LiveViewError),

@@ -25,7 +25,7 @@ use super::trial_script::load_script;
 use crate::clock::StationClock;
 use crate::ros::{NetworkConfig, default_domain_id};
 use crate::score::score_inputs::ScoringInputs;
-use crate::sim::glove_script_file::load_glove_script;
+use crate::stand_ins::glove_script_file::load_glove_script;
 use crate::station_node::recorder::config_digest;
 use crate::tui::terminal_shell::{Wakeups, run_turns};
 use crate::view::live_view::start_live_view;

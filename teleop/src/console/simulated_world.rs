@@ -14,9 +14,9 @@ use super::session_error::SessionError;
 use super::session_options::{SessionOptions, SimulationOptions};
 use crate::clock::StationClock;
 use crate::device_thread::spawn_device;
-use crate::sim::glove_jitter::glove_jitter_m;
-use crate::sim::mock_robot::spawn_mock_robot;
-use crate::sim::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
+use crate::stand_ins::glove_jitter::glove_jitter_m;
+use crate::stand_ins::mock_robot::spawn_mock_robot;
+use crate::stand_ins::sim_glove_node::{GloveOrigin, SimGloveConfig, publish_glove};
 
 /// What the simulated robot is for.
 pub(super) struct SimulatedRobot<'a> {
@@ -28,7 +28,7 @@ pub(super) struct SimulatedRobot<'a> {
 
 /// The simulated robot's tasks and, with `--physics`, the console's link to it.
 pub(super) type SimulatedTasks = (
-    Vec<JoinHandle<Result<(), crate::sim::SimError>>>,
+    Vec<JoinHandle<Result<(), crate::stand_ins::SimError>>>,
     Option<PhysicsLink>,
 );
 

@@ -16,10 +16,10 @@ pub mod summary_text;
 
 use crate::device_thread::spawn_device;
 use crate::ros::NetworkConfig;
-use crate::sim::SimError;
-use crate::sim::mock_franka::MockFrankaReport;
-use crate::sim::mock_hand::MockHandReport;
-use crate::sim::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
+use crate::stand_ins::SimError;
+use crate::stand_ins::mock_franka::MockFrankaReport;
+use crate::stand_ins::mock_hand::MockHandReport;
+use crate::stand_ins::sim_glove_node::{SimGloveConfig, SimGloveReport, run_sim_glove};
 use crate::station_driver::setup::SetupError;
 use crate::station_driver::{Engage, constrain_for_task, set_engage};
 use crate::station_node::NodeError;

@@ -13,10 +13,10 @@ use tokio::sync::watch;
 
 use super::DemoError;
 use crate::clock::StationClock;
-use crate::sim::mock_franka::MockFrankaReport;
-use crate::sim::mock_hand::MockHandReport;
-use crate::sim::mock_robot::{MockRobot, spawn_mock_robot};
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::mock_franka::MockFrankaReport;
+use crate::stand_ins::mock_hand::MockHandReport;
+use crate::stand_ins::mock_robot::{MockRobot, spawn_mock_robot};
+use crate::stand_ins::progress_message::ProgressMessage;
 use station::StationConfig;
 
 /// A demo in a simulated task: which task, and the lab's own scene file if not the project's.
@@ -181,7 +181,7 @@ fn spawn_physics(
     let arm_start = station
         .arm
         .start_pose_isometry()
-        .map_err(|source| crate::sim::SimError::ArmStartPose { source })?;
+        .map_err(|source| crate::stand_ins::SimError::ArmStartPose { source })?;
     let loaded = load_task(&physics.task, model, source, arm_start)?;
     let options = PhysicsRobotOptions {
         record_states: physics.record_states,

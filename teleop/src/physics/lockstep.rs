@@ -18,8 +18,8 @@ use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
 use super::setup::SimulatedTask;
 use super::sim_state::SimState;
-use crate::sim::mock_hand::joint_state_target;
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::mock_hand::joint_state_target;
+use crate::stand_ins::progress_message::ProgressMessage;
 use crate::station_driver::{
     Engage, OutputSink, TickSchedule, build_station, route, set_engage, steps_per_tick,
 };

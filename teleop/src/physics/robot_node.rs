@@ -26,8 +26,8 @@ use super::setup::SimulatedTask;
 use super::sim_state::SimState;
 use crate::clock::StationClock;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::sim::mock_hand::joint_state_target;
-pub use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::mock_hand::joint_state_target;
+pub use crate::stand_ins::progress_message::ProgressMessage;
 use station::convert::{header, isometry_to_pose, pose_to_isometry};
 
 /// Longest physics advance in one tick, seconds: beyond it the simulation falls behind rather

@@ -8,8 +8,8 @@ use simulation::progress::{ProgressEvent, ProgressTracker};
 use super::engine::PhysicsEngine;
 use super::error::PhysicsError;
 use super::robot_config::PhysicsRobotConfig;
-use crate::sim::mock_franka::slew_pose;
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::mock_franka::slew_pose;
+use crate::stand_ins::progress_message::ProgressMessage;
 
 /// The simulation between ticks.
 pub struct SimState {

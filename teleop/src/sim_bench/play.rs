@@ -14,8 +14,8 @@ use super::error::BenchError;
 use crate::demo::robot::physics_correctness;
 use crate::physics::lockstep::{LockstepObserver, LockstepPlay, play_lockstep};
 use crate::physics::setup::{ProjectScene, SceneSource, load_task};
-use crate::sim::progress_message::ProgressMessage;
-use crate::sim::sim_glove_node::SimGloveConfig;
+use crate::stand_ins::progress_message::ProgressMessage;
+use crate::stand_ins::sim_glove_node::SimGloveConfig;
 
 /// Simulated seconds a run goes on after its script's last keyframe.
 pub const TAIL_S: f64 = 2.0;

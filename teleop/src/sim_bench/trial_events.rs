@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::progress_message::ProgressMessage;
 
 /// Log time of a run's start: 2026-01-01 00:00:00 UTC, the same for every run, so a seed
 /// gives the same file.

@@ -13,7 +13,7 @@ use station::{StationConfig, StationInput, StationOutputs};
 use super::error::BenchError;
 use super::trial_events::{RUN_EPOCH_NS, UNFINISHED_REASON, log_ns, progress_event};
 use crate::physics::lockstep::LockstepObserver;
-use crate::sim::progress_message::ProgressMessage;
+use crate::stand_ins::progress_message::ProgressMessage;
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 
 /// Writes one run's trial log while it plays.

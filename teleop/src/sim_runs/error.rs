@@ -48,7 +48,7 @@ pub enum SimRunError {
     },
     /// The glove script or the simulated glove.
     #[error(transparent)]
-    Glove(#[from] crate::sim::SimError),
+    Glove(#[from] crate::stand_ins::SimError),
     /// The physics' events do not give a correctness.
     #[error("the physics' marks do not score: {reason}")]
     Marks {

@@ -5,8 +5,8 @@
 use super::run_report::start_note;
 use super::{SimRequest, SimRunError};
 use crate::physics::lockstep::run_lockstep;
-use crate::sim::glove_script_file::load_glove_script;
-use crate::sim::sim_glove_node::SimGloveConfig;
+use crate::stand_ins::glove_script_file::load_glove_script;
+use crate::stand_ins::sim_glove_node::SimGloveConfig;
 
 /// One lock-step run: the task, what happened, and its correctness.
 pub(super) struct LockstepRun {
@@ -33,7 +33,7 @@ pub(super) fn lockstep(
         return Err(SimRunError::Runs { runs: args.runs });
     }
     let script = load_glove_script(script)?;
-    let jitter_m = crate::sim::glove_jitter::glove_jitter_m(args.glove_jitter_mm, true)?;
+    let jitter_m = crate::stand_ins::glove_jitter::glove_jitter_m(args.glove_jitter_mm, true)?;
     if args.runs == 1 {
         let run = lockstep_run(
             station,

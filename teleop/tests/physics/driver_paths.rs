@@ -14,8 +14,8 @@ use station::{KeypointFormat, StationConfig, StationInput, StationOutputs};
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
 use teleop::physics::lockstep::{LockstepObserver, LockstepPlay, play_lockstep};
 use teleop::physics::setup::{ProjectScene, SceneSource, load_task};
-use teleop::sim::progress_message::ProgressMessage;
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::progress_message::ProgressMessage;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 use teleop::station_driver::constrain_for_task;
 
 const TOLERANCE: f64 = 1e-9;
@@ -90,7 +90,7 @@ fn station_config(profile: Option<&Path>) -> StationConfig {
 
 /// The simulated glove playing V1's script and its frame rate.
 fn glove(config: &StationConfig) -> (SimGlove, f64) {
-    let script = teleop::sim::glove_script_file::load_glove_script(
+    let script = teleop::stand_ins::glove_script_file::load_glove_script(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../launch_configs/sim/tasks/V1.toml"),
     )
     .unwrap();

@@ -9,7 +9,7 @@ use station::StationConfig;
 use teleop::demo::PhysicsTask;
 use teleop::demo::{DemoOptions, DemoOutcome, run_demo};
 use teleop::ros::domain_lease::{TEST_DOMAINS, lease_domain};
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 
 async fn physics_demo(task: &str, glove: SimGloveConfig, duration_s: f64) -> DemoOutcome {
     let task = TaskCatalog::builtin().get(task).unwrap().clone();

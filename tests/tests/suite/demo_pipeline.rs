@@ -10,7 +10,7 @@ use station::StationConfig;
 use station::arm::{ArmConfig, Constraint};
 use teleop::demo::{DemoOptions, DemoOutcome, DemoSummary, run_demo};
 use teleop::mcap_log::TrialReader;
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 
 /// The run's summary: glove above 80 Hz while it sends (its first to last frame: the wait for
 /// discovery is not glove time), one joint target per new glove frame over the same span

@@ -16,7 +16,7 @@ use pomdar_tests::station_harness::{
 use retarget::HandModel;
 use station::StationConfig;
 use teleop::mcap_log::{TrialReader, TrialWriter, TrialWriterOptions};
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 use teleop::station_node::recorder::RecordingOptions;
 
 const TOLERANCE: f64 = 1e-9;
@@ -79,7 +79,7 @@ async fn the_live_node_honours_a_profile_and_a_task_constraint_as_resim_and_eval
     let profile = dir.join("profile.toml");
     std::fs::write(&profile, profile_toml()).unwrap();
     let config = config(Some(&profile));
-    let script = teleop::sim::glove_script_file::load_glove_script(
+    let script = teleop::stand_ins::glove_script_file::load_glove_script(
         &pomdar_tests::workspace_root().join("launch_configs/sim/tasks/V1.toml"),
     )
     .unwrap();

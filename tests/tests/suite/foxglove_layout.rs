@@ -31,7 +31,7 @@ use station::StationConfig;
 use station::ros_tools::{HandTf, published_joint_names};
 use teleop::demo::{DemoOptions, run_demo};
 use teleop::mcap_log::TrialReader;
-use teleop::sim::sim_glove_node::SimGloveConfig;
+use teleop::stand_ins::sim_glove_node::SimGloveConfig;
 use teleop::station_node::tap::Tap;
 use teleop::station_topics::{StationTopic, station_topics};
 use tokio::sync::broadcast::error::{RecvError, TryRecvError};

@@ -16,7 +16,7 @@ use station::policy_output::PolicyOutput;
 use teleop::clock::StationClock;
 use teleop::hand_check::directions::direction_sentence;
 use teleop::hand_check::session::neutral_pose;
-use teleop::sim::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
+use teleop::stand_ins::mock_hand::{MockHandConfig, MockHandReport, PolicyInput, run_mock_hand};
 
 fn preset(name: &str) -> (std::path::PathBuf, StationConfig) {
     let path = workspace_root().join("launch_configs/station").join(name);

@@ -9,9 +9,9 @@ use tokio::sync::watch;
 use tokio::task::JoinHandle;
 
 use crate::clock::StationClock;
-use crate::sim::error::SimError;
-use crate::sim::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
-use crate::sim::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
+use crate::stand_ins::error::SimError;
+use crate::stand_ins::mock_franka::{MockFrankaConfig, MockFrankaReport, run_mock_franka};
+use crate::stand_ins::mock_hand::{MockHandConfig, MockHandReport, run_mock_hand};
 use station::StationConfig;
 
 /// The running mock robot: its two nodes and what they saw (updated live).

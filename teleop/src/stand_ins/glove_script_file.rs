@@ -5,7 +5,7 @@ use std::path::Path;
 
 use retarget::human_hand::GloveScript;
 
-use crate::sim::error::SimError;
+use crate::stand_ins::error::SimError;
 
 /// Read and validate the glove script in `path`. `Err` naming the file (and the keyframe's
 /// field for a value out of range) when it cannot be read, does not parse or is not valid.

@@ -15,8 +15,8 @@ use tokio::sync::watch;
 
 use crate::clock::StationClock;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::sim::error::SimError;
-use crate::sim::samples::Samples;
+use crate::stand_ins::error::SimError;
+use crate::stand_ins::samples::Samples;
 use station::convert::header;
 use station::policy_output::PolicyOutput;
 

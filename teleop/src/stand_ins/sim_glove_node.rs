@@ -16,7 +16,7 @@ use tokio::sync::watch;
 
 use crate::clock::StationClock;
 use crate::ros::{NetworkConfig, QosConfig, RosNode};
-use crate::sim::error::SimError;
+use crate::stand_ins::error::SimError;
 use station::convert::{header, isometry_to_pose};
 
 /// How long the glove waits for a subscriber before publishing anyway.
