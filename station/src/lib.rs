@@ -38,7 +38,7 @@
 //! | `hand_control.rs` | which accepted frames are retargeted and when (on arrival or at the control rate), and the hand command |
 //! | `watchdog.rs` | **where the watchdog decides hold and disengage**: the glove stream's freshness sets the drive state ([`DriveState`]) |
 //! | `input_gap.rs`, `rate_meter.rs` | which side stalled (the longest gap as received against as sent); event rates for the status |
-//! | `arm/` | the Franka wrist: the clutch and mapper (`clutch.rs`), **a task's arm constraint applied** (`constraint.rs`: fixed, vertical or horizontal axis), step caps, the workspace box, pose checks |
+//! | `arm/` | the Franka wrist: the clutch and mapper (`mapper.rs`: [`arm::ArmMapper`]), **a task's arm constraint applied** (`constraint.rs`: fixed, vertical or horizontal axis), step caps, the workspace box, pose checks |
 //! | `output_stage.rs`, `policy_output.rs`, `joint_names.rs`, `hand_convention.rs` (presets in `hand_convention_presets.rs`), `convert.rs` | from commands to the messages sent: hand joint targets under the published names, the lab's `/hand/policy_output` through a hand's command convention, the arm target |
 //! | `network_config.rs`, `robot_link.rs`, `link_clock.rs` | the DDS side of the configuration (domain, interfaces, QoS); the link to the robot's computer and its age check; the relay's clock-offset view |
 //! | `ros_tools/`, `ros_tools_config.rs` | what the lab's ROS tools see: `/tf`, markers, diagnostics |

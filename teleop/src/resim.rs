@@ -28,7 +28,7 @@ use crate::samples::Samples;
 use crate::station_driver::{
     Engage, McapSink, SetupError, TickSchedule, build_station, route, set_engage, tick_period_ns,
 };
-use crate::station_node::station_log::{STATION_CONTROL_TOPIC, control_input};
+use crate::station_node::control_input_log::{STATION_CONTROL_TOPIC, control_input};
 
 /// A log that cannot be re-simulated.
 #[derive(Debug, thiserror::Error)]

@@ -24,7 +24,7 @@ use msgs::{
 use station::{KeypointFormat, StationConfig};
 
 use crate::mcap_log::TRIAL_EVENTS_TOPIC;
-use crate::station_node::station_log::STATION_CONTROL_TOPIC;
+use crate::station_node::control_input_log::STATION_CONTROL_TOPIC;
 
 /// One topic the station sends to a live viewer or records.
 #[derive(Debug, Clone, PartialEq, Eq)]

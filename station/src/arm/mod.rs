@@ -99,7 +99,7 @@ mod arm_command;
 mod arm_config;
 mod arm_error;
 mod arm_refusal;
-mod clutch;
+mod mapper;
 mod constraint;
 mod pose_check;
 mod relative_motion;
@@ -113,7 +113,7 @@ pub use arm_config::{
 };
 pub use arm_error::ArmConfigError;
 pub use arm_refusal::{ArmRefusal, PoseRole};
-pub use clutch::ArmMapper;
+pub use mapper::ArmMapper;
 pub use constraint::{Constraint, OrientationPolicy, twist_about_axis};
 pub use pose_check::{
     MAX_ABS_POSITION_M, QUATERNION_NORM_TOLERANCE, checked_pose, pose_from_parts,

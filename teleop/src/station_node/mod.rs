@@ -9,7 +9,7 @@ mod recorder_thread;
 mod relay_view;
 pub mod ros_node;
 mod ros_tools_node;
-pub mod station_log;
+pub mod control_input_log;
 pub mod tap;
 
 pub use error::NodeError;

@@ -155,9 +155,9 @@ impl StationRecorder {
 
     /// Record a control input the station was stepped with at `now_ns`.
     pub fn control(&mut self, now_ns: i64, input: station::ControlInput) {
-        let message = crate::station_node::station_log::control_message(input);
+        let message = crate::station_node::control_input_log::control_message(input);
         let result = self.writer.write(
-            crate::station_node::station_log::STATION_CONTROL_TOPIC,
+            crate::station_node::control_input_log::STATION_CONTROL_TOPIC,
             now_ns,
             now_ns,
             &message,

@@ -1,4 +1,4 @@
-//! The clutch: engage latches the glove and robot poses, each step maps the glove's motion
+//! The arm mapper ([`ArmMapper`]) and its clutch: engage latches the glove and robot poses, each step maps the glove's motion
 //! since engage onto the latched robot pose, disengage stops the output.
 //!
 //! Per step: validate the glove pose → relative motion in the base frame → task constraint →
@@ -235,5 +235,5 @@ fn is_finite(pose: &Isometry3<f64>) -> bool {
 }
 
 #[cfg(test)]
-#[path = "clutch_tests.rs"]
+#[path = "mapper_tests.rs"]
 mod tests;
