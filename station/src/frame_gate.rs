@@ -14,7 +14,7 @@
 //! Last, where `outlier_jump_m` is set (2 cm by default), a frame where one point leapt alone,
 //! at least that far off what the points beside it on its digit predict
 //! ([`crate::outlier_check`]), is passed on with that point put back where its digit predicts
-//! it ([`Verdict::Repaired`], counted as `frames_repaired`): a tracker's one-frame outlier never
+//! it ([`GateDecision::Repaired`], counted as `frames_repaired`): a tracker's one-frame outlier never
 //! reaches the retargeter while the rest of the hand stays current, and a point's real motion
 //! that looks like one is accepted with the next frame, that point one frame late.
 //! Before these, frames stamped by their sender before the newest accepted one are
@@ -164,7 +164,7 @@ impl Rejection {
 
 /// What the gate decided about a frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Verdict {
+pub enum GateDecision {
     /// A new, plausible frame.
     New,
     /// The same keypoints as the last accepted frame.
@@ -218,20 +218,24 @@ impl FrameGate {
 
     /// Judge `points` as one interval after the last accepted frame; a `New` frame becomes
     /// the reference for the next one.
-    pub fn judge(&mut self, points: &[Point3<f64>]) -> Verdict {
+    pub fn judge(&mut self, points: &[Point3<f64>]) -> GateDecision {
         self.judge_after(points, None)
     }
 
     /// Judge `points` taken `since_last_ns` after the last accepted frame (`None`: one
     /// interval): the jump allowance grows with that time. A `New` frame becomes the reference
     /// for the next.
-    pub fn judge_after(&mut self, points: &[Point3<f64>], since_last_ns: Option<i64>) -> Verdict {
+    pub fn judge_after(
+        &mut self,
+        points: &[Point3<f64>],
+        since_last_ns: Option<i64>,
+    ) -> GateDecision {
         if repeats(self.held.as_deref(), points) {
             // The held frame again (the ingress republishes every frame): still held.
-            return Verdict::Repeat;
+            return GateDecision::Repeat;
         }
         let verdict = self.check(points, self.jump_allowance_m(since_last_ns));
-        if verdict != Verdict::New {
+        if verdict != GateDecision::New {
             return verdict;
         }
         // One frame repaired at most: the frame after a repaired one is accepted whatever it
@@ -241,14 +245,14 @@ impl FrameGate {
         {
             self.held = Some(points.to_vec());
             self.before_last = self.last.replace(fixed);
-            return Verdict::Repaired;
+            return GateDecision::Repaired;
         }
         self.held = None;
         self.before_last = self.last.replace(points.to_vec());
         verdict
     }
 
-    /// The last frame accepted: as sent, or as repaired after [`Verdict::Repaired`].
+    /// The last frame accepted: as sent, or as repaired after [`GateDecision::Repaired`].
     pub fn last_accepted(&self) -> Option<&[Point3<f64>]> {
         self.last.as_deref()
     }
@@ -283,19 +287,19 @@ impl FrameGate {
         self.config.max_jump_m * intervals
     }
 
-    fn check(&self, points: &[Point3<f64>], max_jump_m: f64) -> Verdict {
+    fn check(&self, points: &[Point3<f64>], max_jump_m: f64) -> GateDecision {
         let layout = self.layout;
         if points.len() != layout.len() {
-            return Verdict::Rejected(Rejection::WrongSize);
+            return GateDecision::Rejected(Rejection::WrongSize);
         }
         if !points
             .iter()
             .all(|p| p.coords.iter().all(|c| c.is_finite()))
         {
-            return Verdict::Rejected(Rejection::NonFinite);
+            return GateDecision::Rejected(Rejection::NonFinite);
         }
         if repeats(self.last.as_deref(), points) {
-            return Verdict::Repeat;
+            return GateDecision::Repeat;
         }
         let wrist = points[layout.wrist()];
         let bone_ok = |a: Point3<f64>, b: Point3<f64>| {
@@ -309,7 +313,7 @@ impl FrameGate {
                     .windows(2)
                     .any(|w| !bone_ok(points[w[0]], points[w[1]]))
             {
-                return Verdict::Rejected(Rejection::BoneLength);
+                return GateDecision::Rejected(Rejection::BoneLength);
             }
         }
         if let Some(last) = &self.last {
@@ -319,10 +323,10 @@ impl FrameGate {
                 .zip(last)
                 .any(|(p, q)| ((p - wrist) - (q - last_wrist)).norm() > max_jump_m);
             if jumped {
-                return Verdict::Rejected(Rejection::Jump);
+                return GateDecision::Rejected(Rejection::Jump);
             }
         }
-        Verdict::New
+        GateDecision::New
     }
 }
 
@@ -344,26 +348,32 @@ mod tests {
     fn repeats_new_frames_and_rejections() {
         let mut gate = FrameGate::new(KeypointLayout::Lab22, GateConfig::default());
         let frame = hand();
-        assert_eq!(gate.judge(&frame), Verdict::New);
-        assert_eq!(gate.judge(&frame), Verdict::Repeat);
+        assert_eq!(gate.judge(&frame), GateDecision::New);
+        assert_eq!(gate.judge(&frame), GateDecision::Repeat);
 
         // The whole hand moving (arm motion) is fine, however far.
         let moved: Vec<_> = frame
             .iter()
             .map(|p| p + Vector3::new(0.5, 0.0, 0.0))
             .collect();
-        assert_eq!(gate.judge(&moved), Verdict::New);
+        assert_eq!(gate.judge(&moved), GateDecision::New);
 
         let mut teleported = moved.clone();
         teleported[9] += Vector3::new(0.0, 0.0, 0.13);
-        assert_eq!(gate.judge(&teleported), Verdict::Rejected(Rejection::Jump));
+        assert_eq!(
+            gate.judge(&teleported),
+            GateDecision::Rejected(Rejection::Jump)
+        );
 
         let mut nan = moved.clone();
         nan[3].y = f64::NAN;
-        assert_eq!(gate.judge(&nan), Verdict::Rejected(Rejection::NonFinite));
+        assert_eq!(
+            gate.judge(&nan),
+            GateDecision::Rejected(Rejection::NonFinite)
+        );
         assert_eq!(
             gate.judge(&moved[..21]),
-            Verdict::Rejected(Rejection::WrongSize)
+            GateDecision::Rejected(Rejection::WrongSize)
         );
 
         let giant: Vec<_> = moved
@@ -371,7 +381,10 @@ mod tests {
             .map(|p| Point3::from(p.coords * 10.0))
             .collect();
         gate.reset();
-        assert_eq!(gate.judge(&giant), Verdict::Rejected(Rejection::BoneLength));
+        assert_eq!(
+            gate.judge(&giant),
+            GateDecision::Rejected(Rejection::BoneLength)
+        );
     }
 
     #[test]
@@ -389,14 +402,17 @@ mod tests {
             f[9] += Vector3::new(0.0, 0.0, dz);
             f
         };
-        assert_eq!(gate.judge_after(&frame, None), Verdict::New);
+        assert_eq!(gate.judge_after(&frame, None), GateDecision::New);
         // 13 cm in one 40 ms frame: a teleport.
         assert_eq!(
             gate.judge_after(&moved(0.13), Some(40 * MS)),
-            Verdict::Rejected(Rejection::Jump)
+            GateDecision::Rejected(Rejection::Jump)
         );
         // The same 13 cm two frames after the last accepted one (one dropped): 0.12 m × 80/50.
-        assert_eq!(gate.judge_after(&moved(0.13), Some(80 * MS)), Verdict::New);
+        assert_eq!(
+            gate.judge_after(&moved(0.13), Some(80 * MS)),
+            GateDecision::New
+        );
         // The allowance: one interval for a time going back or none given, the time since
         // the last accepted frame otherwise, at most 10 intervals.
         let allowance = |ns| gate.jump_allowance_m(ns);
@@ -419,10 +435,10 @@ mod tests {
         let mut outlier = frame.clone();
         outlier[tip] += (frame[tip] - frame[joint]).normalize() * 0.03;
         let mut gate = FrameGate::new(layout, on);
-        assert_eq!(gate.judge(&frame), Verdict::New);
+        assert_eq!(gate.judge(&frame), GateDecision::New);
         assert_eq!(
             gate.judge_after(&outlier, Some(100_000_000)),
-            Verdict::Repaired
+            GateDecision::Repaired
         );
     }
 
@@ -441,33 +457,33 @@ mod tests {
             f[tip] += Vector3::new(0.0, 0.04, 0.0);
             f
         };
-        assert_eq!(gate.judge(&frame), Verdict::New);
+        assert_eq!(gate.judge(&frame), GateDecision::New);
         // One frame with the index tip 4 cm away, then back: the outlier is passed on with the
         // tip put back where it was (the hand was still), its republished copy is a repeat,
         // and the frame after it is new.
         let outlier = leapt(&frame);
-        assert_eq!(gate.judge(&outlier), Verdict::Repaired);
+        assert_eq!(gate.judge(&outlier), GateDecision::Repaired);
         let passed = gate.last_accepted().unwrap().to_vec();
         assert!((passed[tip] - frame[tip]).norm() < 1e-12);
         assert!((0..passed.len()).all(|i| i == tip || passed[i] == outlier[i]));
-        assert_eq!(gate.judge(&outlier), Verdict::Repeat);
+        assert_eq!(gate.judge(&outlier), GateDecision::Repeat);
         let mut back = frame.clone();
         back[0] += Vector3::new(0.001, 0.0, 0.0);
-        assert_eq!(gate.judge(&back), Verdict::New);
+        assert_eq!(gate.judge(&back), GateDecision::New);
         // A leap the next frame confirms is accepted with that frame, one frame late.
         let first = leapt(&back);
-        assert_eq!(gate.judge(&first), Verdict::Repaired);
+        assert_eq!(gate.judge(&first), GateDecision::Repaired);
         let mut confirmed = first.clone();
         confirmed[0] += Vector3::new(0.001, 0.0, 0.0);
-        assert_eq!(gate.judge(&confirmed), Verdict::New);
+        assert_eq!(gate.judge(&confirmed), GateDecision::New);
         // Off: the same leap is accepted at once.
         let off = GateConfig {
             outlier_jump_m: 0.0,
             ..GateConfig::default()
         };
         let mut gate = FrameGate::new(layout, off);
-        assert_eq!(gate.judge(&frame), Verdict::New);
-        assert_eq!(gate.judge(&leapt(&frame)), Verdict::New);
+        assert_eq!(gate.judge(&frame), GateDecision::New);
+        assert_eq!(gate.judge(&leapt(&frame)), GateDecision::New);
     }
 
     #[test]
@@ -495,11 +511,11 @@ mod tests {
         let frame = hand();
         let mut outlier = frame.clone();
         outlier[layout.tip(Finger::Index)] += Vector3::new(0.0, 0.04, 0.0);
-        assert_eq!(gate.judge(&frame), Verdict::New);
-        assert_eq!(gate.judge(&outlier), Verdict::New);
+        assert_eq!(gate.judge(&frame), GateDecision::New);
+        assert_eq!(gate.judge(&outlier), GateDecision::New);
         let mut back = frame.clone();
         back[0] += Vector3::new(0.001, 0.0, 0.0);
         gate.config.outlier_jump_m = 0.02;
-        assert_eq!(gate.judge(&back), Verdict::New);
+        assert_eq!(gate.judge(&back), GateDecision::New);
     }
 }

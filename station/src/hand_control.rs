@@ -15,7 +15,7 @@ use nalgebra::Point3;
 use retarget::{Retargeter, SolveStatus};
 use serde::Serialize;
 
-use crate::frame_gate::{FrameGate, Rejection, Verdict};
+use crate::frame_gate::{FrameGate, GateDecision, Rejection};
 use crate::source_order::{SourceOrder, StampOrder};
 use crate::watchdog::{DriveState, Watchdog};
 
@@ -202,23 +202,23 @@ impl HandControl {
     /// one is late and rejected (`out_of_order`); a jump of the sender's clock is counted and
     /// followed (see [`source_order`](crate::source_order)). Then the frame gate decides; a new
     /// frame becomes the pending one (replacing one not yet retargeted).
-    pub fn take_frame(&mut self, frame: KeypointFrame, received_ns: i64) -> Verdict {
+    pub fn take_frame(&mut self, frame: KeypointFrame, received_ns: i64) -> GateDecision {
         let stamp = self.order.check(frame.source_ns, received_ns);
         if stamp == StampOrder::Late {
             self.count_rejection(Rejection::OutOfOrder);
-            return Verdict::Rejected(Rejection::OutOfOrder);
+            return GateDecision::Rejected(Rejection::OutOfOrder);
         }
         let since_ns = self.since_gate_reference(&frame, stamp, received_ns);
         let verdict = self.gate.judge_after(&frame.points, since_ns);
         let mut frame = frame;
-        if verdict == Verdict::Repaired {
+        if verdict == GateDecision::Repaired {
             self.counters.frames_repaired += 1;
             if let Some(fixed) = self.gate.last_accepted() {
                 frame.points = fixed.to_vec();
             }
         }
         match verdict {
-            Verdict::New | Verdict::Repaired => {
+            GateDecision::New | GateDecision::Repaired => {
                 self.count_stalled_stamp(&frame, stamp);
                 self.accept_stamp(&frame, stamp, received_ns);
                 self.gate_reference = Some((
@@ -242,11 +242,11 @@ impl HandControl {
                     clock_frozen,
                 });
             }
-            Verdict::Repeat => {
+            GateDecision::Repeat => {
                 self.accept_stamp(&frame, stamp, received_ns);
                 self.counters.frames_repeated += 1;
             }
-            Verdict::Rejected(reason) => self.count_rejection(reason),
+            GateDecision::Rejected(reason) => self.count_rejection(reason),
         }
         verdict
     }

@@ -77,7 +77,7 @@ pub mod station_input;
 pub mod watchdog;
 
 pub use config_error::ConfigError;
-pub use frame_gate::{GateConfig, Rejection, Verdict};
+pub use frame_gate::{GateConfig, GateDecision, Rejection};
 pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
 pub use input_gap::InputGap;
 pub use network_config::{NetworkConfig, QosConfig, Reliability};

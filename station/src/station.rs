@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use crate::arm::Constraint;
 use crate::convert::pose_to_isometry;
-use crate::frame_gate::{FrameGate, Verdict};
+use crate::frame_gate::{FrameGate, GateDecision};
 use crate::hand_control::{Counters, HandCommand, HandControl, KeypointFrame};
 use crate::input_gap::{GapMeter, InputGap};
 use crate::output_stage::{ArmInputs, ArmStep, OutputStage};
@@ -270,7 +270,7 @@ impl Station {
             ..StationOutputs::default()
         };
         match verdict {
-            Verdict::New | Verdict::Repaired => {
+            GateDecision::New | GateDecision::Repaired => {
                 self.meters.input.record(now_ns);
                 self.meters.gaps.record(now_ns, source_ns);
                 if self.auto_engage_pending && self.hand.engage(now_ns) {
@@ -283,8 +283,8 @@ impl Station {
                     self.command_fresh(now_ns, &mut outputs);
                 }
             }
-            Verdict::Repeat => self.meters.repeat.record(now_ns),
-            Verdict::Rejected(_) => {}
+            GateDecision::Repeat => self.meters.repeat.record(now_ns),
+            GateDecision::Rejected(_) => {}
         }
         outputs
     }

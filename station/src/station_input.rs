@@ -4,7 +4,7 @@ use msgs::{Pose, PoseStamped};
 use serde::{Deserialize, Serialize};
 
 use crate::arm::ArmRefusal;
-use crate::frame_gate::Verdict;
+use crate::frame_gate::GateDecision;
 use crate::hand_control::KeypointFrame;
 use crate::output_stage::HandMessages;
 
@@ -74,7 +74,7 @@ pub struct StationOutputs {
     /// The arm target, when one is due.
     pub arm: Option<PoseStamped>,
     /// What the frame gate said of a keypoint frame.
-    pub verdict: Option<Verdict>,
+    pub verdict: Option<GateDecision>,
     /// Messages for the operator.
     pub notices: Vec<Notice>,
 }

@@ -51,7 +51,7 @@ fn q_of(outputs: &StationOutputs) -> Vec<f64> {
 fn nothing_moves_before_engage_then_each_new_frame_is_commanded_on_arrival() {
     let mut s = station(&StationConfig::default());
     let out = s.step(frame(0.2, 0), 0);
-    assert_eq!(out.verdict, Some(Verdict::New));
+    assert_eq!(out.verdict, Some(GateDecision::New));
     assert_eq!(out.hand, None);
     assert_eq!(s.step(tick(), MS).hand, None);
     s.step(engage(), 2 * MS);
@@ -176,13 +176,19 @@ fn late_frames_are_rejected_and_clock_jumps_followed() {
     config.control.auto_engage = true;
     let mut s = station(&config);
     s.step(frame(0.2, 100), 0);
-    assert_eq!(s.step(frame(0.3, 120), 20 * MS).verdict, Some(Verdict::New));
+    assert_eq!(
+        s.step(frame(0.3, 120), 20 * MS).verdict,
+        Some(GateDecision::New)
+    );
     let late = s.step(frame(0.4, 110), 21 * MS);
-    assert_eq!(late.verdict, Some(Verdict::Rejected(Rejection::OutOfOrder)));
+    assert_eq!(
+        late.verdict,
+        Some(GateDecision::Rejected(Rejection::OutOfOrder))
+    );
     assert!(late.hand.is_none());
     assert_eq!(
         s.step(frame(0.3, 120), 23 * MS).verdict,
-        Some(Verdict::Repeat)
+        Some(GateDecision::Repeat)
     );
     // The sender's clock jumps back an hour: followed, counted, commanded.
     let jumped = s.step(frame(0.35, 140 - 3_600_000), 40 * MS);
@@ -245,7 +251,7 @@ fn a_human_study_station_judges_and_times_frames_but_never_drives_a_robot() {
     assert!(s.retargeter().is_none(), "no retargeter for a human hand");
     s.step(wrist(0.0), 0);
     let out = s.step(frame(0.2, 0), 0);
-    assert_eq!(out.verdict, Some(Verdict::New));
+    assert_eq!(out.verdict, Some(GateDecision::New));
     s.step(engage(), 5 * MS);
     for k in 1..5 {
         let out = s.step(frame(0.2 + 0.05 * k as f64, 40 * k), 40 * k * MS);
@@ -378,7 +384,7 @@ fn a_jump_of_the_senders_clock_at_a_repeat_times_the_next_command_by_receive_tim
     };
     repeat.source_ns = -3_600_000 * MS;
     let out = s.step(StationInput::Keypoints(repeat), 20 * MS);
-    assert_eq!(out.verdict, Some(Verdict::Repeat));
+    assert_eq!(out.verdict, Some(GateDecision::Repeat));
     assert_eq!(s.counters().source_clock_jumps, 1);
     let after = q_of(&s.step(frame(0.8, 40 - 3_600_000), 40 * MS))[index];
     assert!(
@@ -410,7 +416,7 @@ fn after_a_jump_of_the_senders_clock_the_gate_times_its_jump_allowance_by_receiv
     };
     assert_eq!(
         s.step(StationInput::Keypoints(repeat), 20 * MS).verdict,
-        Some(Verdict::Repeat)
+        Some(GateDecision::Repeat)
     );
     let mut moved = reference;
     moved.points[9].z += 0.13;
@@ -418,7 +424,7 @@ fn after_a_jump_of_the_senders_clock_the_gate_times_its_jump_allowance_by_receiv
     let out = s.step(StationInput::Keypoints(moved), 620 * MS);
     assert_eq!(
         out.verdict,
-        Some(Verdict::New),
+        Some(GateDecision::New),
         "13 cm in 600 ms is no jump"
     );
 }

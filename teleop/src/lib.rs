@@ -32,11 +32,11 @@ pub mod resim;
 pub mod ros;
 pub mod samples;
 pub mod score;
-pub mod stand_ins;
 #[cfg(feature = "physics")]
 pub mod sim_bench;
 #[cfg(feature = "physics")]
 pub mod sim_runs;
+pub mod stand_ins;
 pub mod station_driver;
 pub mod station_node;
 pub mod station_topics;

@@ -99,8 +99,8 @@ mod arm_command;
 mod arm_config;
 mod arm_error;
 mod arm_refusal;
-mod mapper;
 mod constraint;
+mod mapper;
 mod pose_check;
 mod relative_motion;
 mod step_limits;
@@ -113,8 +113,8 @@ pub use arm_config::{
 };
 pub use arm_error::ArmConfigError;
 pub use arm_refusal::{ArmRefusal, PoseRole};
-pub use mapper::ArmMapper;
 pub use constraint::{Constraint, OrientationPolicy, twist_about_axis};
+pub use mapper::ArmMapper;
 pub use pose_check::{
     MAX_ABS_POSITION_M, QUATERNION_NORM_TOLERANCE, checked_pose, pose_from_parts,
 };

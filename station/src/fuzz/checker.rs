@@ -7,7 +7,7 @@ use super::arm_checks::ArmTrack;
 use super::drive_model::DriveModel;
 use super::hand_checks::HandTrack;
 use super::tally::Tally;
-use crate::frame_gate::Verdict;
+use crate::frame_gate::GateDecision;
 use crate::station::Station;
 use crate::station_config::StationConfig;
 use crate::station_input::{ControlInput, Notice, StationInput, StationOutputs};
@@ -93,8 +93,8 @@ impl Checker {
             return;
         };
         match outputs.verdict {
-            Some(verdict @ (Verdict::New | Verdict::Repaired)) => {
-                tally.count(if verdict == Verdict::New {
+            Some(verdict @ (GateDecision::New | GateDecision::Repaired)) => {
+                tally.count(if verdict == GateDecision::New {
                     "verdict.new"
                 } else {
                     "verdict.repaired"
@@ -102,8 +102,8 @@ impl Checker {
                 self.hand
                     .new_frame(frame.source_ns, now_ns, (jumps, jumped));
             }
-            Some(Verdict::Repeat) => tally.count("verdict.repeat"),
-            Some(Verdict::Rejected(reason)) => tally.count(match reason.name() {
+            Some(GateDecision::Repeat) => tally.count("verdict.repeat"),
+            Some(GateDecision::Rejected(reason)) => tally.count(match reason.name() {
                 "wrong_size" => "rejected.wrong_size",
                 "non_finite" => "rejected.non_finite",
                 "bone_length" => "rejected.bone_length",

@@ -3,7 +3,7 @@
 //! than the disengage timeout; engaged again only by an engage granted with fresh input (an
 //! explicit one, or the configured auto-engage at the first new frame).
 
-use crate::frame_gate::Verdict;
+use crate::frame_gate::GateDecision;
 use crate::station_config::StationConfig;
 use crate::station_input::{ControlInput, StationInput, StationOutputs};
 
@@ -58,7 +58,10 @@ impl DriveModel {
         let was = self.disengaged;
         match input {
             StationInput::Keypoints(_)
-                if matches!(outputs.verdict, Some(Verdict::New | Verdict::Repaired)) =>
+                if matches!(
+                    outputs.verdict,
+                    Some(GateDecision::New | GateDecision::Repaired)
+                ) =>
             {
                 self.last_new_ns = Some(now_ns);
                 if self.auto_engage_pending {

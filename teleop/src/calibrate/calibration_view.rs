@@ -3,7 +3,7 @@
 //! changes ([`PlainCalibrationOutput`]).
 
 use crate::calibrate::capture_quality::QualityLevel;
-use crate::calibrate::pose_session::{Phase, Policy, PoseSession};
+use crate::calibrate::pose_session::{Policy, PosePhase, PoseSession};
 use crate::tui::panels::Level;
 
 /// The console's states (the names `--script` waits on).
@@ -71,13 +71,13 @@ impl CalState {
     /// The state of a session.
     pub fn of(session: &PoseSession) -> CalState {
         match session.phase() {
-            Phase::WaitingGlove => CalState::WaitingGlove,
-            Phase::Settling { .. } => CalState::Settling,
-            Phase::Capturing { .. } => CalState::Capturing,
-            Phase::Review { .. } => CalState::Review,
-            Phase::Fitting => CalState::Fitting,
-            Phase::Complete => CalState::Complete,
-            Phase::Failed(_) => CalState::Failed,
+            PosePhase::WaitingGlove => CalState::WaitingGlove,
+            PosePhase::Settling { .. } => CalState::Settling,
+            PosePhase::Capturing { .. } => CalState::Capturing,
+            PosePhase::Review { .. } => CalState::Review,
+            PosePhase::Fitting => CalState::Fitting,
+            PosePhase::Complete => CalState::Complete,
+            PosePhase::Failed(_) => CalState::Failed,
         }
     }
 }
@@ -150,9 +150,9 @@ impl CalibrationView {
 /// The pose and attempt the session is at, while it is at one.
 fn current_pose(session: &PoseSession) -> Option<(usize, u32)> {
     match *session.phase() {
-        Phase::Settling { pose, attempt, .. }
-        | Phase::Capturing { pose, attempt, .. }
-        | Phase::Review { pose, attempt } => Some((pose, attempt)),
+        PosePhase::Settling { pose, attempt, .. }
+        | PosePhase::Capturing { pose, attempt, .. }
+        | PosePhase::Review { pose, attempt } => Some((pose, attempt)),
         _ => None,
     }
 }
@@ -200,7 +200,7 @@ fn phase_banner(
     let mut detail = Vec::new();
     let timing = session.timing();
     let banner = match *session.phase() {
-        Phase::Settling { capture_ns, .. } => {
+        PosePhase::Settling { capture_ns, .. } => {
             detail.push(format!(
                 "the hand shows the pose: copy it and settle; capture of {:.1} s in a moment",
                 timing.capture_s
@@ -211,7 +211,7 @@ fn phase_banner(
                 ((capture_ns - now_ns) as f64 * 1e-9).max(0.0)
             )
         }
-        Phase::Capturing { end_ns, .. } => {
+        PosePhase::Capturing { end_ns, .. } => {
             detail.push("keep the pose still until the capture ends".to_string());
             format!(
                 "{}  {:.1} s",
@@ -219,7 +219,7 @@ fn phase_banner(
                 ((end_ns - now_ns) as f64 * 1e-9).max(0.0)
             )
         }
-        Phase::Review { .. } => {
+        PosePhase::Review { .. } => {
             let bad = current
                 .and_then(|(k, _)| session.attempts()[k].last())
                 .is_some_and(|a| a.quality.level == QualityLevel::Bad);
@@ -230,12 +230,12 @@ fn phase_banner(
             });
             state.banner().to_string()
         }
-        Phase::Failed(ref reason) => {
+        PosePhase::Failed(ref reason) => {
             detail.push(reason.clone());
             detail.push("q quits".to_string());
             state.banner().to_string()
         }
-        Phase::Complete => {
+        PosePhase::Complete => {
             detail.push(match session.redo_offer() {
                 Some(k) => format!(
                     "r captures {} again and fits again · q keeps this fit and quits",

@@ -74,7 +74,7 @@ pub struct PoseStep {
 
 /// Where the session is.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Phase {
+pub enum PosePhase {
     /// Waiting for the glove's first frame.
     WaitingGlove,
     /// The hand shows pose `pose`; the user copies it and settles until `capture_ns`.
@@ -178,7 +178,7 @@ pub struct PoseSession {
     thresholds: CaptureThresholds,
     timing: SessionTiming,
     policy: Policy,
-    phase: Phase,
+    phase: PosePhase,
     attempts: Vec<Vec<Attempt>>,
     frames: Vec<Vec<Point3<f64>>>,
     settle_frames: usize,
@@ -213,7 +213,7 @@ impl PoseSession {
             thresholds,
             timing,
             policy,
-            phase: Phase::WaitingGlove,
+            phase: PosePhase::WaitingGlove,
             attempts,
             frames: Vec::new(),
             settle_frames: 0,
@@ -228,7 +228,7 @@ impl PoseSession {
     }
 
     /// Where the session is.
-    pub fn phase(&self) -> &Phase {
+    pub fn phase(&self) -> &PosePhase {
         &self.phase
     }
 
@@ -294,7 +294,7 @@ impl PoseSession {
     /// A glove frame received at `now_ns` (already logged at that time).
     pub fn frame(&mut self, points: Vec<Point3<f64>>, now_ns: i64) -> Vec<Effect> {
         let mut effects = Vec::new();
-        if self.phase == Phase::WaitingGlove {
+        if self.phase == PosePhase::WaitingGlove {
             effects.push(Effect::Log {
                 at_ns: now_ns,
                 event: json!({"event": "start", "session": "calibration"}),
@@ -304,8 +304,8 @@ impl PoseSession {
         }
         effects.extend(self.tick(now_ns));
         match self.phase {
-            Phase::Settling { .. } => self.settle_frames += 1,
-            Phase::Capturing { .. } => self.frames.push(points),
+            PosePhase::Settling { .. } => self.settle_frames += 1,
+            PosePhase::Capturing { .. } => self.frames.push(points),
             _ => {}
         }
         effects
@@ -315,7 +315,7 @@ impl PoseSession {
     pub fn tick(&mut self, now_ns: i64) -> Vec<Effect> {
         let mut effects = Vec::new();
         match self.phase {
-            Phase::Settling {
+            PosePhase::Settling {
                 pose,
                 attempt,
                 since_ns,
@@ -326,7 +326,7 @@ impl PoseSession {
                     (self.settle_frames as f64 / settled_s * self.timing.capture_s).round() as usize
                 });
                 self.frames.clear();
-                self.phase = Phase::Capturing {
+                self.phase = PosePhase::Capturing {
                     pose,
                     attempt,
                     start_ns: now_ns,
@@ -338,7 +338,7 @@ impl PoseSession {
                     attempt,
                 ));
             }
-            Phase::Capturing {
+            PosePhase::Capturing {
                 pose,
                 attempt,
                 end_ns,
@@ -379,18 +379,20 @@ impl PoseSession {
     /// An operator action at `now_ns`.
     pub fn act(&mut self, action: CalibrationAction, now_ns: i64) -> Vec<Effect> {
         match (action, self.phase.clone()) {
-            (CalibrationAction::Quit, Phase::Complete) => vec![Effect::Quit { completed: true }],
+            (CalibrationAction::Quit, PosePhase::Complete) => {
+                vec![Effect::Quit { completed: true }]
+            }
             // The session log is finished already: nothing to add to it.
-            (CalibrationAction::Quit, Phase::Fitting | Phase::Failed(_)) => {
+            (CalibrationAction::Quit, PosePhase::Fitting | PosePhase::Failed(_)) => {
                 vec![Effect::Quit { completed: false }]
             }
             (CalibrationAction::Quit, _) => self.quit_while_capturing(now_ns),
-            (CalibrationAction::Retry, Phase::Review { pose, attempt }) => {
+            (CalibrationAction::Retry, PosePhase::Review { pose, attempt }) => {
                 let mut effects = vec![self.decision(pose, attempt, "retry", "operator", now_ns)];
                 effects.extend(self.begin_attempt(pose, attempt + 1, now_ns));
                 effects
             }
-            (CalibrationAction::Accept, Phase::Review { pose, attempt }) => {
+            (CalibrationAction::Accept, PosePhase::Review { pose, attempt }) => {
                 let bad = self.attempts[pose]
                     .last()
                     .is_some_and(|a| a.quality.level == QualityLevel::Bad);
@@ -403,7 +405,7 @@ impl PoseSession {
                 }
                 self.accept(pose, attempt, "operator", now_ns)
             }
-            (CalibrationAction::Retry, Phase::Complete) => self.redo(now_ns),
+            (CalibrationAction::Retry, PosePhase::Complete) => self.redo(now_ns),
             (CalibrationAction::Accept | CalibrationAction::Retry, _) => {
                 self.say("nothing to accept or retry now: captures are judged after they end");
                 Vec::new()
@@ -437,16 +439,16 @@ impl PoseSession {
                         self.poses[k].name
                     ));
                 }
-                self.phase = Phase::Complete;
+                self.phase = PosePhase::Complete;
             }
             Err(reason) => {
                 self.say(format!("the fit failed: {reason}"));
-                self.phase = Phase::Failed(reason);
+                self.phase = PosePhase::Failed(reason);
             }
         }
         match self.policy {
             Policy::Automatic { .. } => vec![Effect::Quit {
-                completed: self.phase == Phase::Complete,
+                completed: self.phase == PosePhase::Complete,
             }],
             Policy::Operator => Vec::new(),
         }
@@ -522,7 +524,7 @@ impl PoseSession {
                         at_ns: now_ns,
                         event: json!({"event": "abort", "reason": reason}),
                     });
-                    self.phase = Phase::Failed(reason);
+                    self.phase = PosePhase::Failed(reason);
                     effects.push(Effect::Quit { completed: false });
                     return effects;
                 }
@@ -536,7 +538,7 @@ impl PoseSession {
                 } else {
                     "poor capture: space accepts it, r captures the pose again"
                 });
-                self.phase = Phase::Review { pose, attempt };
+                self.phase = PosePhase::Review { pose, attempt };
                 Vec::new()
             }
         }
@@ -556,7 +558,7 @@ impl PoseSession {
                 "all poses captured: fitting"
             });
             self.redoing = false;
-            self.phase = Phase::Fitting;
+            self.phase = PosePhase::Fitting;
             effects.push(Effect::Log {
                 at_ns: now_ns,
                 event: json!({"event": "stop", "summary": self.summary()}),
@@ -567,7 +569,7 @@ impl PoseSession {
     }
 
     fn begin_attempt(&mut self, pose: usize, attempt: u32, now_ns: i64) -> Vec<Effect> {
-        self.phase = Phase::Settling {
+        self.phase = PosePhase::Settling {
             pose,
             attempt,
             since_ns: now_ns,

@@ -68,14 +68,14 @@ impl Run {
     /// Feeds the current pose's frames at 100 Hz until the phase is no longer settling or
     /// capturing (the capture was judged), `noise` per attempt.
     fn hold_pose(&mut self, noise_sd_m: f64) {
-        let Phase::Settling { pose, attempt, .. } = *self.session.phase() else {
+        let PosePhase::Settling { pose, attempt, .. } = *self.session.phase() else {
             panic!("not settling: {:?}", self.session.phase());
         };
         let held = frames(pose, noise_sd_m);
         let mut i = 0;
         while matches!(
             *self.session.phase(),
-            Phase::Settling { pose: p, attempt: a, .. } | Phase::Capturing { pose: p, attempt: a, .. }
+            PosePhase::Settling { pose: p, attempt: a, .. } | PosePhase::Capturing { pose: p, attempt: a, .. }
                 if (p, a) == (pose, attempt)
         ) {
             self.now += 10 * MS;
@@ -105,11 +105,11 @@ impl Run {
 
 fn start(policy: Policy) -> Run {
     let mut run = Run::new(policy);
-    assert_eq!(*run.session.phase(), Phase::WaitingGlove);
+    assert_eq!(*run.session.phase(), PosePhase::WaitingGlove);
     run.effects = run.session.frame(frames(0, 0.002)[0].clone(), run.now);
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling {
+        PosePhase::Settling {
             pose: 0,
             attempt: 1,
             ..
@@ -124,11 +124,11 @@ fn steady_captures_are_accepted_pose_by_pose_and_then_the_fit_starts() {
     let mut run = start(Policy::Operator);
     for k in 0..7 {
         assert!(
-            matches!(run.session.phase(), Phase::Settling { pose, attempt: 1, .. } if *pose == k)
+            matches!(run.session.phase(), PosePhase::Settling { pose, attempt: 1, .. } if *pose == k)
         );
         run.hold_pose(0.002);
     }
-    assert_eq!(*run.session.phase(), Phase::Fitting);
+    assert_eq!(*run.session.phase(), PosePhase::Fitting);
     assert!(matches!(run.effects.last(), Some(Effect::Fit { .. })));
     let commanded: Vec<usize> = run
         .effects
@@ -166,7 +166,7 @@ fn steady_captures_are_accepted_pose_by_pose_and_then_the_fit_starts() {
     // The fit's outcome: complete, and q leaves.
     let e = run.session.fit_finished(Ok(fitted(Vec::new())));
     assert!(e.is_empty(), "an operator's session waits for q: {e:?}");
-    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(*run.session.phase(), PosePhase::Complete);
     assert_eq!(run.session.redo_offer(), None);
     // Nothing to capture again when every pose fits.
     assert!(
@@ -174,7 +174,7 @@ fn steady_captures_are_accepted_pose_by_pose_and_then_the_fit_starts() {
             .act(CalibrationAction::Retry, run.now)
             .is_empty()
     );
-    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(*run.session.phase(), PosePhase::Complete);
     assert_eq!(
         run.session.act(CalibrationAction::Quit, run.now),
         vec![Effect::Quit { completed: true }]
@@ -208,7 +208,7 @@ fn fitted_with_misfits(policy: Policy) -> Run {
 #[test]
 fn after_the_fit_the_worst_pose_is_offered_and_captured_again_alone_then_refitted() {
     let mut run = fitted_with_misfits(Policy::Operator);
-    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(*run.session.phase(), PosePhase::Complete);
     assert_eq!(run.session.redo_offer(), Some(2));
     let said: Vec<&str> = run.session.messages().collect();
     assert!(said.iter().any(|m| m.starts_with("pinch_ring: the thumb")));
@@ -225,7 +225,7 @@ fn after_the_fit_the_worst_pose_is_offered_and_captured_again_alone_then_refitte
     assert!(run.effects.contains(&Effect::Command(2)));
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling {
+        PosePhase::Settling {
             pose: 2,
             attempt: 2,
             ..
@@ -233,7 +233,7 @@ fn after_the_fit_the_worst_pose_is_offered_and_captured_again_alone_then_refitte
     ));
     run.hold_pose(0.002);
     // Accepted: straight to the fit, no other pose captured again.
-    assert_eq!(*run.session.phase(), Phase::Fitting);
+    assert_eq!(*run.session.phase(), PosePhase::Fitting);
     assert!(matches!(run.effects.last(), Some(Effect::Fit { .. })));
     let captures: Vec<usize> = run.session.attempts().iter().map(Vec::len).collect();
     assert_eq!(captures, [1, 1, 2, 1, 1, 1, 1]);
@@ -246,7 +246,7 @@ fn after_the_fit_the_worst_pose_is_offered_and_captured_again_alone_then_refitte
     // The second fit matches every pose: nothing more is offered.
     run.session.fit_finished(Ok(fitted(Vec::new())));
     assert_eq!(run.session.redo_offer(), None);
-    assert_eq!(*run.session.phase(), Phase::Complete);
+    assert_eq!(*run.session.phase(), PosePhase::Complete);
 }
 
 #[test]
@@ -280,7 +280,7 @@ fn a_bad_capture_waits_for_retry_and_is_kept_beside_the_accepted_one() {
     run.hold_pose(0.008);
     assert_eq!(
         *run.session.phase(),
-        Phase::Review {
+        PosePhase::Review {
             pose: 2,
             attempt: 1
         }
@@ -291,7 +291,7 @@ fn a_bad_capture_waits_for_retry_and_is_kept_beside_the_accepted_one() {
     );
     // Accepting a bad capture is refused; the session stays in review.
     run.act(CalibrationAction::Accept);
-    assert!(matches!(run.session.phase(), Phase::Review { .. }));
+    assert!(matches!(run.session.phase(), PosePhase::Review { .. }));
     assert!(
         run.session
             .messages()
@@ -301,7 +301,7 @@ fn a_bad_capture_waits_for_retry_and_is_kept_beside_the_accepted_one() {
     run.act(CalibrationAction::Retry);
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling {
+        PosePhase::Settling {
             pose: 2,
             attempt: 2,
             ..
@@ -316,7 +316,7 @@ fn a_bad_capture_waits_for_retry_and_is_kept_beside_the_accepted_one() {
     run.hold_pose(0.002);
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling { pose: 3, .. }
+        PosePhase::Settling { pose: 3, .. }
     ));
     let ring = &run.session.attempts()[2];
     assert_eq!(ring.len(), 2);
@@ -359,7 +359,7 @@ fn without_an_operator_bad_captures_are_retried_until_the_limit() {
     run.hold_pose(0.008);
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling {
+        PosePhase::Settling {
             pose: 0,
             attempt: 2,
             ..
@@ -367,7 +367,7 @@ fn without_an_operator_bad_captures_are_retried_until_the_limit() {
     ));
     run.hold_pose(0.008);
     assert!(
-        matches!(run.session.phase(), Phase::Failed(r) if r.contains("pinch_index") && r.contains("2 bad captures"))
+        matches!(run.session.phase(), PosePhase::Failed(r) if r.contains("pinch_index") && r.contains("2 bad captures"))
     );
     assert_eq!(run.effects.last(), Some(&Effect::Quit { completed: false }));
     assert_eq!(run.events("abort").len(), 1);
@@ -378,27 +378,27 @@ fn without_an_operator_bad_captures_are_retried_until_the_limit() {
     for _ in 0..7 {
         run.hold_pose(0.002);
     }
-    assert_eq!(*run.session.phase(), Phase::Fitting);
+    assert_eq!(*run.session.phase(), PosePhase::Fitting);
     assert_eq!(run.session.attempts()[0].len(), 2);
     let e = run.session.fit_finished(Err("no convergence".into()));
     assert_eq!(e, vec![Effect::Quit { completed: false }]);
-    assert!(matches!(run.session.phase(), Phase::Failed(_)));
+    assert!(matches!(run.session.phase(), PosePhase::Failed(_)));
 }
 
 #[test]
 fn a_poor_capture_is_the_operators_call_and_actions_out_of_place_are_refused() {
     let mut run = start(Policy::Operator);
     // Half the frames of the glove's rate: the capture is poor.
-    let Phase::Settling { .. } = *run.session.phase() else {
+    let PosePhase::Settling { .. } = *run.session.phase() else {
         panic!()
     };
     let held = frames(0, 0.002);
     let mut i = 0;
     while matches!(
         run.session.phase(),
-        Phase::Settling { pose: 0, .. } | Phase::Capturing { pose: 0, .. }
+        PosePhase::Settling { pose: 0, .. } | PosePhase::Capturing { pose: 0, .. }
     ) {
-        let capturing = matches!(run.session.phase(), Phase::Capturing { .. });
+        let capturing = matches!(run.session.phase(), PosePhase::Capturing { .. });
         run.now += if capturing { 20 * MS } else { 10 * MS };
         let e = run.session.frame(held[i % held.len()].clone(), run.now);
         run.effects.extend(e);
@@ -406,7 +406,7 @@ fn a_poor_capture_is_the_operators_call_and_actions_out_of_place_are_refused() {
     }
     assert_eq!(
         *run.session.phase(),
-        Phase::Review {
+        PosePhase::Review {
             pose: 0,
             attempt: 1
         }
@@ -418,7 +418,7 @@ fn a_poor_capture_is_the_operators_call_and_actions_out_of_place_are_refused() {
     run.act(CalibrationAction::Accept);
     assert!(matches!(
         run.session.phase(),
-        Phase::Settling { pose: 1, .. }
+        PosePhase::Settling { pose: 1, .. }
     ));
     assert!(run.session.attempts()[0][0].accepted);
     assert_eq!(run.events(DECISION_EVENT)[0]["by"], "operator");

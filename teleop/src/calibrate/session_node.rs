@@ -30,7 +30,7 @@ use crate::calibrate::calibration_console::{ConsoleFront, FrontAction};
 use crate::calibrate::calibration_view::CalState;
 use crate::calibrate::fit_session::{FitOptions, FitOutcome, fit_done, fit_session_with};
 use crate::calibrate::pose_session::{
-    CalibrationAction, Effect, Phase, PoseSession, PoseStep, SessionTiming,
+    CalibrationAction, Effect, PosePhase, PoseSession, PoseStep, SessionTiming,
 };
 use crate::calibrate::session_events::{POSE_NOT_SENT_EVENT, SESSION_METADATA};
 use crate::clock::StationClock;
@@ -655,7 +655,7 @@ impl SessionRun<'_> {
             return Ok(Some(Next::Quit));
         }
         let log = self.log.path.clone().unwrap_or_default();
-        if let (false, Phase::Failed(reason)) = (
+        if let (false, PosePhase::Failed(reason)) = (
             self.fit.cancel.load(Ordering::Relaxed),
             self.session.phase(),
         ) {
@@ -673,7 +673,7 @@ impl SessionRun<'_> {
         let options = self.options;
         let config = &options.station;
         let topic = &config.input.keypoints_topic;
-        if *self.session.phase() == Phase::WaitingGlove
+        if *self.session.phase() == PosePhase::WaitingGlove
             && self.started.elapsed() > options.glove_wait
         {
             if let Some(w) = self.log.writer.take() {
@@ -782,7 +782,7 @@ impl SessionRun<'_> {
 
     /// A simulated user is told each new pose and attempt.
     fn cue_pose(&mut self) {
-        if let Phase::Settling { pose, attempt, .. } = *self.session.phase() {
+        if let PosePhase::Settling { pose, attempt, .. } = *self.session.phase() {
             let now_cue = PoseCue { pose, attempt };
             if self.cued != Some(now_cue) {
                 self.cued = Some(now_cue);
@@ -856,7 +856,7 @@ impl SessionRun<'_> {
                     fit,
                 })
             }
-            (_, _, Phase::Failed(reason)) => Err(CalibrateError::Failed {
+            (_, _, PosePhase::Failed(reason)) => Err(CalibrateError::Failed {
                 reason: reason.clone(),
                 log: path,
             }),

@@ -16,7 +16,7 @@ use super::session_error::SessionError;
 use super::session_report::review_lines;
 use super::session_state::Session;
 use super::test_pause::test_pause;
-use super::trial_flow::{Effect, Phase};
+use super::trial_flow::{Effect, TrialPhase};
 use super::view::Screen;
 use crate::clock::StationClock;
 use crate::disk_wait::without_holding_the_runtime;
@@ -72,7 +72,7 @@ impl TurnLoop for TrialConsole {
             Some(event) = self.station.events_rx.recv() => self.station_event(event, turn),
             Some(progress) = next_progress(&mut self.station.physics) => {
                 // Marks count only in a running trial; between trials the physics is ignored.
-                if matches!(self.session.flow.phase(), Phase::Running { .. }) {
+                if matches!(self.session.flow.phase(), TrialPhase::Running { .. }) {
                     turn.actions.push(progress_action(&progress));
                 }
             }
@@ -250,7 +250,7 @@ impl TrialConsole {
     /// Without a keyboard to say q, a finished plan (and script) ends the console.
     fn done_unattended(&self) -> bool {
         let operator = &self.operator;
-        *self.session.flow.phase() == Phase::Complete
+        *self.session.flow.phase() == TrialPhase::Complete
             && !operator.full_screen
             && (!operator.scripted || operator.player.as_ref().is_some_and(ScriptPlayer::finished))
     }

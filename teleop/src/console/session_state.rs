@@ -13,7 +13,7 @@ use super::message_log::MessageLog;
 use super::session_error::error_chain;
 use super::session_report::write_session_report;
 use super::test_pause::test_pause;
-use super::trial_flow::{Phase, Slot, TrialFlow};
+use super::trial_flow::{Slot, TrialFlow, TrialPhase};
 use super::view::SessionInfo;
 use crate::disk_wait::without_holding_the_runtime;
 use crate::score::score_inputs::ScoringInputs;
@@ -79,7 +79,7 @@ impl Session {
 
     /// Writes the session's report once the plan is complete (again after a trial redone).
     pub(super) fn write_report_once_complete(&mut self) {
-        if *self.flow.phase() != Phase::Complete {
+        if *self.flow.phase() != TrialPhase::Complete {
             // A trial redone after the plan was complete: the report is written again.
             self.report_written = false;
         } else if !self.report_written {

@@ -50,7 +50,7 @@ pub enum AfterLog {
 
 /// Where the session is.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Phase {
+pub enum TrialPhase {
     /// Between trials.
     Idle,
     /// Counting down to a trial's start.
@@ -128,7 +128,7 @@ pub struct TrialFlow {
     kind: CorrectnessKind,
     countdown_ns: i64,
     limits: StartLimits,
-    phase: Phase,
+    phase: TrialPhase,
     quit_armed: bool,
     /// Progress marked in the running trial, in the task's unit (grasp: the last level).
     progress: f64,
@@ -160,9 +160,9 @@ impl TrialFlow {
         limits: StartLimits,
     ) -> TrialFlow {
         let phase = if manifest.next_slot().is_none() {
-            Phase::Complete
+            TrialPhase::Complete
         } else {
-            Phase::Idle
+            TrialPhase::Idle
         };
         TrialFlow {
             manifest,
@@ -182,7 +182,7 @@ impl TrialFlow {
     }
 
     /// Where the session is.
-    pub fn phase(&self) -> &Phase {
+    pub fn phase(&self) -> &TrialPhase {
         &self.phase
     }
 
@@ -244,7 +244,7 @@ impl TrialFlow {
         if !matches!(action, Action::Quit) {
             self.quit_armed = false;
         }
-        let running = matches!(self.phase, Phase::Running { .. });
+        let running = matches!(self.phase, TrialPhase::Running { .. });
         match action {
             Action::ToggleEngage if health.engaged() || self.engage_pending.is_some() => {
                 self.disengage()
@@ -271,12 +271,12 @@ impl TrialFlow {
                 self.refuse("start cancelled")
             }
             Action::Abort => match self.phase {
-                Phase::Countdown { .. } => {
-                    self.phase = Phase::Idle;
+                TrialPhase::Countdown { .. } => {
+                    self.phase = TrialPhase::Idle;
                     self.say("countdown cancelled");
                     vec![]
                 }
-                Phase::Running { .. } => self.stop(now_ns, AfterLog::Score, Some("operator")),
+                TrialPhase::Running { .. } => self.stop(now_ns, AfterLog::Score, Some("operator")),
                 _ => self.refuse("no trial is running"),
             },
             Action::Redo => self.redo(now_ns),
@@ -292,7 +292,7 @@ impl TrialFlow {
             }
             Action::PromptProgress | Action::PromptNote => vec![],
             Action::Quit => match self.phase {
-                Phase::Running { .. } if !self.quit_armed => {
+                TrialPhase::Running { .. } if !self.quit_armed => {
                     self.quit_armed = true;
                     self.refuse("a trial is running: press q again to abort it and quit (it is redone when the session resumes)")
                 }
@@ -352,12 +352,12 @@ impl TrialFlow {
 
     fn start(&mut self, health: &Health, now_ns: i64) -> Vec<Effect> {
         match self.phase {
-            Phase::Idle => {}
-            Phase::Complete => return self.refuse("the session is complete: press q to quit"),
+            TrialPhase::Idle => {}
+            TrialPhase::Complete => return self.refuse("the session is complete: press q to quit"),
             _ => return self.refuse("a trial is already under way"),
         }
         let Some((practice, index)) = self.manifest.next_slot() else {
-            self.phase = Phase::Complete;
+            self.phase = TrialPhase::Complete;
             return vec![];
         };
         if let Some(why) = health.refuse_start(&self.limits, now_ns) {
@@ -378,7 +378,7 @@ impl TrialFlow {
         if health.hand_listeners == Some(0) {
             self.say("warning: no robot hand is listening to the joint targets (the trial is logged all the same)");
         }
-        self.phase = Phase::Countdown {
+        self.phase = TrialPhase::Countdown {
             slot: Slot { practice, index },
             ends_ns: now_ns + self.countdown_ns,
         };
@@ -388,7 +388,7 @@ impl TrialFlow {
     /// Advances time: the countdown ends into a running trial.
     pub fn tick(&mut self, health: &Health, now_ns: i64) -> Vec<Effect> {
         let mut effects = self.pending_engage(health, now_ns);
-        if let (Some(asked), Phase::Idle) = (self.start_pending, &self.phase) {
+        if let (Some(asked), TrialPhase::Idle) = (self.start_pending, &self.phase) {
             match health.refuse_start(&self.limits, now_ns) {
                 None => effects.extend(self.start(health, now_ns)),
                 Some(why) if now_ns - asked > START_WAIT_NS => {
@@ -398,19 +398,19 @@ impl TrialFlow {
                 Some(_) => {}
             }
         }
-        let Phase::Countdown { slot, ends_ns } = self.phase else {
+        let TrialPhase::Countdown { slot, ends_ns } = self.phase else {
             return effects;
         };
         if now_ns < ends_ns {
             return effects;
         }
         if let Some(why) = health.refuse_start(&self.limits, now_ns) {
-            self.phase = Phase::Idle;
+            self.phase = TrialPhase::Idle;
             effects.extend(self.refuse(&format!("countdown cancelled: {why}")));
             return effects;
         }
         let file = self.file_name(slot);
-        self.phase = Phase::Running {
+        self.phase = TrialPhase::Running {
             slot,
             file: file.clone(),
             started_ns: now_ns,
@@ -423,14 +423,14 @@ impl TrialFlow {
 
     /// The station could not create the trial's log.
     pub fn trial_start_failed(&mut self, error: &str) -> Vec<Effect> {
-        if matches!(self.phase, Phase::Running { .. }) {
-            self.phase = Phase::Idle;
+        if matches!(self.phase, TrialPhase::Running { .. }) {
+            self.phase = TrialPhase::Idle;
         }
         self.refuse(&format!("the trial log could not be created: {error}"))
     }
 
     fn stop(&mut self, now_ns: i64, after: AfterLog, abort: Option<&str>) -> Vec<Effect> {
-        let Phase::Running {
+        let TrialPhase::Running {
             slot,
             file,
             started_ns,
@@ -438,7 +438,7 @@ impl TrialFlow {
         else {
             return vec![];
         };
-        self.phase = Phase::Finishing {
+        self.phase = TrialPhase::Finishing {
             slot,
             file,
             time_s: (now_ns - started_ns) as f64 * 1e-9,
@@ -456,8 +456,8 @@ impl TrialFlow {
 
     fn redo(&mut self, now_ns: i64) -> Vec<Effect> {
         match self.phase {
-            Phase::Running { .. } => self.stop(now_ns, AfterLog::Redo, Some("redo")),
-            Phase::Idle | Phase::Complete => {
+            TrialPhase::Running { .. } => self.stop(now_ns, AfterLog::Redo, Some("redo")),
+            TrialPhase::Idle | TrialPhase::Complete => {
                 let Some(i) = self.last else {
                     return self.refuse("no trial to redo yet");
                 };
@@ -469,7 +469,7 @@ impl TrialFlow {
                 let to = format!("{from}.redone");
                 trial.file = to.clone();
                 trial.status = TrialStatus::Redone;
-                self.phase = Phase::Idle;
+                self.phase = TrialPhase::Idle;
                 self.say(format!("{from} set aside as {to}: it runs again"));
                 vec![Effect::SetAside { from, to }, Effect::SaveManifest]
             }
@@ -479,8 +479,10 @@ impl TrialFlow {
 
     fn interrupt(&mut self, now_ns: i64, reason: &str) -> Vec<Effect> {
         match self.phase {
-            Phase::Running { .. } => self.stop(now_ns, AfterLog::InterruptedQuit, Some(reason)),
-            Phase::Finishing { ref mut after, .. } => {
+            TrialPhase::Running { .. } => {
+                self.stop(now_ns, AfterLog::InterruptedQuit, Some(reason))
+            }
+            TrialPhase::Finishing { ref mut after, .. } => {
                 // Quit once the log is finished.
                 if *after == AfterLog::Score {
                     *after = AfterLog::InterruptedQuit;
@@ -488,14 +490,14 @@ impl TrialFlow {
                 vec![]
             }
             _ => {
-                self.phase = Phase::Quitting;
+                self.phase = TrialPhase::Quitting;
                 vec![Effect::Quit]
             }
         }
     }
 
     fn progress(&mut self, value: Option<f64>) -> Vec<Effect> {
-        if !matches!(self.phase, Phase::Running { .. }) {
+        if !matches!(self.phase, TrialPhase::Running { .. }) {
             return self.refuse("no trial is running: progress not marked");
         }
         let counted = matches!(
@@ -541,7 +543,7 @@ impl TrialFlow {
     }
 
     fn unmark(&mut self) -> Vec<Effect> {
-        if !matches!(self.phase, Phase::Running { .. }) {
+        if !matches!(self.phase, TrialPhase::Running { .. }) {
             return self.refuse("no trial is running");
         }
         if !matches!(
@@ -562,7 +564,7 @@ impl TrialFlow {
 
     /// The trial's log is finished (`Ok`: read back and scored; `Err`: why it cannot be).
     pub fn trial_logged(&mut self, result: Result<TrialScore, String>) -> Vec<Effect> {
-        let Phase::Finishing {
+        let TrialPhase::Finishing {
             slot,
             file,
             time_s,
@@ -595,11 +597,11 @@ impl TrialFlow {
         effects.push(Effect::SaveManifest);
         self.phase = if after == AfterLog::InterruptedQuit {
             effects.push(Effect::Quit);
-            Phase::Quitting
+            TrialPhase::Quitting
         } else if self.manifest.next_slot().is_none() {
-            Phase::Complete
+            TrialPhase::Complete
         } else {
-            Phase::Idle
+            TrialPhase::Idle
         };
         effects
     }

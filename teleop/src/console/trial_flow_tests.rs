@@ -77,18 +77,18 @@ fn practice_then_recorded_trials_with_marks_in_their_logs() {
         ]
     );
     assert!(
-        matches!(flow.phase(), Phase::Finishing { time_s, .. } if (*time_s - 3.0).abs() < 1e-9)
+        matches!(flow.phase(), TrialPhase::Finishing { time_s, .. } if (*time_s - 3.0).abs() < 1e-9)
     );
     assert_eq!(
         flow.trial_logged(Ok(score(1.0, 1.0 / 6.0))),
         vec![Effect::SaveManifest]
     );
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     for _ in 0..2 {
         run_trial(&mut flow, &mut t, &[Action::Progress(None)]);
         flow.trial_logged(Ok(score(1.0, 0.5)));
     }
-    assert_eq!(flow.phase(), &Phase::Complete);
+    assert_eq!(flow.phase(), &TrialPhase::Complete);
     let files: Vec<&str> = flow
         .manifest
         .trials
@@ -107,17 +107,17 @@ fn a_start_is_refused_while_input_is_stale_and_the_countdown_rechecks() {
         0,
     );
     assert!(flow.act(Action::Start, &stale, 0).is_empty());
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     assert!(flow.messages().last().is_some_and(|m| m.contains("stale")));
     flow.act(Action::Start, &healthy(0), 0);
-    assert!(matches!(flow.phase(), Phase::Countdown { .. }));
+    assert!(matches!(flow.phase(), TrialPhase::Countdown { .. }));
     assert!(flow.tick(&healthy(S), S).is_empty());
     let late = Health::from_status(
         &json!({"state": "engaged", "input_rate_hz": 5.0, "input_age_ms": 1.0}),
         3 * S,
     );
     assert!(flow.tick(&late, 3 * S).is_empty());
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
 }
 
 #[test]
@@ -179,7 +179,7 @@ fn redo_sets_the_trial_aside_and_runs_its_slot_again() {
     assert_eq!(flow.manifest.next_slot(), Some((false, 1)));
     run_trial(&mut flow, &mut t, &[]);
     assert_eq!(flow.manifest.trials.len(), 2);
-    assert!(matches!(flow.phase(), Phase::Finishing { file, .. } if file == "V1-t01-a3.mcap"));
+    assert!(matches!(flow.phase(), TrialPhase::Finishing { file, .. } if file == "V1-t01-a3.mcap"));
 }
 
 #[test]
@@ -218,7 +218,7 @@ fn an_unscorable_log_is_kept_and_its_slot_runs_again() {
     run_trial(&mut flow, &mut t, &[]);
     flow.trial_logged(Err("missing stop event".into()));
     assert_eq!(flow.manifest.trials[0].status, TrialStatus::Unscorable);
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     assert_eq!(flow.manifest.next_slot(), Some((false, 1)));
 }
 
@@ -259,7 +259,7 @@ fn a_start_while_the_glove_rate_settles_waits_for_it() {
         0,
     );
     assert!(flow.act(Action::Start, &settling, 0).is_empty());
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     assert!(
         flow.messages()
             .last()
@@ -267,7 +267,7 @@ fn a_start_while_the_glove_rate_settles_waits_for_it() {
     );
     assert!(flow.tick(&settling, S).is_empty());
     flow.tick(&healthy(2 * S), 2 * S);
-    assert!(matches!(flow.phase(), Phase::Countdown { ends_ns, .. } if *ends_ns == 3 * S));
+    assert!(matches!(flow.phase(), TrialPhase::Countdown { ends_ns, .. } if *ends_ns == 3 * S));
     // One that never settles is given up, with the reason.
     let mut flow = TrialFlow::new(manifest(0, 1), notches(), 1.0, StartLimits::default());
     flow.act(Action::Start, &settling, 0);
@@ -276,7 +276,7 @@ fn a_start_while_the_glove_rate_settles_waits_for_it() {
         11 * S,
     );
     flow.tick(&late, 11 * S);
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     assert!(
         flow.messages()
             .last()
@@ -286,7 +286,7 @@ fn a_start_while_the_glove_rate_settles_waits_for_it() {
     flow.act(Action::Start, &settling, 12 * S);
     flow.act(Action::Abort, &settling, 12 * S);
     flow.tick(&healthy(13 * S), 13 * S);
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
 }
 
 #[test]
@@ -310,9 +310,9 @@ fn a_human_study_starts_on_glove_health_alone_and_never_engages() {
     );
     // A settling glove rate is waited for, as for a robot.
     assert!(flow.act(Action::Start, &glove(9.0, 0), 0).is_empty());
-    assert_eq!(flow.phase(), &Phase::Idle);
+    assert_eq!(flow.phase(), &TrialPhase::Idle);
     flow.tick(&glove(100.0, S), S);
-    assert!(matches!(flow.phase(), Phase::Countdown { .. }));
+    assert!(matches!(flow.phase(), TrialPhase::Countdown { .. }));
     let effects = flow.tick(&glove(100.0, 2 * S), 2 * S);
     assert!(
         effects

@@ -7,7 +7,7 @@ use station::hand_convention::Verification;
 
 use super::health::{Faults, Health, StartLimits};
 use super::manifest::{Manifest, ManifestTrial};
-use super::trial_flow::{Phase, Slot, TrialFlow};
+use super::trial_flow::{Slot, TrialFlow, TrialPhase};
 
 /// The console's main states.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,16 +74,18 @@ impl Screen {
     /// The state the session and the health make.
     pub fn of(flow: &TrialFlow, health: &Health) -> Screen {
         match flow.phase() {
-            Phase::Countdown { .. } => Screen::Countdown,
-            Phase::Running { .. } => Screen::Running,
-            Phase::Finishing { .. } | Phase::Quitting => Screen::Finishing,
-            Phase::Complete => Screen::Complete,
-            Phase::Idle if flow.last_trial().is_some() => Screen::Summary,
-            Phase::Idle if health.engaged() => Screen::Ready,
-            Phase::Idle if !flow.limits().drives_robot && health.glove_ready(flow.limits()) => {
+            TrialPhase::Countdown { .. } => Screen::Countdown,
+            TrialPhase::Running { .. } => Screen::Running,
+            TrialPhase::Finishing { .. } | TrialPhase::Quitting => Screen::Finishing,
+            TrialPhase::Complete => Screen::Complete,
+            TrialPhase::Idle if flow.last_trial().is_some() => Screen::Summary,
+            TrialPhase::Idle if health.engaged() => Screen::Ready,
+            TrialPhase::Idle
+                if !flow.limits().drives_robot && health.glove_ready(flow.limits()) =>
+            {
                 Screen::Ready
             }
-            Phase::Idle => Screen::WaitingEngage,
+            TrialPhase::Idle => Screen::WaitingEngage,
         }
     }
 }
@@ -235,7 +237,7 @@ fn phase_banner(
     let manifest = &flow.manifest;
     let mut detail = Vec::new();
     let banner = match flow.phase() {
-        Phase::Countdown { slot, ends_ns } => {
+        TrialPhase::Countdown { slot, ends_ns } => {
             detail.push(format!(
                 "{} starts in a moment: a aborts the countdown",
                 slot.label(manifest)
@@ -246,7 +248,7 @@ fn phase_banner(
                 ((ends_ns - now_ns) as f64 * 1e-9).max(0.0).ceil()
             )
         }
-        Phase::Running {
+        TrialPhase::Running {
             slot,
             started_ns,
             file,
@@ -271,7 +273,7 @@ fn phase_banner(
                 clock((now_ns - started_ns) as f64 * 1e-9)
             )
         }
-        Phase::Finishing { slot, time_s, .. } => {
+        TrialPhase::Finishing { slot, time_s, .. } => {
             detail.push(format!(
                 "{} stopped at {}: finishing and scoring its log",
                 slot.label(manifest),
@@ -291,7 +293,7 @@ fn phase_banner(
 fn next_step(flow: &TrialFlow, health: &Health) -> Option<String> {
     let manifest = &flow.manifest;
     match (flow.phase(), manifest.next_slot()) {
-        (Phase::Idle, Some((practice, index))) => {
+        (TrialPhase::Idle, Some((practice, index))) => {
             let slot = Slot { practice, index };
             let next = format!("next: {}", slot.label(manifest));
             let human = !flow.limits().drives_robot;
@@ -305,7 +307,7 @@ fn next_step(flow: &TrialFlow, health: &Health) -> Option<String> {
                 },
             )
         }
-        (Phase::Complete, _) => Some(format!(
+        (TrialPhase::Complete, _) => Some(format!(
             "all {} practice and {} recorded trials done · q quits",
             manifest.practice_planned, manifest.trials_planned
         )),

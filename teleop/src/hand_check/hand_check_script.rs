@@ -18,7 +18,7 @@
 use std::path::Path;
 
 use crate::hand_check::HandCheckError;
-use crate::hand_check::session::{Answer, Phase};
+use crate::hand_check::session::{Answer, CheckPhase};
 use crate::tui::script::{
     ScriptError, ScriptLine, ScriptState, WordError, load_script_with, parse_script_with,
     split_word, without_argument,
@@ -26,22 +26,22 @@ use crate::tui::script::{
 use crate::tui::script_player::ScriptPlayer;
 
 /// One line of a hand-check script.
-pub type CheckScriptLine = ScriptLine<Answer, Phase>;
+pub type CheckScriptLine = ScriptLine<Answer, CheckPhase>;
 
 /// A hand-check script being played.
-pub type CheckScriptPlayer = ScriptPlayer<Answer, Phase>;
+pub type CheckScriptPlayer = ScriptPlayer<Answer, CheckPhase>;
 
-impl ScriptState for Phase {
-    fn from_name(name: &str) -> Option<Phase> {
-        Phase::from_name(name)
+impl ScriptState for CheckPhase {
+    fn from_name(name: &str) -> Option<CheckPhase> {
+        CheckPhase::from_name(name)
     }
 
     fn name(self) -> &'static str {
-        Phase::name(self)
+        CheckPhase::name(self)
     }
 
     fn names() -> String {
-        Phase::ALL.map(Phase::name).join(", ")
+        CheckPhase::ALL.map(CheckPhase::name).join(", ")
     }
 }
 
@@ -115,7 +115,7 @@ mod tests {
         assert_eq!(
             s[0].step,
             Step::Wait {
-                state: Phase::Asking,
+                state: CheckPhase::Asking,
                 timeout_s: 30.0
             }
         );

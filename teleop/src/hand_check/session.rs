@@ -82,7 +82,7 @@ impl Motion {
 
 /// Where the check is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Phase {
+pub enum CheckPhase {
     /// Going to, and holding, the neutral pose.
     Settling,
     /// A joint moving its step and back.
@@ -97,37 +97,37 @@ pub enum Phase {
     Quit,
 }
 
-impl Phase {
+impl CheckPhase {
     /// Every phase, for scripts.
-    pub const ALL: [Phase; 6] = [
-        Phase::Settling,
-        Phase::Moving,
-        Phase::Asking,
-        Phase::OfferFlip,
-        Phase::Complete,
-        Phase::Quit,
+    pub const ALL: [CheckPhase; 6] = [
+        CheckPhase::Settling,
+        CheckPhase::Moving,
+        CheckPhase::Asking,
+        CheckPhase::OfferFlip,
+        CheckPhase::Complete,
+        CheckPhase::Quit,
     ];
 
     /// The phase's name in scripts.
     pub fn name(self) -> &'static str {
         match self {
-            Phase::Settling => "settling",
-            Phase::Moving => "moving",
-            Phase::Asking => "asking",
-            Phase::OfferFlip => "offer_flip",
-            Phase::Complete => "complete",
-            Phase::Quit => "quit",
+            CheckPhase::Settling => "settling",
+            CheckPhase::Moving => "moving",
+            CheckPhase::Asking => "asking",
+            CheckPhase::OfferFlip => "offer_flip",
+            CheckPhase::Complete => "complete",
+            CheckPhase::Quit => "quit",
         }
     }
 
     /// The phase of a name.
-    pub fn from_name(name: &str) -> Option<Phase> {
-        Phase::ALL.into_iter().find(|p| p.name() == name)
+    pub fn from_name(name: &str) -> Option<CheckPhase> {
+        CheckPhase::ALL.into_iter().find(|p| p.name() == name)
     }
 
     /// Whether the check has ended.
     pub fn is_over(self) -> bool {
-        matches!(self, Phase::Complete | Phase::Quit)
+        matches!(self, CheckPhase::Complete | CheckPhase::Quit)
     }
 }
 
@@ -173,7 +173,7 @@ pub struct HandCheck {
     /// The pose the settling starts from.
     settle_from: Vec<f64>,
     current: usize,
-    phase: Phase,
+    phase: CheckPhase,
     since_s: f64,
     /// The current joint's step: URDF direction (±1) times its size, radians.
     step: f64,
@@ -214,7 +214,7 @@ impl HandCheck {
             joints,
             neutral,
             current: 0,
-            phase: Phase::Settling,
+            phase: CheckPhase::Settling,
             since_s: now_s,
             step: 0.0,
             lines: Vec::new(),
@@ -229,7 +229,7 @@ impl HandCheck {
     }
 
     /// Where the check is.
-    pub fn phase(&self) -> Phase {
+    pub fn phase(&self) -> CheckPhase {
         self.phase
     }
 
@@ -284,11 +284,11 @@ impl HandCheck {
         let elapsed = now_s - self.since_s;
         match self.phase {
             // At least the ramp's time (after a flip the neutral pose may have moved).
-            Phase::Settling if elapsed >= self.motion.settle_s.max(self.motion.move_s) => {
+            CheckPhase::Settling if elapsed >= self.motion.settle_s.max(self.motion.move_s) => {
                 self.start_move(now_s);
             }
-            Phase::Moving if elapsed >= 2.0 * self.motion.move_s + self.motion.hold_s => {
-                self.phase = Phase::Asking;
+            CheckPhase::Moving if elapsed >= 2.0 * self.motion.move_s + self.motion.hold_s => {
+                self.phase = CheckPhase::Asking;
                 self.since_s = now_s;
                 let joint = self.joints[self.current].joint.clone();
                 self.say(format!(
@@ -314,7 +314,7 @@ impl HandCheck {
         } else {
             -size.min(down)
         };
-        self.phase = Phase::Moving;
+        self.phase = CheckPhase::Moving;
         self.since_s = now_s;
         let line = format!(
             "{}: watch: {} ({:+.2} rad over {:.1} s, then back)",
@@ -330,32 +330,32 @@ impl HandCheck {
     pub fn answer(&mut self, answer: Answer, now_s: f64) {
         match (self.phase, answer) {
             (phase, Answer::Quit) if !phase.is_over() => {
-                self.phase = Phase::Quit;
+                self.phase = CheckPhase::Quit;
                 let open = self.unconfirmed();
                 self.say(format!("quit: not confirmed: {}", open.join(", ")));
             }
-            (Phase::Asking, Answer::Yes) => {
+            (CheckPhase::Asking, Answer::Yes) => {
                 self.joints[self.current].confirmed = true;
                 self.say(format!("{}: confirmed", self.progress()));
                 if let Some(next) = self.joints.iter().position(|j| !j.confirmed) {
                     self.current = next;
                     self.start_move(now_s);
                 } else {
-                    self.phase = Phase::Complete;
+                    self.phase = CheckPhase::Complete;
                     self.say(format!("all {} joints confirmed", self.joints.len()));
                 }
             }
-            (Phase::Asking, Answer::No) => {
-                self.phase = Phase::OfferFlip;
+            (CheckPhase::Asking, Answer::No) => {
+                self.phase = CheckPhase::OfferFlip;
                 let joint = self.joints[self.current].joint.clone();
                 self.say(format!(
                     "{joint} moved the other way: flip (flip its sign and move it again) / keep (move it again as it is) / quit"
                 ));
             }
-            (Phase::Asking | Phase::OfferFlip, Answer::Repeat | Answer::Keep) => {
+            (CheckPhase::Asking | CheckPhase::OfferFlip, Answer::Repeat | Answer::Keep) => {
                 self.start_move(now_s);
             }
-            (Phase::OfferFlip, Answer::Flip) => self.flip(now_s),
+            (CheckPhase::OfferFlip, Answer::Flip) => self.flip(now_s),
             (phase, answer) => self.say(format!(
                 "'{}' does nothing while {}",
                 answer_word(answer),
@@ -382,7 +382,7 @@ impl HandCheck {
                 joint.flipped = !joint.flipped;
                 let line = format!("{}: sign flipped; moving it again", self.progress());
                 self.say(line);
-                self.phase = Phase::Settling;
+                self.phase = CheckPhase::Settling;
                 self.since_s = now_s;
             }
             Err(e) => self.say(format!("cannot flip: {e}")),
@@ -394,7 +394,7 @@ impl HandCheck {
         let t = now_s - self.since_s;
         let ease = |s: f64| (1.0 - (PI * s.clamp(0.0, 1.0)).cos()) / 2.0;
         match self.phase {
-            Phase::Settling => {
+            CheckPhase::Settling => {
                 let s = ease(t / self.motion.move_s);
                 self.settle_from
                     .iter()
@@ -402,7 +402,7 @@ impl HandCheck {
                     .map(|(a, b)| a + s * (b - a))
                     .collect()
             }
-            Phase::Moving => {
+            CheckPhase::Moving => {
                 let m = &self.motion;
                 let s = if t < m.move_s + m.hold_s {
                     ease(t / m.move_s)

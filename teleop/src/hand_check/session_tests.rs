@@ -4,7 +4,7 @@ use retarget::HandModel;
 use station::StationConfig;
 use station::policy_output::PolicyOutput;
 
-use super::session::{Answer, HandCheck, MAX_STEP_RAD, Motion, Phase};
+use super::session::{Answer, CheckPhase, HandCheck, MAX_STEP_RAD, Motion};
 
 const ETH_LAB: &str = include_str!("../../../launch_configs/station/eth_lab.toml");
 const ORCA_CORE: &str = include_str!("../../../launch_configs/station/orca_core.toml");
@@ -25,7 +25,7 @@ const M: Motion = Motion {
 fn until_asking(c: &mut HandCheck, mut t: f64) -> f64 {
     for _ in 0..1000 {
         c.tick(t);
-        if c.phase() == Phase::Asking {
+        if c.phase() == CheckPhase::Asking {
             return t;
         }
         t += 0.04;
@@ -64,9 +64,9 @@ fn the_neutral_pose_is_inside_every_range() {
 #[test]
 fn each_joint_moves_alone_a_small_step_slowly_and_back() {
     let mut c = check(ETH_LAB);
-    assert_eq!(c.phase(), Phase::Settling);
+    assert_eq!(c.phase(), CheckPhase::Settling);
     c.tick(M.settle_s);
-    assert_eq!(c.phase(), Phase::Moving);
+    assert_eq!(c.phase(), CheckPhase::Moving);
     assert_eq!(c.progress(), "joint 1 of 17: wrist");
     let neutral = c.neutral().to_vec();
     let wrist = c.joints()[0].dof;
@@ -104,7 +104,7 @@ fn every_joint_confirmed_gives_a_verified_table() {
         t = until_asking(&mut c, t);
         assert!(c.verified_table("ana", "now").is_err());
         c.answer(Answer::Yes, t);
-        assert_eq!(c.phase() == Phase::Complete, k == 16);
+        assert_eq!(c.phase() == CheckPhase::Complete, k == 16);
     }
     let table = c.verified_table("ana", "2026-11-26T10:00:00Z").unwrap();
     assert!(table.joints.iter().all(|r| r.verified));
@@ -124,22 +124,22 @@ fn no_then_flip_flips_the_sign_and_the_joint_must_be_confirmed_again() {
     let t = until_asking(&mut c, t); // thumb_mcp
     let before = c.command(t)[1];
     c.answer(Answer::No, t);
-    assert_eq!(c.phase(), Phase::OfferFlip);
+    assert_eq!(c.phase(), CheckPhase::OfferFlip);
     c.answer(Answer::Yes, t);
-    assert_eq!(c.phase(), Phase::OfferFlip, "yes does not flip");
+    assert_eq!(c.phase(), CheckPhase::OfferFlip, "yes does not flip");
     c.answer(Answer::Flip, t);
-    assert_eq!(c.phase(), Phase::Settling);
+    assert_eq!(c.phase(), CheckPhase::Settling);
     assert!(c.joints()[1].flipped && !c.joints()[1].confirmed);
     let t = until_asking(&mut c, t);
     // thumb_mcp at neutral 0: the same value is sent; its step now goes the other way.
     assert_eq!(c.command(t)[1], before);
     c.answer(Answer::Repeat, t);
-    assert_eq!(c.phase(), Phase::Moving);
+    assert_eq!(c.phase(), CheckPhase::Moving);
     let t = until_asking(&mut c, t);
     c.answer(Answer::Yes, t);
     assert_eq!(c.progress(), "joint 3 of 17: thumb_abd");
     c.answer(Answer::Quit, t);
-    assert_eq!(c.phase(), Phase::Quit);
+    assert_eq!(c.phase(), CheckPhase::Quit);
     let e = c.verified_table("ana", "now").unwrap_err().to_string();
     assert!(
         e.starts_with("no table written: not confirmed: thumb_abd, thumb_pip, "),
@@ -158,7 +158,7 @@ fn a_flipped_joint_is_written_with_its_new_sign_and_a_note() {
         t = until_asking(&mut c, t);
         c.answer(Answer::Yes, t);
     }
-    assert_eq!(c.phase(), Phase::Complete);
+    assert_eq!(c.phase(), CheckPhase::Complete);
     let table = c.verified_table("ana", "T").unwrap();
     assert_eq!(table.joints[0].joint, "thumb_mcp");
     assert_eq!(table.joints[0].sign, -1);

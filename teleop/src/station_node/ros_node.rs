@@ -25,8 +25,8 @@ use serde::Serialize;
 use serde_json::json;
 use station::convert::KeypointMessage;
 use station::{
-    ControlInput, Counters, InputGap, KeypointFormat, KeypointFrame, Station, StationConfig,
-    StationInput, StationOutputs, Totals, Verdict,
+    ControlInput, Counters, GateDecision, InputGap, KeypointFormat, KeypointFrame, Station,
+    StationConfig, StationInput, StationOutputs, Totals,
 };
 use tokio::sync::{mpsc, watch};
 
@@ -509,7 +509,8 @@ impl StationNode {
     async fn step_and_send(&mut self, input: StationInput, now: i64, endpoints: &Endpoints) {
         let started = Instant::now();
         let outputs = self.station.step(input, now);
-        if let (Some(Verdict::New), Some(latest)) = (outputs.verdict, &self.hooks.latest_input) {
+        if let (Some(GateDecision::New), Some(latest)) = (outputs.verdict, &self.hooks.latest_input)
+        {
             latest.record(now);
         }
         if outputs.fresh_frame_received_ns.is_some() {
