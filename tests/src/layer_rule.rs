@@ -1,5 +1,5 @@
-//! The layers inside a crate, as its ARCHITECTURE.md table ranks them, held against its
-//! imports: a module may name modules of its own layer or of the layers below it, never one
+//! The layers inside a crate, as the table in its root's doc comment ranks them, held against
+//! its imports: a module may name modules of its own layer or of the layers below it, never one
 //! above. The table is the one readers see (`| layer | module | what |`, a module named in
 //! backticks with a trailing `/` or `.rs`), so the document and the check cannot drift apart: a
 //! top-level module the table does not name is reported too. The imports are the module graph's
@@ -15,6 +15,16 @@ pub const LAYERS: [&str; 4] = ["infrastructure", "nodes and logs", "sessions", "
 
 /// The header row that starts the layer table.
 pub const TABLE_HEADER: &str = "| layer | module | what |";
+
+/// The inner doc comment (`//!` lines) of a Rust source file, as the Markdown it is.
+pub fn inner_doc(source: &str) -> String {
+    source
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("//!"))
+        .map(|l| l.strip_prefix(' ').unwrap_or(l))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
 
 /// Each module the layer table of `markdown` names, with its layer's rank in [`LAYERS`].
 /// An unknown layer name is an error naming the row.
