@@ -84,11 +84,7 @@ pub fn eval_commands(
         outputs.push(output);
     }
     if json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
+        print_json(&outputs)?;
     }
     Ok(())
 }
@@ -113,12 +109,18 @@ pub fn eval_profile_scales(
         outputs.push(serde_json::json!({ "input": input, "profile_scales": rows }));
     }
     if json {
-        let json = match &outputs[..] {
-            [one] => serde_json::to_string_pretty(one)?,
-            all => serde_json::to_string_pretty(all)?,
-        };
-        println!("{json}");
+        print_json(&outputs)?;
     }
+    Ok(())
+}
+
+/// One recording's output as itself, several as a list: what `--json` prints.
+fn print_json<T: serde::Serialize>(outputs: &[T]) -> Result<(), serde_json::Error> {
+    let json = match outputs {
+        [one] => serde_json::to_string_pretty(one)?,
+        all => serde_json::to_string_pretty(all)?,
+    };
+    println!("{json}");
     Ok(())
 }
 

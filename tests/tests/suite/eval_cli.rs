@@ -17,6 +17,18 @@ fn eval_json(input: &Path) -> Value {
     serde_json::from_slice(&output.stdout).unwrap()
 }
 
+/// A summary row's sustained pinch figures, printed for the test's log.
+fn print_pinch_row(row: &Value) {
+    let live = &row["live"];
+    println!(
+        "{}: index {} %, all {} % of {} sustained pinch frames",
+        row["recording"],
+        live["index_pinches_closed_pct"],
+        live["sustained_pinches_closed_pct"],
+        live["sustained_pinch_frames"]
+    );
+}
+
 fn number(json: &Value, key: &str) -> f64 {
     json[key]
         .as_f64()
@@ -523,13 +535,7 @@ fn held_out_users_with_their_own_proportions_close_their_pinches() {
     assert_eq!(rows.len(), 8, "{json}");
     for row in rows {
         let live = &row["live"];
-        println!(
-            "{}: index {} %, all {} % of {} sustained pinch frames",
-            row["recording"],
-            live["index_pinches_closed_pct"],
-            live["sustained_pinches_closed_pct"],
-            live["sustained_pinch_frames"]
-        );
+        print_pinch_row(row);
         assert!(number(live, "sustained_pinch_frames") > 50.0, "{row}");
         assert!(number(live, "index_pinches_closed_pct") >= 95.0, "{row}");
         assert!(
@@ -574,13 +580,7 @@ fn every_shared_recording_and_its_copies_close_their_pinches() {
     let mut with_index_pinches = 0;
     for row in rows {
         let live = &row["live"];
-        println!(
-            "{}: index {} %, all {} % of {} sustained pinch frames",
-            row["recording"],
-            live["index_pinches_closed_pct"],
-            live["sustained_pinches_closed_pct"],
-            live["sustained_pinch_frames"]
-        );
+        print_pinch_row(row);
         if let Some(index) = live["index_pinches_closed_pct"].as_f64() {
             assert!(index >= 95.0, "{row}");
             with_index_pinches += 1;
