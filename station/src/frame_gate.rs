@@ -40,7 +40,7 @@ pub struct GateConfig {
     pub max_jump_m: f64,
     /// The interval `max_jump_m` is allowed in, milliseconds of the senders' clock (about one
     /// glove frame); a frame further from the last accepted one is allowed proportionally
-    /// more, up to [`MAX_JUMP_INTERVALS`] intervals.
+    /// more, up to `MAX_JUMP_INTERVALS` intervals.
     pub jump_interval_ms: u64,
     /// A frame whose source stamp is at most this much older than the newest accepted frame's
     /// is late (rejected, `out_of_order`); older still means the sender's clock jumped back
@@ -170,7 +170,7 @@ pub enum GateDecision {
     /// The same keypoints as the last accepted frame.
     Repeat,
     /// A new frame in which one point leapt alone (a tracker's outlier): passed on with that
-    /// point put back where its digit predicts it ([`FrameGate::last_accepted`]).
+    /// point put back where its digit predicts it (the gate's last accepted frame).
     Repaired,
     /// Not plausible.
     Rejected(Rejection),
@@ -210,6 +210,7 @@ impl FrameGate {
     }
 
     /// Forget the last accepted frame (after a glove restart the first frame is not a jump).
+    #[cfg(test)]
     pub fn reset(&mut self) {
         self.last = None;
         self.before_last = None;
@@ -218,6 +219,7 @@ impl FrameGate {
 
     /// Judge `points` as one interval after the last accepted frame; a `New` frame becomes
     /// the reference for the next one.
+    #[cfg(test)]
     pub fn judge(&mut self, points: &[Point3<f64>]) -> GateDecision {
         self.judge_after(points, None)
     }

@@ -95,7 +95,7 @@ pub struct Counters {
     /// what the receive clock explains); they were accepted.
     pub source_clock_jumps: u64,
     /// New frames timed by their receive times because the sender's stamps had stopped
-    /// advancing ([`FROZEN_CLOCK_AFTER`]).
+    /// advancing (`FROZEN_CLOCK_AFTER`).
     pub frames_timed_by_receipt: u64,
     /// New frames replaced by a newer one before they were retargeted (above the command-rate
     /// ceiling, or between two ticks with `mode = "rate"`).

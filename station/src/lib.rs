@@ -22,7 +22,7 @@
 //!
 //! ## Ticks
 //!
-//! The timer (`control.rate_hz`, 25 Hz by default) advances the [`watchdog`] (hold after
+//! The timer (`control.rate_hz`, 25 Hz by default) advances the watchdog (`watchdog.rs`: hold after
 //! `hold_timeout_ms` without a new frame, disengage after `disengage_timeout_ms`), repeats the
 //! held command while held or disengaged, and steps the arm mapping ([`arm`]): its step caps
 //! are per tick, so the tick rate sets the arm speeds they allow.
@@ -46,39 +46,40 @@
 //! | `fuzz/` (feature `fuzzing`) | the whole core fuzzed: a seeded hostile world, a reference drive model, invariants checked after every step |
 
 pub mod arm;
-pub mod config_error;
+mod config_error;
 pub mod convert;
-pub mod frame_gate;
+mod frame_gate;
 #[cfg(feature = "fuzzing")]
 pub mod fuzz;
-pub mod hand_control;
+mod hand_control;
 pub mod hand_convention;
 #[cfg(test)]
 mod hand_convention_presets;
-pub mod input_gap;
+mod input_gap;
 pub mod joint_names;
 pub mod link_clock;
-pub mod network_config;
-pub mod outlier_check;
-pub mod output_stage;
+mod network_config;
+mod outlier_check;
+mod output_stage;
 pub mod policy_output;
-pub mod rate_meter;
+mod rate_meter;
 pub mod retargeter_setup;
 pub mod robot_link;
 pub mod ros_tools;
-pub mod ros_tools_config;
-pub mod simulated_physics_config;
-pub mod source_order;
+mod ros_tools_config;
+mod simulated_physics_config;
+mod source_order;
 #[allow(clippy::module_inception)]
-pub mod station;
-pub mod station_config;
-pub mod station_error;
-pub mod station_input;
-pub mod watchdog;
+mod station;
+mod station_config;
+mod station_error;
+mod station_input;
+mod watchdog;
 
 pub use config_error::ConfigError;
-pub use frame_gate::{GateConfig, GateDecision, Rejection};
-pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport};
+pub use frame_gate::{GateConfig, GateDecision, Rejection, repeats};
+pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport, time_step_between};
+pub use output_stage::{HandMessages, policy_array};
 pub use input_gap::InputGap;
 pub use network_config::{NetworkConfig, QosConfig, Reliability};
 pub use simulated_physics_config::SimulatedPhysicsConfig;

@@ -2,7 +2,7 @@
 //! model, configuration and status: `/tf` and `/tf_static` from its own kinematics
 //! ([`hand_tf`]), markers of the glove keypoints and a drawing of the hand ([`markers`]),
 //! `/diagnostics` ([`diagnostics`]); the `[ros_tools]` configuration with the service names is
-//! [`crate::ros_tools_config`], the published joint names [`crate::joint_names`]. The application publishes and records them.
+//! `ros_tools_config.rs`, the published joint names [`crate::joint_names`]. The application publishes and records them.
 
 pub mod diagnostics;
 pub mod hand_tf;

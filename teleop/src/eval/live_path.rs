@@ -61,7 +61,7 @@ impl LivePathScore<'_> {
         let StationInput::Keypoints(frame) = input else {
             return;
         };
-        if station::frame_gate::repeats(self.previous.as_deref(), &frame.points) {
+        if station::repeats(self.previous.as_deref(), &frame.points) {
             return;
         }
         self.previous = Some(frame.points.clone());

@@ -88,7 +88,7 @@ pub fn distinct_frames(
             })?
             .points();
         let previous = frames.last().map(|last| last.points.as_slice());
-        if !station::frame_gate::repeats(previous, &points) {
+        if !station::repeats(previous, &points) {
             frames.push(TimedFrame {
                 t_ns: message.log_time_ns,
                 points,

@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use msgs::Float32MultiArray;
-use station::output_stage::policy_array;
+use station::policy_array;
 use tokio::sync::{mpsc, watch};
 
 use crate::hand_check::HandCheckError;

@@ -11,7 +11,7 @@ use msgs::PoseStamped;
 use retarget::HandModel;
 use retarget::human_hand::SimGlove;
 use station::convert::isometry_to_pose;
-use station::output_stage::HandMessages;
+use station::HandMessages;
 use station::{ControlInput, KeypointFrame, Notice, StationConfig, StationInput, StationOutputs};
 
 use super::error::PhysicsError;

@@ -5,7 +5,7 @@
 //! asynchronous publishers send in the same order.
 
 use msgs::PoseStamped;
-use station::output_stage::HandMessages;
+use station::HandMessages;
 use station::{Notice, StationConfig, StationOutputs};
 
 use crate::mcap_log::{LogError, TrialWriter};

@@ -16,7 +16,7 @@ use pomdar_tests::stamped_glove::StampedGlove;
 use pomdar_tests::station_harness::{Harness, Heard, test_domain};
 use retarget::human_hand::{HumanHandShape, Motion, MotionKind, SimGlove};
 use retarget::{EmbodimentCatalog, HandModel, KeypointLayout, Retargeter};
-use station::hand_control::time_step_between;
+use station::time_step_between;
 use station::{ControlMode, StationConfig};
 use teleop::ros::QosConfig;
 use teleop::station_node::ros_node::OperatorCommand;
