@@ -79,9 +79,9 @@ mod watchdog;
 pub use config_error::ConfigError;
 pub use frame_gate::{GateConfig, GateDecision, Rejection, repeats};
 pub use hand_control::{Counters, HandCommand, KeypointFrame, QpReport, time_step_between};
-pub use output_stage::{HandMessages, policy_array};
 pub use input_gap::InputGap;
 pub use network_config::{NetworkConfig, QosConfig, Reliability};
+pub use output_stage::{HandMessages, policy_array};
 pub use simulated_physics_config::SimulatedPhysicsConfig;
 pub use station::{ArmStatus, Station, StationStatus, Totals};
 pub use station_config::{

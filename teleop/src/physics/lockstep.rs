@@ -10,8 +10,8 @@
 use msgs::PoseStamped;
 use retarget::HandModel;
 use retarget::human_hand::SimGlove;
-use station::convert::isometry_to_pose;
 use station::HandMessages;
+use station::convert::isometry_to_pose;
 use station::{ControlInput, KeypointFrame, Notice, StationConfig, StationInput, StationOutputs};
 
 use super::error::PhysicsError;
