@@ -40,9 +40,9 @@ use crate::station_driver::setup::load_station_config;
 /// --commands TOPIC scores another retargeter's recorded JointState commands instead.
 ///
 /// Examples:
-///   pomdar eval ../shared/reference/rokoko_orca_2024-11-20.mcap
+///   pomdar eval recordings/glove_session.mcap
 ///   pomdar eval trial.mcap --config launch_configs/station/eth_lab.toml --profile profiles/alice.toml --json
-///   pomdar eval ../shared/reference/ eval_set/
+///   pomdar eval recordings/ eval_set/
 #[derive(Debug, Args)]
 #[command(verbatim_doc_comment)]
 pub struct EvalArgs {

@@ -24,8 +24,8 @@ use crate::station_driver::setup::load_station_config;
 /// and set.json listing them; the sources are not copied (evaluate them beside the set).
 ///
 /// Example:
-///   pomdar eval-set ../shared/reference/ --out eval_set/
-///   pomdar eval ../shared/reference/ eval_set/
+///   pomdar eval-set recordings/ --out eval_set/
+///   pomdar eval recordings/ eval_set/
 ///   pomdar eval-set --synthetic-users 8 --seed 2027 --out held_out/   (users only)
 #[derive(Debug, Args)]
 #[command(verbatim_doc_comment)]
