@@ -64,7 +64,8 @@ pub fn pinch_activation(distance_m: f64, engage_m: f64, release_m: f64) -> f64 {
 /// human's thumb–index distance fell 60 → 43 → 33 → 19 mm while the robot's stayed at 68 mm
 /// until the pinch began at 40 mm, and then the step limit could not close it in the pinch's
 /// first frame. Weighted as much as a fingertip's placement by the time the pinch begins, the
-/// vector makes the robot's gap follow the human's on the way in (51 → 37 → 10 mm there).
+/// vector makes the robot's gap follow the human's on the way in (64 → 43 → 15.0 mm there: the
+/// pinch's first frame closed, just).
 /// Only the nearest finger gains it: the others' vectors would hold the thumb where they are.
 pub fn approach_weights(pinch_distances_m: &[f64; 4], config: &RetargetConfig) -> [f64; 4] {
     let p = &config.pinch;
