@@ -6,13 +6,14 @@ use anyhow::Context as _;
 use clap::Args;
 use retarget::HandModel;
 
-use super::shared_args::{NodeArgs, ctrl_c_shutdown};
+use super::shared_args::NodeArgs;
 use crate::atomic_file::write_atomically;
 use crate::hand_check::check_node::{Answers, CheckOutput, run_check};
 use crate::hand_check::hand_check_script::{ANSWER_WORDS, CheckScriptPlayer, load_check_script};
 use crate::hand_check::session::{HandCheck, Motion};
 use crate::hand_check::table_file::table_text;
 use crate::station_driver::setup::read_station_config;
+use crate::tui::terminal_shell::Wakeups;
 use crate::utc_date::{iso8601_utc, now_unix_s};
 
 /// Check a hand's command conventions on the hand, joint by joint, and write the table
@@ -158,7 +159,7 @@ pub async fn hand_check(args: HandCheckArgs) -> anyhow::Result<()> {
             Answers::Stdin(rx)
         }
     };
-    run_check(&mut check, &output, answers, ctrl_c_shutdown()).await?;
+    run_check(&mut check, &output, answers, Wakeups::with_signals()?).await?;
     let at = iso8601_utc(now_unix_s());
     let verified = check.verified_table(&args.user, &at)?;
     let header = format!(

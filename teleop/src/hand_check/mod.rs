@@ -13,7 +13,7 @@
 //! | `session.rs` | the check as a pure state machine (time a parameter): phases, answers, the pose and command, the verified table |
 //! | `directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
 //! | `hand_check_script.rs` | `--script` files and typed words: yes / no / repeat / flip / keep / quit, `wait PHASE` |
-//! | `check_node.rs` | the check over ROS 2: commands at a fixed rate, answers from the script or stdin |
+//! | `check_node.rs` | the check over ROS 2 on the consoles' terminal shell: commands at a fixed rate (its tick), answers from the script or stdin, SIGINT and SIGTERM quit |
 //! | `table_file.rs` | the verified table written into a copy of the station configuration (comments kept), checked to load back |
 //! | `error.rs` | the one error type, [`HandCheckError`] |
 

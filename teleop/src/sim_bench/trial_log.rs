@@ -8,12 +8,13 @@ use std::path::Path;
 
 use msgs::{Float32MultiArray, PoseStamped};
 use serde_json::{Value, json};
-use station::{StationConfig, StationInput, StationOutputs};
+use station::{HandMessages, Notice, StationConfig, StationInput, StationOutputs};
 
 use super::error::BenchError;
 use super::trial_events::{RUN_EPOCH_NS, UNFINISHED_REASON, log_ns, progress_event};
 use crate::physics::lockstep::LockstepObserver;
 use crate::stand_ins::progress_message::ProgressMessage;
+use crate::station_driver::{OutputSink, route};
 use crate::station_node::recorder::{RecordingOptions, StationRecorder};
 
 /// Writes one run's trial log while it plays.
@@ -90,18 +91,32 @@ impl LockstepObserver for TrialLogWriter<'_> {
     }
 
     fn outputs(&mut self, now_ns: i64, outputs: &StationOutputs) {
-        if let Some(hand) = &outputs.hand {
-            let t = RUN_EPOCH_NS + now_ns;
-            self.recorder.output(
-                &self.config.output.joint_targets_topic,
-                t,
-                &hand.joint_state,
-            );
-        }
+        let Ok(()) = route(outputs, RUN_EPOCH_NS + now_ns, self);
     }
 
     fn progress(&mut self, event: &ProgressMessage) {
         self.recorder
             .event(log_ns(event.sim_time_s), &progress_event(event));
+    }
+}
+
+/// The run's log takes the hand's joint targets as the station sent them (what `pomdar score`
+/// and `pomdar replay` read); the run's notices reach the operator through its progress, and
+/// its arm is not logged.
+impl OutputSink for TrialLogWriter<'_> {
+    type Error = std::convert::Infallible;
+
+    fn notice(&mut self, _notice: &Notice) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn hand(&mut self, log_ns: i64, hand: &HandMessages, _fresh: bool) -> Result<(), Self::Error> {
+        let topic = &self.config.output.joint_targets_topic;
+        self.recorder.output(topic, log_ns, &hand.joint_state);
+        Ok(())
+    }
+
+    fn arm(&mut self, _log_ns: i64, _arm: &PoseStamped) -> Result<(), Self::Error> {
+        Ok(())
     }
 }

@@ -10,6 +10,6 @@ pub mod task_config;
 pub mod ticks;
 
 pub use setup::{SetupError, build_station};
-pub use sinks::{McapSink, OutputSink, route};
+pub use sinks::{Delivery, McapSink, OutputSink, deliveries, route};
 pub use task_config::{Engage, constrain_for_task, set_engage};
 pub use ticks::{TickSchedule, steps_per_tick, tick_period, tick_period_ns};

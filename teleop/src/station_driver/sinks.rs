@@ -1,14 +1,44 @@
 //! Where a step's [`StationOutputs`] go, in one order for every loop: the notices, the hand's
-//! messages (joint targets, then the policy output), then the arm target. A loop names its
-//! sink ([`OutputSink`]: a re-simulation's MCAP log, [`McapSink`]; the lock step's simulated
-//! robot, in `physics::lockstep`) and [`route`] hands it each output; the live node's
-//! asynchronous publishers send in the same order.
+//! messages (joint targets, then the policy output), then the arm target. [`deliveries`] lists
+//! a step's outputs in that order; a synchronous loop names its sink ([`OutputSink`]: a
+//! re-simulation's MCAP log, [`McapSink`]; the lock step's simulated robot, in
+//! `physics::lockstep`; a sim-bench run's trial log, in `sim_bench::trial_log`) and [`route`]
+//! hands it each one; the live node's asynchronous DDS
+//! publishers take the same [`deliveries`] one by one (`station_node::ros_node`).
 
 use msgs::PoseStamped;
 use station::HandMessages;
 use station::{Notice, StationConfig, StationOutputs};
 
 use crate::mcap_log::{LogError, TrialWriter};
+
+/// One output of a step, as every loop delivers it.
+#[derive(Debug, Clone, Copy)]
+pub enum Delivery<'a> {
+    /// A notice for the operator.
+    Notice(&'a Notice),
+    /// The hand's messages; `fresh` when they were computed from a new frame.
+    Hand {
+        /// Joint targets and the policy output.
+        hand: &'a HandMessages,
+        /// Whether a new frame produced them.
+        fresh: bool,
+    },
+    /// The arm's target.
+    Arm(&'a PoseStamped),
+}
+
+/// A step's outputs in the order every loop sends them: notices, the hand, the arm.
+pub fn deliveries(outputs: &StationOutputs) -> impl Iterator<Item = Delivery<'_>> {
+    let fresh = outputs.fresh_frame_received_ns.is_some();
+    let notices = outputs.notices.iter().map(Delivery::Notice);
+    let hand = outputs
+        .hand
+        .iter()
+        .map(move |hand| Delivery::Hand { hand, fresh });
+    let arm = outputs.arm.iter().map(Delivery::Arm);
+    notices.chain(hand).chain(arm)
+}
 
 /// What takes a station's outputs.
 pub trait OutputSink {
@@ -25,20 +55,18 @@ pub trait OutputSink {
     fn arm(&mut self, now_ns: i64, arm: &PoseStamped) -> Result<(), Self::Error>;
 }
 
-/// Hand `outputs` of a step at `now_ns` to `sink`, in the order the station node sends them.
+/// Hand `outputs` of a step at `now_ns` to `sink`, in the order of [`deliveries`].
 pub fn route<S: OutputSink>(
     outputs: &StationOutputs,
     now_ns: i64,
     sink: &mut S,
 ) -> Result<(), S::Error> {
-    for notice in &outputs.notices {
-        sink.notice(notice)?;
-    }
-    if let Some(hand) = &outputs.hand {
-        sink.hand(now_ns, hand, outputs.fresh_frame_received_ns.is_some())?;
-    }
-    if let Some(arm) = &outputs.arm {
-        sink.arm(now_ns, arm)?;
+    for delivery in deliveries(outputs) {
+        match delivery {
+            Delivery::Notice(notice) => sink.notice(notice)?,
+            Delivery::Hand { hand, fresh } => sink.hand(now_ns, hand, fresh)?,
+            Delivery::Arm(arm) => sink.arm(now_ns, arm)?,
+        }
     }
     Ok(())
 }

@@ -26,7 +26,7 @@ use serde_json::json;
 use station::convert::KeypointMessage;
 use station::{
     ControlInput, Counters, GateDecision, InputGap, KeypointFormat, KeypointFrame, Station,
-    StationConfig, StationInput, StationOutputs, Totals,
+    StationConfig, StationInput, Totals,
 };
 use tokio::sync::{mpsc, watch};
 
@@ -41,6 +41,7 @@ use crate::station_node::recorder_thread::{LogQueue, LogReport};
 use crate::station_node::relay_view::RelayView;
 use crate::station_node::ros_tools_node::{ServiceRequest, ToolEndpoints, ToolScene};
 
+mod output_steps;
 mod tool_steps;
 use crate::station_driver::{build_station, tick_period};
 
@@ -519,55 +520,6 @@ impl StationNode {
                 .push(self.station.counters().last_tip_error_mm);
         }
         self.send(outputs, now, endpoints).await;
-    }
-
-    async fn send(&mut self, outputs: StationOutputs, now: i64, endpoints: &Endpoints) {
-        for notice in &outputs.notices {
-            self.hooks.send(StationEvent::Message(notice.to_string()));
-        }
-        let config = Arc::clone(&self.config);
-        let output = &config.output;
-        if let (Some(hand), Some(joint)) = (outputs.hand, &endpoints.joint) {
-            let sent = self
-                .publish(joint, &output.joint_targets_topic, now, hand.joint_state)
-                .await;
-            if let (true, Some(received)) = (sent, outputs.fresh_frame_received_ns) {
-                self.last_latency_ms = Some((self.clock.now_ns() - received) as f64 * 1e-6);
-            }
-            if let (Some(message), Some(publisher)) = (hand.policy, &endpoints.policy) {
-                self.publish(publisher, &config.policy_output.topic, now, message)
-                    .await;
-            }
-            let fresh = outputs.fresh_frame_received_ns.is_some();
-            self.send_hand_tools(fresh, now, endpoints).await;
-        }
-        if let (Some(message), Some(publisher)) = (outputs.arm, &endpoints.arm) {
-            let frame = self.scene.arm_target_tf(&message);
-            self.publish(publisher, &output.arm_target_topic, now, message)
-                .await;
-            if let (Some(tf), Some(publisher)) = (frame, &endpoints.tools.tf) {
-                self.publish(publisher, "/tf", now, tf).await;
-            }
-        }
-    }
-
-    /// Record and publish `message`; whether it went out (a failure is counted).
-    async fn publish<M: msgs::RosMessage + Serialize + Clone + Send + 'static>(
-        &mut self,
-        publisher: &Publisher<M>,
-        topic: &str,
-        now: i64,
-        message: M,
-    ) -> bool {
-        self.log_output(topic, now, &message);
-        if let Some(tap) = &self.hooks.tap {
-            tap.send(topic, &message, now, false);
-        }
-        let sent = publisher.async_publish(message).await.is_ok();
-        if !sent {
-            NodeFaults::count(&mut self.faults.publish_failed, topic);
-        }
-        sent
     }
 
     async fn on_status_tick(&mut self, endpoints: &Endpoints) {

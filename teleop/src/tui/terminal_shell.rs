@@ -1,5 +1,5 @@
-//! The turn loop the operator consoles share (the trial console, [`crate::console`], and the
-//! calibration console, [`crate::calibrate`]): what wakes a console besides its own sources (a
+//! The turn loop the operator consoles share (the trial console, [`crate::console`], the
+//! calibration console, [`crate::calibrate`], and the hand check, [`crate::hand_check`]): what wakes a console besides its own sources (a
 //! tick and the signals), what one wake-up brought (a [`Turn`]), whether it goes on
 //! ([`Next`]), and the exit status of an interrupted console.
 
@@ -108,6 +108,17 @@ impl Wakeups {
             tick: tokio::time::interval(TICK),
             signals: Signals(Some((interrupt, terminate))),
         })
+    }
+}
+
+impl Wakeups {
+    /// The same wake-ups with the tick every `period` instead (a console whose clock is
+    /// another rate: the hand check's command rate).
+    pub fn ticking_every(self, period: Duration) -> Wakeups {
+        Wakeups {
+            tick: tokio::time::interval(period),
+            signals: self.signals,
+        }
     }
 }
 
