@@ -81,6 +81,7 @@ pub(super) struct UnstartedLog {
 }
 
 impl UnstartedLog {
+    /// Creates the log at the session's `out` and starts the thread that writes it.
     pub(super) fn open(
         options: &SessionOptions,
         model: &HandModel,

@@ -6,6 +6,7 @@
 //! user is cued and the console shown.
 
 use msgs::JointState;
+use serde_json::json;
 use station::convert::KeypointMessage;
 use tokio::sync::watch;
 use tokio::time::Instant;
@@ -161,7 +162,7 @@ impl SessionRun<'_> {
             return Ok(None);
         }
         if let Some(w) = self.log.writer.take() {
-            let event = serde_json::json!({"event": "abort", "reason": "interrupted"});
+            let event = json!({"event": "abort", "reason": "interrupted"});
             w.write(move |w| w.write_event(now, &event))?;
             let finished = self.finish_log(w, now)?;
             return Err(CalibrateError::Interrupted { log: finished.path });
