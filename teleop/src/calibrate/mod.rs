@@ -6,7 +6,13 @@
 //! |---|---|
 //! | `pose_session.rs` | the session pose by pose as a pure state machine: settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone and fitted again |
 //! | `capture_quality.rs` | a capture's jitter, invalid frames and frames vs expected: good / poor / bad |
-//! | `session_node.rs` | the session over ROS 2: the hand is sent to each pose, the glove recorded with every capture window, its quality and the decisions; the fit in a blocking task; the finished log continued for a redo |
+//! | `session_node.rs` | the session over ROS 2: its options, `run_session` (the log, the glove's topic in, the hand's out, the console) and its loop's wait (Ctrl-C, glove frames, the pose's resend, keys, the fit's progress and end); its parts in `session_node/`: |
+//! | `session_node/session_turn.rs` | the running session and its turn: glove frames logged and judged, keys and `--script` to the session, its effects carried out, Ctrl-C (the log finished as aborted, or the fit cancelled), no glove, the simulated user cued |
+//! | `session_node/session_log.rs` | the session's MCAP log: opened before the topics are up (removed if the session cannot start), written on its own thread (the glove recorded with every capture window, its quality and the decisions), finished for the fit, the finished log continued for a redo |
+//! | `session_node/hand_command.rs` | the pose the hand is sent to, re-sent every 100 ms; the sends that could not be published |
+//! | `session_node/fit_run.rs` | the fit in a blocking task: its progress, its cancellation on Ctrl-C, its outcome |
+//! | `session_node/session_end.rs` | how the session ends: interrupted, complete, or failed by its script (the reason and the error naming the log) |
+//! | `session_node/session_outcome.rs` | once the session has quit: the log finished, then the report or the error naming the log |
 //! | `session_events.rs` | the session log's metadata record and events; each pose's accepted capture window |
 //! | `session_frames.rs` | reading a session log back: each pose's frames |
 //! | `fit_session.rs` | session log → captures → fit → table → profile (atomic write) |
