@@ -7,6 +7,7 @@
 
 pub mod error;
 pub mod health;
+mod health_lines;
 mod in_process_station;
 pub mod keys;
 pub mod manifest;

@@ -5,7 +5,8 @@
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
 use station::hand_convention::Verification;
 
-use super::health::{Faults, Health, StartLimits};
+use super::health::{Health, StartLimits};
+use super::health_lines::health_lines;
 use super::manifest::{Manifest, ManifestTrial};
 use super::trial_flow::{Slot, TrialFlow, TrialPhase};
 
@@ -357,175 +358,6 @@ fn with_convention(
     rows
 }
 
-fn health_lines(
-    health: &Health,
-    limits: &StartLimits,
-    now_ns: i64,
-) -> Vec<(String, String, Level)> {
-    if health.received_ns.is_none() {
-        return vec![("station".into(), "starting…".into(), Level::Warn)];
-    }
-    let mut lines = all_health_lines(health, limits, now_ns);
-    if limits.drives_robot {
-        lines.push(hand_tracking_line(health));
-        return lines;
-    }
-    // A human study: the glove is all there is.
-    let mut glove: Vec<_> = lines
-        .into_iter()
-        .filter(|(k, _, _)| matches!(k.as_str(), "glove" | "input age" | "rejected" | "faults"))
-        .collect();
-    glove.insert(
-        0,
-        ("mode".into(), "human study: no robot".into(), Level::Ok),
-    );
-    glove
-}
-
-/// Commanded against measured, where the hand publishes its joint state.
-fn hand_tracking_line(health: &Health) -> (String, String, Level) {
-    let Some(tracking) = &health.hand_tracking else {
-        return (
-            "tracking".into(),
-            "no measured hand state".into(),
-            Level::Ok,
-        );
-    };
-    let level = match (tracking.max_error_deg, tracking.age_ms) {
-        (_, Some(age)) if age > 500.0 => Level::Warn,
-        (Some(error), _) if error > 10.0 => Level::Warn,
-        _ => Level::Ok,
-    };
-    ("tracking".into(), tracking.line(), level)
-}
-
-fn all_health_lines(
-    health: &Health,
-    limits: &StartLimits,
-    now_ns: i64,
-) -> Vec<(String, String, Level)> {
-    let age = health.input_age_at(now_ns);
-    let state_level = match health.state.as_str() {
-        "engaged" => Level::Ok,
-        "held" => Level::Warn,
-        _ => Level::Bad,
-    };
-    let age_level = match age {
-        Some(a) if a <= limits.max_input_age_ms => Level::Ok,
-        _ => Level::Bad,
-    };
-    let rate_level = if health.glove_rate_hz >= limits.min_glove_rate_hz {
-        Level::Ok
-    } else {
-        Level::Bad
-    };
-    vec![
-        ("drive".into(), health.state.clone(), state_level),
-        (
-            "glove".into(),
-            format!(
-                "{:.0} Hz (min {:.0})",
-                health.glove_rate_hz, limits.min_glove_rate_hz
-            ),
-            rate_level,
-        ),
-        (
-            "input age".into(),
-            age.map_or("no input".to_string(), |a| format!("{a:.0} ms")),
-            age_level,
-        ),
-        (
-            "latency".into(),
-            health
-                .latency_ms
-                .map_or("-".to_string(), |l| format!("{l:.2} ms")),
-            Level::Ok,
-        ),
-        (
-            "commands".into(),
-            format!("{:.0} /s", health.output_rate_hz),
-            Level::Ok,
-        ),
-        (
-            "watchdog".into(),
-            match health.state.as_str() {
-                "engaged" => "ok".to_string(),
-                "held" => "holding (input stale)".to_string(),
-                _ => "disengaged".to_string(),
-            },
-            state_level,
-        ),
-        (
-            "rejected".into(),
-            health.rejected.to_string(),
-            if health.rejected == 0 {
-                Level::Ok
-            } else {
-                Level::Warn
-            },
-        ),
-        (
-            "robot".into(),
-            match (health.hand_listeners, health.arm_listeners) {
-                (Some(0), _) => "no hand listening to the targets".to_string(),
-                (Some(h), Some(a)) => format!("hand {h} listening · arm {a}"),
-                (Some(h), None) => format!("hand {h} listening"),
-                (None, _) => "-".to_string(),
-            },
-            if health.hand_listeners == Some(0) {
-                Level::Bad
-            } else {
-                Level::Ok
-            },
-        ),
-        (
-            "arm".into(),
-            if health.second_publisher {
-                "second publisher: not driven".to_string()
-            } else if health.arm_engaged {
-                "engaged".to_string()
-            } else {
-                "holding".to_string()
-            },
-            if health.second_publisher {
-                Level::Bad
-            } else {
-                Level::Ok
-            },
-        ),
-        (
-            "faults".into(),
-            faults_text(&health.faults),
-            faults_level(&health.faults),
-        ),
-    ]
-}
-
-/// The fault counts as the console shows them: `none`, or each non-zero count.
-fn faults_text(faults: &Faults) -> String {
-    let counts = [
-        (faults.publish_failed, "not published"),
-        (faults.samples_lost, "samples lost"),
-        (faults.arm_refused, "arm targets refused"),
-        (faults.arm_engage_failed, "arm engages refused"),
-        (faults.log_dropped, "messages not logged (disk too slow)"),
-    ];
-    let shown: Vec<String> = counts
-        .iter()
-        .filter(|(n, _)| *n > 0)
-        .map(|(n, what)| format!("{n} {what}"))
-        .collect();
-    if shown.is_empty() {
-        "none".to_string()
-    } else {
-        shown.join(" · ")
-    }
-}
-
-fn faults_level(faults: &Faults) -> Level {
-    if faults.any() { Level::Warn } else { Level::Ok }
-}
-
 #[cfg(test)]
 mod tests {
     use scoring::TaskCatalog;
@@ -618,24 +450,5 @@ mod tests {
         let human = instruction(catalog.get("V1").unwrap(), false);
         assert!(human.contains("6 notches") && human.contains("own right hand"));
         assert!(!human.contains("arm"), "{human}");
-    }
-
-    #[test]
-    fn fault_counts_show_only_what_happened_and_warn() {
-        let none = Faults::default();
-        assert_eq!(
-            (faults_text(&none), faults_level(&none)),
-            ("none".into(), Level::Ok)
-        );
-        let some = Faults {
-            publish_failed: 2,
-            arm_refused: 1,
-            ..Faults::default()
-        };
-        assert_eq!(
-            faults_text(&some),
-            "2 not published · 1 arm targets refused"
-        );
-        assert_eq!(faults_level(&some), Level::Warn);
     }
 }

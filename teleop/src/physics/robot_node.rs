@@ -109,6 +109,48 @@ struct Endpoints {
     progress: Publisher<StringMsg>,
 }
 
+impl Endpoints {
+    /// The robot's publishers on `config`'s topics.
+    fn open(node: &mut RosNode, config: &PhysicsRobotConfig) -> Result<Endpoints, PhysicsError> {
+        Ok(Endpoints {
+            hand_state: node.publisher(&config.hand_state_topic, QosConfig::best_effort(10))?,
+            arm_pose: node.publisher(&config.arm_feedback_topic, QosConfig::best_effort(10))?,
+            object_pose: node.publisher(&config.object_topic, QosConfig::best_effort(10))?,
+            progress: node.publisher(&config.progress_topic, QosConfig::reliable(100))?,
+        })
+    }
+}
+
+/// One tick's times, seconds: the physics advanced `dt`, stepping took `stepped` of wall time,
+/// `elapsed` of wall time passed since the last tick.
+#[derive(Debug, Clone, Copy)]
+struct TickTiming {
+    dt: f64,
+    stepped: f64,
+    elapsed: f64,
+}
+
+/// A tick's times, progress and events into the report; `false` when its lock is poisoned
+/// (the run stops).
+fn account_tick(
+    report: &Mutex<PhysicsRobotReport>,
+    sim: &SimState,
+    timing: TickTiming,
+    messages: &[ProgressMessage],
+) -> bool {
+    let Ok(mut r) = report.lock() else {
+        return false;
+    };
+    r.sim_time_s += timing.dt;
+    r.step_wall_s += timing.stepped;
+    r.behind_s += timing.elapsed - timing.dt;
+    if let Some(tracker) = &sim.tracker {
+        r.progress_total = tracker.total();
+    }
+    r.events.extend(messages.iter().cloned());
+    true
+}
+
 /// Run the simulated robot until `shutdown`.
 pub async fn run_physics_robot(
     config: PhysicsRobotConfig,
@@ -130,12 +172,7 @@ pub async fn run_physics_robot(
         node.subscription::<JointState>(&config.hand_targets_topic, QosConfig::reliable(50))?;
     let arm_sub =
         node.subscription::<PoseStamped>(&config.arm_target_topic, QosConfig::reliable(50))?;
-    let out = Endpoints {
-        hand_state: node.publisher(&config.hand_state_topic, QosConfig::best_effort(10))?,
-        arm_pose: node.publisher(&config.arm_feedback_topic, QosConfig::best_effort(10))?,
-        object_pose: node.publisher(&config.object_topic, QosConfig::best_effort(10))?,
-        progress: node.publisher(&config.progress_topic, QosConfig::reliable(100))?,
-    };
+    let out = Endpoints::open(&mut node, &config)?;
     let mut hand_targets = Box::pin(hand_sub.async_stream());
     let mut arm_targets = Box::pin(arm_sub.async_stream());
     let mut sim = SimState::new(engine, &config)?;
@@ -182,14 +219,8 @@ pub async fn run_physics_robot(
                 tick_count += 1;
                 let messages: Vec<ProgressMessage> =
                     events.iter().map(|e| sim.progress_message(e, &config)).collect();
-                {
-                    let Ok(mut r) = report.lock() else { break };
-                    r.sim_time_s += dt;
-                    r.step_wall_s += stepped;
-                    r.behind_s += elapsed - dt;
-                    if let Some(tracker) = &sim.tracker { r.progress_total = tracker.total(); }
-                    r.events.extend(messages.iter().cloned());
-                }
+                let timing = TickTiming { dt, stepped, elapsed };
+                if !account_tick(&report, &sim, timing, &messages) { break }
                 if let Some(tx) = &events_tx {
                     for message in &messages { tx.send(message.clone()).ok(); }
                 }
