@@ -45,8 +45,9 @@ use crate::utc_date::{iso8601_utc, now_unix_s};
 /// When every joint is confirmed, --out is written atomically: the configuration file
 /// with its [policy_output] replaced by the table with every row verified = true (and
 /// any flipped sign, noted), verified_by = --user and verified_at (UTC); other tables
-/// and comments are kept. If any joint is not confirmed (quit, Ctrl-C, stdin or the
-/// script ended) nothing is written and the exit status is 1, naming the joints left.
+/// and comments are kept. If any joint is not confirmed (quit, Ctrl-C or SIGTERM,
+/// stdin or the script ended) nothing is written and the exit status is 1, naming
+/// the joints left.
 ///
 /// --script FILE: answers one a line, optionally after a time (seconds since the start,
 /// or +S after the previous line), and `wait PHASE [TIMEOUT_S]` with PHASE one of
