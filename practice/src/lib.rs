@@ -10,7 +10,7 @@
 //!   noisy trials;
 //! - [`objective`]: the score it maximises (the POMDAR score);
 //! - [`practice_file`]: the practice file (per task: script, station settings, grips);
-//! - [`plan`]: the benchmark's work items and shards;
+//! - [`mod@plan`]: the benchmark's work items and shards;
 //! - [`findings`]: the paper's findings checked against the recorded trials.
 //!
 //! `teleop` plays the strategies through the station core and the physics in lock step

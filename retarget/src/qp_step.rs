@@ -1,5 +1,5 @@
 //! One Gauss–Newton step as a box-constrained QP. With [`QpMethod::ActiveSet`] (the default)
-//! a step is first tried by the exact active-set method of [`crate::box_active_set`]
+//! a step is first tried by the exact active-set method of `box_active_set`
 //! (certified by the KKT conditions); when that gives no certified answer, or with
 //! [`QpMethod::Clarabel`], Clarabel solves it:
 //!

@@ -2,7 +2,7 @@
 //!
 //! The application reads a trial's log into a [`TrialInput`] (the trial events, the station's
 //! status messages, the glove frames, the hand commands, the hand's measured state, the arm
-//! targets); [`review`] turns it into
+//! targets); [`review()`] turns it into
 //!
 //! - [`TrialReview`], the facts on one time axis (seconds from the trial's `start` event):
 //!   progress marks and drops; the station's drive state (engaged, held, disengaged); the

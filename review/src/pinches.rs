@@ -70,7 +70,7 @@ pub fn human_distances(
 }
 
 /// The robot's distances, per joint target inside the trial (joint names read with the
-/// station's `prefix`, [`JointOrder`]). `Err` when a target's joints do not fit the model.
+/// station's `prefix`, `JointOrder`). `Err` when a target's joints do not fit the model.
 pub fn robot_distances(
     commands: &[JointSample],
     (model, prefix): (&HandModel, Option<&str>),

@@ -61,10 +61,10 @@
 //! | `baseline.rs` | [`BaselineTable`] and [`compute_baseline`] from human trials |
 //! | `baseline_report.rs` | [`baseline_study`]: the study per participant × task, rendered |
 //! | `trial_log.rs` | [`TrialLog`] and its checks ([`TrialRecord`]) |
-//! | `correctness.rs` | [`correctness`] per kind |
+//! | `correctness.rs` | [`correctness()`] per kind |
 //! | `trial_score.rs` | [`score_trial`]: outcome, time, speed, score |
 //! | `stats.rs` | [`MeanStd`] |
-//! | `aggregate.rs` | [`aggregate`]: per task × embodiment and per embodiment |
+//! | `aggregate.rs` | [`aggregate()`]: per task × embodiment and per embodiment |
 //! | `report.rs` | [`ScoreReport`]: all of the above with its warnings |
 //! | `report_terminal.rs`, `report_markdown.rs`, `report_csv.rs` | the renderers (JSON is serde) |
 //! | `figures.rs` | [`render_figures`]: the report's radars and overall-vs-DoF charts |

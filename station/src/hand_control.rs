@@ -3,7 +3,7 @@
 //!
 //! A keypoint frame goes through the source order (late frames are turned away), the frame
 //! gate (repeats and implausible frames) and the watchdog (freshness); a new frame is kept as
-//! the pending one, and [`HandControl::command`] retargets it. The time step handed to the
+//! the pending one, and `HandControl::command` retargets it. The time step handed to the
 //! retargeter comes from the frames' own stamps (their senders' clocks), so frames delivered
 //! together by a busy network keep the spacing at which they were captured; after a jump of the
 //! sender's clock (at any frame taken since the last retargeted one, a repeat or a superseded

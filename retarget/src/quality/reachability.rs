@@ -25,7 +25,7 @@ use crate::hand_model::{HandModel, Limits};
 /// 21 for a four-joint thumb (ORCA v1), about a second for a recording of 700 frames.
 pub const REACH_GRID_MAX_CONFIGURATIONS: usize = 200_000;
 
-/// Reachability over a recording (see [`self`]).
+/// Reachability over a recording (see this module's doc).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reachability {
     /// The global scale `s*` the targets are scaled by.
@@ -154,7 +154,7 @@ fn digit_reach(
 }
 
 impl QualityRecorder {
-    /// The reachability of the frames pushed so far (see [`self`](super::reachability)), on
+    /// The reachability of the frames pushed so far (see the module's doc), on
     /// grids of at most `max_configurations` per digit. `Err` only when the model's forward
     /// kinematics fails (a collapsed palm).
     pub fn reachability(&self, max_configurations: usize) -> Result<Reachability, Error> {

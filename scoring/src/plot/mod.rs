@@ -1,6 +1,6 @@
 //! Figures in the style of the POMDAR paper, returned as data (SVG text and PNG bytes).
 //!
-//! - [`radar`]: one axis per task, clockwise from the top, grid rings every 0.2 up to 1.0 and
+//! - [`radar()`]: one axis per task, clockwise from the top, grid rings every 0.2 up to 1.0 and
 //!   on past the largest score when scores exceed 1 (speed is unbounded, so "superhuman"
 //!   scores are drawn, not clipped); one translucent polygon with an outline and markers
 //!   per embodiment, colours from a fixed colour-blind-safe palette, a legend, and hollow
@@ -14,7 +14,7 @@
 //!   deviation as error bars, a legend (the source comparison, `pomdar score --compare`).
 //! - [`tracking_grid`]: commanded and measured joint angle over time, one small panel per
 //!   joint in a grid (`pomdar tracking`).
-//! - [`review_figure`]: one trial on one time axis: coloured span lanes (drive state, arm,
+//! - [`review_figure()`]: one trial on one time axis: coloured span lanes (drive state, arm,
 //!   pinches), stacked series panels with dotted thresholds and tick markers, and progress,
 //!   drop and feedback marks drawn across everything.
 //!

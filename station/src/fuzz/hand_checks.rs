@@ -7,7 +7,7 @@
 //!   `Δt` the station's time step: 40 ms after an engage from disengaged, else the source
 //!   stamps' gap (the receive times' when a jump of the sender's clock was counted between
 //!   the two frames' arrivals, or when the sender's clock had frozen: the frame ended a run of
-//!   [`FROZEN_CLOCK_AFTER`] or more new frames each stamped no later than the one before, no
+//!   `FROZEN_CLOCK_AFTER` or more new frames each stamped no later than the one before, no
 //!   jump among them), clamped to [0.1 ms, 0.5 s];
 //! - `hand_newest_frame`: a fresh command comes from the newest new frame, once;
 //! - `hand_held_is_last`: a repeated or held command is the last fresh one, unchanged;

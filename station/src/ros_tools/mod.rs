@@ -1,7 +1,7 @@
 //! What the station offers the lab's ROS tools besides its commands, as pure functions of its
 //! model, configuration and status: `/tf` and `/tf_static` from its own kinematics
 //! ([`hand_tf`]), markers of the glove keypoints and a drawing of the hand ([`markers`]),
-//! `/diagnostics` ([`diagnostics`]); the `[ros_tools]` configuration with the service names is
+//! `/diagnostics` ([`diagnostics()`]); the `[ros_tools]` configuration with the service names is
 //! `ros_tools_config.rs`, the published joint names [`crate::joint_names`]. The application publishes and records them.
 
 pub mod diagnostics;

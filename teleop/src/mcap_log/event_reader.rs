@@ -11,7 +11,7 @@
 //! A file without footer or end magic was cut short (an interrupted recording, a partial
 //! copy): that is [`LogError::Incomplete`] with "truncated file", never a guess. A complete
 //! file without a summary, or whose summary lacks the indexes (other writers), is read whole
-//! with [`TrialReader`](super::TrialReader).
+//! with [`super::TrialReader`].
 //!
 //! Events are returned in file order (chunks in file order, messages in chunk order), which
 //! for the station's writer is the order they were written; checking their log times is

@@ -23,7 +23,7 @@
 //!   on the disk.
 //! - [`continue_finished`]: a finished log copied into a writer that replaces it when
 //!   finished, to add to it.
-//! - [`recover`]: turns an interrupted `.part` into a complete file holding everything up to
+//! - [`recover()`]: turns an interrupted `.part` into a complete file holding everything up to
 //!   the last flush, and says what was lost ([`RecoveryReport`]).
 //! - [`TrialReader`]: reads a complete file from any tool into memory; messages in log-time
 //!   order as [`LoggedMessage`]s, decoded with the `msgs` types.

@@ -7,7 +7,7 @@
 //! The ages are judged on this computer's wall clock as it is at each arrival
 //! ([`WallClock`]), and the smallest age per window estimates how far the two clocks are
 //! apart ([`station::link_clock`]): the relay says so when it eats into the limit. Twice a
-//! second it publishes [`RelayStatus`] for the station: the robot side's readers and that
+//! second it publishes [`RelayStatus`](station::link_clock::RelayStatus) for the station: the robot side's readers and that
 //! offset.
 
 mod legs;

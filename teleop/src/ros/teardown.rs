@@ -8,7 +8,7 @@
 //! `ros2_client::Context` clone, so the order is: endpoints, then the node, then the context.
 //! [`RosNode`](crate::ros::RosNode) keeps it for what it owns: its spinner task (ros2-client's
 //! parameter services and parameter-event writer) drops its endpoints while the task still
-//! holds a context clone ([`SpinnerTask`]); the endpoints a caller creates must be dropped
+//! holds a context clone (its `SpinnerTask`); the endpoints a caller creates must be dropped
 //! before the node (declare the node first in a function, last in a struct).
 //!
 //! One record no order avoids: a participant restricted to some interfaces
