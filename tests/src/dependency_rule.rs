@@ -8,7 +8,7 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 9] = [
+pub const CORE_CRATES: [&str; 10] = [
     "msgs",
     "retarget",
     "calibration",
@@ -18,6 +18,7 @@ pub const CORE_CRATES: [&str; 9] = [
     "station",
     "simulation",
     "practice",
+    "sessions",
 ];
 
 /// The directory of a workspace crate (its package name, but `simulation` lives in `sim/`).

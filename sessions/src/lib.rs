@@ -1,0 +1,21 @@
+//! # sessions: the consoles' sessions as pure state machines
+//!
+//! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/suite/dependency_rule.rs`).
+//! Each console of `teleop` (the hand check, the calibration console, the trial console) is a
+//! state machine here: operator actions and measurements come in with the time as a parameter,
+//! effects and the lines to show come out. `teleop` runs them on its terminal shell, talks to
+//! the station and the hand over ROS 2 and reads and writes the files.
+//!
+//! ## Files
+//!
+//! | file | what |
+//! |---|---|
+//! | `error.rs` | [`SessionsError`]: what the pure parts refuse |
+//! | `hand_check/session.rs` | the hand check as a state machine (time a parameter): phases, answers, the pose and command, the verified table |
+//! | `hand_check/directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
+
+pub mod hand_check;
+
+mod error;
+
+pub use error::SessionsError;
