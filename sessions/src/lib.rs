@@ -13,9 +13,17 @@
 //! | `error.rs` | [`SessionsError`]: what the pure parts refuse |
 //! | `hand_check/session.rs` | the hand check as a state machine (time a parameter): phases, answers, the pose and command, the verified table |
 //! | `hand_check/directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
+//! | `calibrate/pose_session.rs` | the calibration session pose by pose (station-clock nanoseconds a parameter): settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone |
+//! | `calibrate/capture_quality.rs` | a capture's jitter, invalid frames and frames vs expected: good / poor / bad |
+//! | `calibrate/session_events.rs` | a calibration session log's metadata record and events: names and shapes |
+//! | `calibrate/calibration_view.rs` | what the calibration console shows, as data |
+//! | `level.rs` | [`Level`]: how a value on a console reads (ok, warn, bad) |
 
+pub mod calibrate;
 pub mod hand_check;
 
 mod error;
+mod level;
 
 pub use error::SessionsError;
+pub use level::Level;
