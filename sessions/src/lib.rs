@@ -17,9 +17,16 @@
 //! | `calibrate/capture_quality.rs` | a capture's jitter, invalid frames and frames vs expected: good / poor / bad |
 //! | `calibrate/session_events.rs` | a calibration session log's metadata record and events: names and shapes |
 //! | `calibrate/calibration_view.rs` | what the calibration console shows, as data |
+//! | `console/trial_flow.rs` | the trial console's session (practice, then recorded trials): actions, health and scored logs in, effects out |
+//! | `console/health.rs` | the station's health from its status, the fault counts, and whether a trial may start |
+//! | `console/health_lines.rs` | the health as the console's rows, each with its level |
+//! | `console/view.rs` | what the trial console shows, as data (its screen, the session's settings) |
+//! | `console/manifest.rs` | the session manifest's data, and which trial log names it may give |
+//! | `console/action.rs` | the operator's actions |
 //! | `level.rs` | [`Level`]: how a value on a console reads (ok, warn, bad) |
 
 pub mod calibrate;
+pub mod console;
 pub mod hand_check;
 
 mod error;

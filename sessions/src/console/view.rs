@@ -91,7 +91,7 @@ impl Screen {
     }
 }
 
-pub use crate::tui::panels::Level;
+pub use crate::Level;
 
 /// The setting that does not change during a session.
 #[derive(Debug, Clone)]
@@ -364,7 +364,7 @@ mod tests {
     use serde_json::json;
 
     use super::*;
-    use crate::console::keys::Action;
+    use crate::console::action::Action;
     use crate::console::manifest::test_manifest;
 
     const S: i64 = 1_000_000_000;
