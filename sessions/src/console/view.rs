@@ -1,6 +1,6 @@
 //! What the console shows, as plain data built from the session and the station's health: the
-//! full-screen console draws it ([`super::screen`]), the line console prints its changes
-//! ([`super::plain_output`]).
+//! full-screen console draws it (`teleop::console::screen`), the line console prints its changes
+//! (`teleop::console::plain_output`).
 
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
 use station::hand_convention::Verification;
