@@ -1,5 +1,5 @@
 //! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`,
-//! `scoring`, `study`, `station` and `simulation` never depend, directly or transitively, on
+//! `scoring`, `study`, `review`, `station`, `simulation`, `practice` and `sessions` never depend, directly or transitively, on
 //! ros2-client, rustdds, tokio or MuJoCo (mujoco-rs), and their sources do no I/O and read no
 //! clock. Only `teleop` does.
 
@@ -8,7 +8,7 @@ use std::collections::{BTreeSet, HashMap};
 use serde_json::Value;
 
 /// The pure crates.
-pub const CORE_CRATES: [&str; 9] = [
+pub const CORE_CRATES: [&str; 10] = [
     "msgs",
     "retarget",
     "calibration",
@@ -18,6 +18,7 @@ pub const CORE_CRATES: [&str; 9] = [
     "station",
     "simulation",
     "practice",
+    "sessions",
 ];
 
 /// The directory of a workspace crate (its package name, but `simulation` lives in `sim/`).

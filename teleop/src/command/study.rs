@@ -10,7 +10,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::shared_args::{ConsoleArgs, GuardArgs, MotionArg, NodeArgs};
-use crate::console::manifest::{MANIFEST_FILE, Manifest};
+use crate::console::manifest::{MANIFEST_FILE, Manifest, ManifestFile};
 use crate::console::session_dir::check_name;
 use crate::console::session_options::HUMAN_PROTOCOL;
 use crate::console::view::instruction;

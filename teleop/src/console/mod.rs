@@ -1,13 +1,13 @@
-//! The operator console: `pomdar trial` (timed trials). The session logic, the health, the
-//! manifest and the script are plain data and state machines; around them the console's
-//! runtime: its set-up ([`session_setup::run_session`]), its event loop (`runner`), the
-//! operator's side (`operator_side`), the session's files (`session_state`, `session_report`),
-//! the station in this process (`in_process_station`) and the simulation beside it
-//! (`simulated_world`, `physics_link`).
+//! The operator console: `pomdar trial` (timed trials). The session logic is the core crate
+//! `sessions` (`sessions/src/console/`, re-exported here as `trial_flow`, `health` and `view`;
+//! the manifest's data and the actions are re-exported from `manifest` and `keys`); this module
+//! is the console's runtime: its set-up ([`session_setup::run_session`]), its event loop
+//! (`runner`), the operator's side (`operator_side`), the words and keys (`keys`), the
+//! manifest's file (`manifest`) and the session directory (`session_dir`), the session's files
+//! (`session_state`, `session_report`), the station in this process (`in_process_station`) and
+//! the simulation beside it (`simulated_world`, `physics_link`).
 
 pub mod error;
-pub mod health;
-mod health_lines;
 mod in_process_station;
 pub mod keys;
 pub mod manifest;
@@ -27,12 +27,11 @@ pub mod session_setup;
 mod session_state;
 mod simulated_world;
 pub mod test_pause;
-pub mod trial_flow;
 pub mod trial_script;
-pub mod view;
 
 pub use error::ConsoleError;
 pub use runner::SessionEnd;
 pub use session_error::SessionError;
 pub use session_options::{ConsoleSettings, SessionOptions, SimulationOptions};
 pub use session_setup::run_session;
+pub use sessions::console::{health, trial_flow, view};

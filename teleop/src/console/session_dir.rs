@@ -11,7 +11,9 @@ use crate::mcap_log::recover;
 use crate::utc_date::{compact_utc, now_unix_s};
 
 use super::ConsoleError;
-use super::manifest::{MANIFEST_FILE, MANIFEST_FORMAT, Manifest, ManifestTrial, TrialStatus};
+use super::manifest::{
+    MANIFEST_FILE, MANIFEST_FORMAT, Manifest, ManifestFile, ManifestTrial, TrialStatus,
+};
 use super::test_pause::test_pause;
 use super::trial_flow::{Slot, logged_trial};
 

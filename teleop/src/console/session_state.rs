@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use station::StationConfig;
 
 use super::health::Health;
-use super::manifest::TrialStatus;
+use super::manifest::{ManifestFile, TrialStatus};
 use super::message_log::MessageLog;
 use super::session_error::error_chain;
 use super::session_report::write_session_report;

@@ -10,20 +10,17 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `session.rs` | the check as a pure state machine (time a parameter): phases, answers, the pose and command, the verified table |
-//! | `directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
+//! | `session`, `directions` | re-exported from the core crate `sessions` (`sessions/src/hand_check/`): the check as a pure state machine (time a parameter) and what each joint's motion looks like |
 //! | `hand_check_script.rs` | `--script` files and typed words: yes / no / repeat / flip / keep / quit, `wait PHASE` |
 //! | `check_node.rs` | the check over ROS 2 on the consoles' terminal shell: commands at a fixed rate (its tick), answers from the script or stdin, SIGINT and SIGTERM quit |
 //! | `table_file.rs` | the verified table written into a copy of the station configuration (comments kept), checked to load back |
 //! | `error.rs` | the one error type, [`HandCheckError`] |
 
 pub mod check_node;
-pub mod directions;
 pub mod error;
 pub mod hand_check_script;
-pub mod session;
-#[cfg(test)]
-mod session_tests;
 pub mod table_file;
+
+pub use sessions::hand_check::{directions, session};
 
 pub use error::HandCheckError;

@@ -8,16 +8,8 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-/// How a value on a console reads (a health value, a capture's quality).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Level {
-    /// Fine.
-    Ok,
-    /// Look at it.
-    Warn,
-    /// A trial may not start.
-    Bad,
-}
+/// How a value on a console reads: the core crate's (`sessions::Level`).
+pub use sessions::Level;
 
 /// The colour of a level: green, yellow, bold red.
 pub fn level_style(level: Level) -> Style {

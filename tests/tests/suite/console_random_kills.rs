@@ -30,7 +30,7 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 use pomdar_tests::pomdar_binary::pomdar_binary;
 use pomdar_tests::scratch_dir;
 use pomdar_tests::station_harness::test_domain;
-use teleop::console::manifest::{Manifest, TrialStatus};
+use teleop::console::manifest::{Manifest, ManifestFile, TrialStatus};
 use teleop::console::message_log::MESSAGE_LOG_FILE;
 use teleop::console::test_pause::TEST_PAUSE_ENV;
 use teleop::mcap_log::TrialReader;

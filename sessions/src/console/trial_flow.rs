@@ -13,8 +13,8 @@ use std::collections::VecDeque;
 use scoring::{CorrectnessKind, GRASP_LEVELS, TrialScore};
 use serde_json::json;
 
+use super::action::Action;
 use super::health::{Health, StartLimits};
-use super::keys::Action;
 use super::manifest::{Manifest, ManifestTrial, TrialStatus};
 
 /// A trial's place in the plan.

@@ -1,6 +1,6 @@
 //! What the console shows, as plain data built from the session and the station's health: the
-//! full-screen console draws it ([`super::screen`]), the line console prints its changes
-//! ([`super::plain_output`]).
+//! full-screen console draws it (`teleop::console::screen`), the line console prints its changes
+//! (`teleop::console::plain_output`).
 
 use scoring::{ArmConstraint, CorrectnessKind, MeanStd, TaskSpec};
 use station::hand_convention::Verification;
@@ -91,7 +91,7 @@ impl Screen {
     }
 }
 
-pub use crate::tui::panels::Level;
+pub use crate::Level;
 
 /// The setting that does not change during a session.
 #[derive(Debug, Clone)]
@@ -364,7 +364,7 @@ mod tests {
     use serde_json::json;
 
     use super::*;
-    use crate::console::keys::Action;
+    use crate::console::action::Action;
     use crate::console::manifest::test_manifest;
 
     const S: i64 = 1_000_000_000;

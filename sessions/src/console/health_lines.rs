@@ -4,7 +4,7 @@
 //! study).
 
 use super::health::{Faults, Health, StartLimits};
-use crate::tui::panels::Level;
+use crate::Level;
 
 /// The health rows: the station starting, or its drive, input, robot and faults (the glove's
 /// rows alone in a human study).

@@ -434,8 +434,8 @@ fn a_poor_capture_is_the_operators_call_and_actions_out_of_place_are_refused() {
 
 #[test]
 fn the_view_shows_the_pose_its_captures_and_what_to_press() {
+    use crate::Level;
     use crate::calibrate::calibration_view::{CalState, CalibrationView};
-    use crate::tui::panels::Level;
 
     let mut run = start(Policy::Operator);
     run.hold_pose(0.002);
