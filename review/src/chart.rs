@@ -9,7 +9,8 @@ use scoring::plot::{
     TimeMark,
 };
 
-use crate::review::{ReviewSeries, TrialReview};
+use crate::facts::TrialReview;
+use crate::review::ReviewSeries;
 
 /// The figure of `review` with its `series`.
 pub fn review_chart(review: &TrialReview, series: &ReviewSeries) -> ReviewChart {

@@ -20,7 +20,9 @@
 
 mod chart;
 mod error;
+mod facts;
 pub mod feedback;
+mod feedback_rules;
 mod input;
 mod joints;
 pub mod pinches;
@@ -32,9 +34,10 @@ mod window;
 
 pub use chart::review_chart;
 pub use error::ReviewError;
+pub use facts::{ArmFacts, CountAt, GloveFacts, TrialReview};
 pub use feedback::{Feedback, FeedbackKind, FeedbackSettings};
 pub use input::{GloveFrame, JointSample, TrialInput};
-pub use review::{ArmFacts, CountAt, GloveFacts, ReviewContext, ReviewSeries, TrialReview, review};
+pub use review::{ReviewContext, ReviewSeries, review};
 pub use signals::{AT_LIMIT_M, ProgressMark, WorkspaceLimits};
 pub use spans::{Hold, StateSpan};
 pub use window::TrialWindow;
