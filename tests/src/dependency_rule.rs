@@ -1,5 +1,5 @@
 //! The dependency rule (ARCHITECTURE.md): the core crates `msgs`, `retarget`, `calibration`,
-//! `scoring`, `study`, `review`, `station`, `simulation`, `practice` and `sessions` never depend, directly or transitively, on
+//! `scoring`, `study`, `review`, `station`, `simulation`, `practice` and `consoles` never depend, directly or transitively, on
 //! ros2-client, rustdds, tokio or MuJoCo (mujoco-rs), and their sources do no I/O and read no
 //! clock. Only `teleop` does.
 
@@ -18,7 +18,7 @@ pub const CORE_CRATES: [&str; 10] = [
     "station",
     "simulation",
     "practice",
-    "sessions",
+    "consoles",
 ];
 
 /// The directory of a workspace crate (its package name, but `simulation` lives in `sim/`).

@@ -1,9 +1,9 @@
 //! What the calibration console shows: the view as data is the core crate's
-//! (`sessions::calibrate::calibration_view`, re-exported here); the full-screen console draws it
+//! (`consoles::calibrate::calibration_view`, re-exported here); the full-screen console draws it
 //! ([`super::calibration_screen`]), the line console prints its changes
 //! ([`PlainCalibrationOutput`]).
 
-pub use sessions::calibrate::calibration_view::{CalState, CalibrationView, quality_level};
+pub use consoles::calibrate::calibration_view::{CalState, CalibrationView, quality_level};
 
 /// The line console: a line for each change of state and each message, on stderr.
 #[derive(Debug, Default)]

@@ -4,7 +4,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `pose_session`, `capture_quality` | re-exported from the core crate `sessions` (`sessions/src/calibrate/`): the session pose by pose as a pure state machine (settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone), and a capture's quality (good / poor / bad) |
+//! | `pose_session`, `capture_quality` | re-exported from the core crate `consoles` (`consoles/src/calibrate/`): the session pose by pose as a pure state machine (settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone), and a capture's quality (good / poor / bad) |
 //! | `session_node.rs` | the session over ROS 2: its options, `run_session` (the log, the glove's topic in, the hand's out, the console) and its loop's wait (Ctrl-C, glove frames, the pose's resend, keys, the fit's progress and end); its parts in `session_node/`: |
 //! | `session_node/session_turn.rs` | the running session and its turn: glove frames logged and judged, keys and `--script` to the session, its effects carried out, Ctrl-C (the log finished as aborted, or the fit cancelled), no glove, the simulated user cued |
 //! | `session_node/session_log.rs` | the session's MCAP log: opened before the topics are up (removed if the session cannot start), written on its own thread (the glove recorded with every capture window, its quality and the decisions), finished for the fit, the finished log continued for a redo |
@@ -12,11 +12,11 @@
 //! | `session_node/fit_run.rs` | the fit in a blocking task: its progress, its cancellation on Ctrl-C, its outcome |
 //! | `session_node/session_end.rs` | how the session ends: interrupted, complete, or failed by its script (the reason and the error naming the log) |
 //! | `session_node/session_outcome.rs` | once the session has quit: the log finished, then the report or the error naming the log |
-//! | `session_events.rs` | each capture window of a session log with its quality and decision, and each pose's accepted one (the record's and the events' names and shapes: `sessions::calibrate::session_events`, re-exported) |
+//! | `session_events.rs` | each capture window of a session log with its quality and decision, and each pose's accepted one (the record's and the events' names and shapes: `consoles::calibrate::session_events`, re-exported) |
 //! | `session_frames.rs` | reading a session log back: each pose's frames |
 //! | `fit_session.rs` | session log → captures → fit → table → profile (atomic write) |
 //! | `calibration_console.rs` | the console's front: full-screen or line console, keys, `--script` |
-//! | `calibration_view.rs` | the line console's output; what the console shows, as data (`sessions::calibrate::calibration_view`, re-exported) |
+//! | `calibration_view.rs` | the line console's output; what the console shows, as data (`consoles::calibrate::calibration_view`, re-exported) |
 //! | `calibration_screen.rs` | drawing the view full-screen (ratatui) |
 //! | `calibration_script.rs` | `--script` files: timed accept / retry / quit and `wait STATE` |
 //! | `simulated_user.rs` | `--simulate`: a synthetic user's glove on loopback, copying the pose the session is at (shaking through a pose, or holding the previous one, when asked) |
@@ -42,5 +42,5 @@ pub mod session_frames;
 pub mod session_node;
 pub mod simulated_user;
 
+pub use consoles::calibrate::{capture_quality, pose_session};
 pub use error::CalibrateError;
-pub use sessions::calibrate::{capture_quality, pose_session};

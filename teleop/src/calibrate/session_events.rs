@@ -1,6 +1,6 @@
 //! Reading a calibration session log's events back: every capture window with its quality and
 //! decision, and each pose's accepted capture window. The metadata record's and the events'
-//! names and shapes are the core crate's (`sessions::calibrate::session_events`, re-exported
+//! names and shapes are the core crate's (`consoles::calibrate::session_events`, re-exported
 //! here).
 
 use std::collections::BTreeMap;
@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use msgs::StringMsg;
 use serde_json::Value;
 
-pub use sessions::calibrate::session_events::{
+pub use consoles::calibrate::session_events::{
     CAPTURE_EVENT, CaptureAttempt, DECISION_EVENT, POSE_EVENT, POSE_NOT_SENT_EVENT, QUALITY_EVENT,
     SESSION_METADATA, capture_event, pose_event,
 };

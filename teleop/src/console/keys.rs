@@ -1,11 +1,11 @@
 //! The words and keys that give the operator's actions (the [`Action`]s are the core crate's,
-//! `sessions::console::action`, re-exported here): the same actions come from the keyboard, a
+//! `consoles::console::action`, re-exported here): the same actions come from the keyboard, a
 //! `--script` file or a line on stdin.
 
 use super::ConsoleError;
 use crate::tui::script::{WordError, split_word, without_argument};
 
-pub use sessions::console::action::Action;
+pub use consoles::console::action::Action;
 
 /// The words of `--script` lines and stdin commands, with what they do (for `--help` and
 /// errors).

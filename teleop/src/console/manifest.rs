@@ -1,10 +1,10 @@
 //! The session manifest's file: read, its names checked, and written atomically after every
 //! change, so a crash loses nothing the manifest had said, and a session resumes from it. The
-//! manifest's data is the core crate's (`sessions::console::manifest`, re-exported here).
+//! manifest's data is the core crate's (`consoles::console::manifest`, re-exported here).
 
 use std::path::Path;
 
-pub use sessions::console::manifest::{
+pub use consoles::console::manifest::{
     MANIFEST_FILE, MANIFEST_FORMAT, Manifest, ManifestTrial, TRIAL_FILE_SUFFIXES, TrialStatus,
     trial_file_problem,
 };

@@ -1,5 +1,5 @@
 //! The operator console: `pomdar trial` (timed trials). The session logic is the core crate
-//! `sessions` (`sessions/src/console/`, re-exported here as `trial_flow`, `health` and `view`;
+//! `consoles` (`consoles/src/console/`, re-exported here as `trial_flow`, `health` and `view`;
 //! the manifest's data and the actions are re-exported from `manifest` and `keys`); this module
 //! is the console's runtime: its set-up ([`session_setup::run_session`]), its event loop
 //! (`runner`), the operator's side (`operator_side`), the words and keys (`keys`), the
@@ -29,9 +29,9 @@ mod simulated_world;
 pub mod test_pause;
 pub mod trial_script;
 
+pub use consoles::console::{health, trial_flow, view};
 pub use error::ConsoleError;
 pub use runner::SessionEnd;
 pub use session_error::SessionError;
 pub use session_options::{ConsoleSettings, SessionOptions, SimulationOptions};
 pub use session_setup::run_session;
-pub use sessions::console::{health, trial_flow, view};

@@ -1,5 +1,5 @@
 //! The hand check's one error type: what the pure check refuses (options, tables, the check not
-//! finished: [`sessions::SessionsError`]), DDS, scripts and the table file.
+//! finished: [`consoles::ConsolesError`]), DDS, scripts and the table file.
 
 use std::path::PathBuf;
 
@@ -13,7 +13,7 @@ use crate::tui::script::{ScriptError, WordError};
 pub enum HandCheckError {
     /// The check refused an option or the table, or ended before every joint was confirmed.
     #[error(transparent)]
-    Check(#[from] sessions::SessionsError),
+    Check(#[from] consoles::ConsolesError),
     /// The written table does not load back as the table checked.
     #[error("{path}: the table written would not load back as checked: {reason}")]
     Roundtrip {

@@ -10,7 +10,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `session`, `directions` | re-exported from the core crate `sessions` (`sessions/src/hand_check/`): the check as a pure state machine (time a parameter) and what each joint's motion looks like |
+//! | `session`, `directions` | re-exported from the core crate `consoles` (`consoles/src/hand_check/`): the check as a pure state machine (time a parameter) and what each joint's motion looks like |
 //! | `hand_check_script.rs` | `--script` files and typed words: yes / no / repeat / flip / keep / quit, `wait PHASE` |
 //! | `check_node.rs` | the check over ROS 2 on the consoles' terminal shell: commands at a fixed rate (its tick), answers from the script or stdin, SIGINT and SIGTERM quit |
 //! | `table_file.rs` | the verified table written into a copy of the station configuration (comments kept), checked to load back |
@@ -21,6 +21,6 @@ pub mod error;
 pub mod hand_check_script;
 pub mod table_file;
 
-pub use sessions::hand_check::{directions, session};
+pub use consoles::hand_check::{directions, session};
 
 pub use error::HandCheckError;

@@ -8,8 +8,8 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-/// How a value on a console reads: the core crate's (`sessions::Level`).
-pub use sessions::Level;
+/// How a value on a console reads: the core crate's (`consoles::Level`).
+pub use consoles::Level;
 
 /// The colour of a level: green, yellow, bold red.
 pub fn level_style(level: Level) -> Style {

@@ -3,7 +3,7 @@
 
 /// What a session's pure part refuses.
 #[derive(Debug, thiserror::Error)]
-pub enum SessionsError {
+pub enum ConsolesError {
     /// A motion option outside its range.
     #[error("{option} = {value} must be in {allowed}")]
     Option {

@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 use retarget::HandModel;
 use station::policy_output::{PolicyOutput, PolicyOutputConfig};
 
-use crate::error::SessionsError;
+use crate::error::ConsolesError;
 use crate::hand_check::directions::direction_sentence;
 
 /// The largest step a joint is moved, radians.
@@ -58,7 +58,7 @@ impl Default for Motion {
 
 impl Motion {
     /// Check the step and the times; errors name the option and its range.
-    pub fn validate(&self) -> Result<(), SessionsError> {
+    pub fn validate(&self) -> Result<(), ConsolesError> {
         let check = |option: &'static str, value: f64, lo: f64, hi: f64, open: bool| {
             let ok =
                 value.is_finite() && (if open { value > lo } else { value >= lo }) && value <= hi;
@@ -66,7 +66,7 @@ impl Motion {
                 Ok(())
             } else {
                 let allowed = format!("{}{lo}, {hi}]", if open { "(" } else { "[" });
-                Err(SessionsError::Option {
+                Err(ConsolesError::Option {
                     option,
                     value,
                     allowed,
@@ -187,10 +187,10 @@ impl HandCheck {
         config: PolicyOutputConfig,
         motion: Motion,
         now_s: f64,
-    ) -> Result<HandCheck, SessionsError> {
+    ) -> Result<HandCheck, ConsolesError> {
         motion.validate()?;
         if config.joints.is_empty() {
-            return Err(SessionsError::NoTable);
+            return Err(ConsolesError::NoTable);
         }
         let output = PolicyOutput::new(&model, &config)?;
         let joints = config
@@ -370,7 +370,7 @@ impl HandCheck {
         let row = &mut config.joints[self.current];
         row.sign = -row.sign;
         let rebuilt = PolicyOutput::new(&self.model, &config)
-            .map_err(SessionsError::from)
+            .map_err(ConsolesError::from)
             .and_then(|output| Ok((neutral_pose(&self.model, &output)?, output)));
         match rebuilt {
             Ok((neutral, output)) => {
@@ -424,10 +424,10 @@ impl HandCheck {
 
     /// The table to write: every row verified (flipped signs and a note on them), who and
     /// when; an error naming the joints not confirmed.
-    pub fn verified_table(&self, by: &str, at: &str) -> Result<PolicyOutputConfig, SessionsError> {
+    pub fn verified_table(&self, by: &str, at: &str) -> Result<PolicyOutputConfig, ConsolesError> {
         let open = self.unconfirmed();
         if !open.is_empty() {
-            return Err(SessionsError::Unconfirmed { joints: open });
+            return Err(ConsolesError::Unconfirmed { joints: open });
         }
         let mut config = self.config.clone();
         for (row, joint) in config.joints.iter_mut().zip(&self.joints) {
@@ -461,13 +461,13 @@ pub fn answer_word(answer: Answer) -> &'static str {
 
 /// Each joint at the value nearest 0 inside its URDF limits and the consumer's range (a margin
 /// inside both); an error for a joint the table leaves no room to move.
-pub fn neutral_pose(model: &HandModel, output: &PolicyOutput) -> Result<Vec<f64>, SessionsError> {
+pub fn neutral_pose(model: &HandModel, output: &PolicyOutput) -> Result<Vec<f64>, ConsolesError> {
     let mut q = model.zero_pose();
     for (slot, dof) in output.dofs().into_iter().enumerate() {
         let (lo, hi) = output.urdf_range(model, slot).unwrap_or((0.0, 0.0));
         let joint = model.dof_names().nth(dof).unwrap_or("?").to_string();
         if hi - lo < 2.0 * MIN_STEP_RAD {
-            return Err(SessionsError::NoRoom { joint, lo, hi });
+            return Err(ConsolesError::NoRoom { joint, lo, hi });
         }
         let margin = NEUTRAL_MARGIN_RAD.min((hi - lo) / 4.0);
         q[dof] = 0.0f64.clamp(lo + margin, hi - margin);

@@ -1,4 +1,4 @@
-//! # sessions: the consoles' sessions as pure state machines
+//! # consoles: the consoles' cores as pure state machines
 //!
 //! Pure and synchronous: no I/O, no clocks (checked by `tests/tests/suite/dependency_rule.rs`).
 //! Each console of `teleop` (the hand check, the calibration console, the trial console) is a
@@ -10,7 +10,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `error.rs` | [`SessionsError`]: what the pure parts refuse |
+//! | `error.rs` | [`ConsolesError`]: what the pure parts refuse |
 //! | `hand_check/session.rs` | the hand check as a state machine (time a parameter): phases, answers, the pose and command, the verified table |
 //! | `hand_check/directions.rs` | what each joint's motion looks like, checked against the model's kinematics |
 //! | `calibrate/pose_session.rs` | the calibration session pose by pose (station-clock nanoseconds a parameter): settle, capture, judge, accept or retry, fit; after the fit, a pose it could not match captured again alone |
@@ -32,5 +32,5 @@ pub mod hand_check;
 mod error;
 mod level;
 
-pub use error::SessionsError;
+pub use error::ConsolesError;
 pub use level::Level;
