@@ -185,8 +185,8 @@ pub fn trial_file_problem(file: &str, task: &str) -> Option<String> {
 }
 
 /// An empty manifest for `task` with `practice` + `trials` planned (tests).
-#[cfg(test)]
-pub(crate) fn test_manifest(task: &str, practice: u32, trials: u32) -> Manifest {
+#[cfg(any(test, feature = "test-support"))]
+pub fn test_manifest(task: &str, practice: u32, trials: u32) -> Manifest {
     Manifest {
         format: MANIFEST_FORMAT.into(),
         task: task.into(),
@@ -206,31 +206,42 @@ pub(crate) fn test_manifest(task: &str, practice: u32, trials: u32) -> Manifest 
     }
 }
 
+/// A trial record of task V1: practice or recorded, its index, status and score (tests).
+#[cfg(any(test, feature = "test-support"))]
+pub fn test_trial(
+    practice: bool,
+    index: u32,
+    status: TrialStatus,
+    score: Option<f64>,
+) -> ManifestTrial {
+    ManifestTrial {
+        file: format!("V1-{}{index:02}.mcap", if practice { 'p' } else { 't' }),
+        practice,
+        index,
+        status,
+        outcome: None,
+        time_s: None,
+        progress: None,
+        correctness: Some(0.5),
+        score,
+        notes: vec![],
+    }
+}
+
+/// A manifest of task V1 with 1 + 2 trials planned, holding `trials` (tests).
+#[cfg(any(test, feature = "test-support"))]
+pub fn test_v1_manifest(trials: Vec<ManifestTrial>) -> Manifest {
+    Manifest {
+        trials,
+        ..test_manifest("V1", 1, 2)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn trial(practice: bool, index: u32, status: TrialStatus, score: Option<f64>) -> ManifestTrial {
-        ManifestTrial {
-            file: format!("V1-{}{index:02}.mcap", if practice { 'p' } else { 't' }),
-            practice,
-            index,
-            status,
-            outcome: None,
-            time_s: None,
-            progress: None,
-            correctness: Some(0.5),
-            score,
-            notes: vec![],
-        }
-    }
-
-    fn manifest(trials: Vec<ManifestTrial>) -> Manifest {
-        Manifest {
-            trials,
-            ..test_manifest("V1", 1, 2)
-        }
-    }
+    use super::{test_trial as trial, test_v1_manifest as manifest};
 
     #[test]
     fn the_next_slot_skips_counted_trials_and_repeats_set_aside_ones() {

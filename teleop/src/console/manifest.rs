@@ -120,49 +120,7 @@ pub fn check_name(flag: &str, value: &str) -> Result<(), ConsoleError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn trial(practice: bool, index: u32, status: TrialStatus, score: Option<f64>) -> ManifestTrial {
-        ManifestTrial {
-            file: format!("V1-{}{index:02}.mcap", if practice { 'p' } else { 't' }),
-            practice,
-            index,
-            status,
-            outcome: None,
-            time_s: None,
-            progress: None,
-            correctness: Some(0.5),
-            score,
-            notes: vec![],
-        }
-    }
-
-    /// An empty manifest for V1 with 1 + 2 trials planned.
-    fn empty_manifest() -> Manifest {
-        Manifest {
-            format: MANIFEST_FORMAT.into(),
-            task: "V1".into(),
-            embodiment: "orca_full".into(),
-            user: "u".into(),
-            operator: "o".into(),
-            practice_planned: 1,
-            trials_planned: 2,
-            calibration_profile: None,
-            config_digest: String::new(),
-            baseline: None,
-            created_utc: String::new(),
-            updated_utc: String::new(),
-            runs: 1,
-            trials: vec![],
-            notes: vec![],
-        }
-    }
-
-    fn manifest(trials: Vec<ManifestTrial>) -> Manifest {
-        Manifest {
-            trials,
-            ..empty_manifest()
-        }
-    }
+    use consoles::console::manifest::{test_trial as trial, test_v1_manifest as manifest};
 
     #[test]
     fn a_tampered_manifest_is_refused_naming_file_field_and_rule() {
