@@ -26,6 +26,7 @@
 //! | `fit.rs` | [`calibrate`]: before, optimise, after |
 //! | `fit_check.rs` | [`poses_that_do_not_fit`]: the poses the fit could not match, in words |
 //! | `profile.rs` | [`CalibrationProfile`]: the per-user TOML file |
+//! | `test_support.rs` | (feature `test-support`) a profile's text with a chosen transform, for other crates' tests |
 //! | `settings.rs` | [`CalibrationSettings`]: bounds, budget, thresholds |
 //! | `human_copy.rs` | [`human_copies`]: the human hand model copying each robot pose |
 //! | `synthetic_user.rs` | [`SyntheticUser`]: test users with known hand size and misalignment |
@@ -51,6 +52,8 @@ mod search_space;
 mod settings;
 mod synthetic_study;
 mod synthetic_user;
+#[cfg(any(test, feature = "test-support"))]
+pub mod test_support;
 
 pub use capture::{CapturedPose, capture_pose};
 pub use error::Error;

@@ -10,12 +10,9 @@
 use crate::config_oracle;
 use crate::toml_mutation;
 
-use calibration::{
-    CalibrationProfile, CalibrationSettings, ORCA_V1_POSES_TOML, ObjectiveSummary, POSE_NAMES,
-    PoseReport,
-};
+use calibration::{CalibrationSettings, ORCA_V1_POSES_TOML};
 use proptest::prelude::*;
-use retarget::{CalibrationTransform, HandModel, KeypointLayout};
+use retarget::CalibrationTransform;
 use toml_mutation::{budget, edits, mutate};
 
 fn shipped_settings() -> String {
@@ -28,41 +25,14 @@ fn shipped_settings() -> String {
 
 /// A profile as `pomdar calibrate` writes it.
 fn profile_text() -> String {
-    let model = HandModel::orca_v1_right();
-    CalibrationProfile {
-        user: "alice".into(),
-        date: "2026-11-21T10:32:05Z".into(),
-        glove: "rokoko #12".into(),
-        model: model.name().to_string(),
-        layout: KeypointLayout::Lab22,
-        source: "profiles/alice-session.mcap".into(),
-        calibration_model: calibration::CalibrationModel::Global,
-        parameters: CalibrationTransform {
-            scale: 1.08,
-            roll_rad: 0.05,
-            pitch_rad: -0.1,
-            yaw_rad: 0.2,
-            ..CalibrationTransform::IDENTITY
-        },
-        objective: ObjectiveSummary {
-            before_rad: 0.4,
-            after_rad: 0.15,
-            evaluations: 140,
-        },
-        poses: POSE_NAMES
-            .iter()
-            .enumerate()
-            .map(|(i, name)| PoseReport {
-                name: (*name).to_string(),
-                joint_rms_before_rad: 0.4,
-                joint_rms_after_rad: 0.1,
-                pinch_gap_before_mm: (i < 4).then_some(12.0),
-                pinch_gap_after_mm: (i < 4).then_some(4.0),
-            })
-            .collect(),
-    }
-    .to_toml_string()
-    .unwrap()
+    let transform = CalibrationTransform {
+        scale: 1.08,
+        roll_rad: 0.05,
+        pitch_rad: -0.1,
+        yaw_rad: 0.2,
+        ..CalibrationTransform::IDENTITY
+    };
+    calibration::test_support::profile_text("alice", transform).unwrap()
 }
 
 proptest! {

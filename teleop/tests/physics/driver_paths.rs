@@ -23,41 +23,14 @@ const DURATION_S: f64 = 3.0;
 
 /// A profile with scale 1.08 and a rotation (roll, pitch, yaw all non-zero).
 fn profile_toml() -> String {
-    let mut text = String::from(
-        r#"user = "driver-paths"
-date = "2026-11-30T16:00:00Z"
-glove = "simulated"
-model = "orca_v1_right"
-layout = "lab22"
-source = "test"
-
-[parameters]
-scale = 1.08
-roll_rad = 0.05
-pitch_rad = -0.1
-yaw_rad = 0.08
-
-[objective]
-before_rad = 0.2
-after_rad = 0.05
-evaluations = 10
-"#,
-    );
-    let poses = [
-        "pinch_index",
-        "pinch_middle",
-        "pinch_ring",
-        "pinch_little",
-        "open",
-        "open_spread",
-        "closed",
-    ];
-    for name in poses {
-        text.push_str(&format!(
-            "\n[[pose]]\nname = \"{name}\"\njoint_rms_before_rad = 0.2\njoint_rms_after_rad = 0.1\npinch_gap_before_mm = 10.0\npinch_gap_after_mm = 5.0\n"
-        ));
-    }
-    text
+    let transform = retarget::CalibrationTransform {
+        scale: 1.08,
+        roll_rad: 0.05,
+        pitch_rad: -0.1,
+        yaw_rad: 0.08,
+        ..retarget::CalibrationTransform::IDENTITY
+    };
+    calibration::test_support::profile_text("driver-paths", transform).unwrap()
 }
 
 /// A scratch directory removed on drop.

@@ -24,27 +24,14 @@ const FRAMES: u32 = 120;
 
 /// A profile with scale 1.08 and a rotation (roll, pitch, yaw all non-zero).
 fn profile_toml() -> String {
-    let mut text = String::from(
-        "user = \"driver-paths\"\ndate = \"2026-11-30T16:00:00Z\"\nglove = \"simulated\"\n\
-         model = \"orca_v1_right\"\nlayout = \"lab22\"\nsource = \"test\"\n\n[parameters]\n\
-         scale = 1.08\nroll_rad = 0.05\npitch_rad = -0.1\nyaw_rad = 0.08\n\n[objective]\n\
-         before_rad = 0.2\nafter_rad = 0.05\nevaluations = 10\n",
-    );
-    let poses = [
-        "pinch_index",
-        "pinch_middle",
-        "pinch_ring",
-        "pinch_little",
-        "open",
-        "open_spread",
-        "closed",
-    ];
-    for name in poses {
-        text.push_str(&format!(
-            "\n[[pose]]\nname = \"{name}\"\njoint_rms_before_rad = 0.2\njoint_rms_after_rad = 0.1\npinch_gap_before_mm = 10.0\npinch_gap_after_mm = 5.0\n"
-        ));
-    }
-    text
+    let transform = retarget::CalibrationTransform {
+        scale: 1.08,
+        roll_rad: 0.05,
+        pitch_rad: -0.1,
+        yaw_rad: 0.08,
+        ..retarget::CalibrationTransform::IDENTITY
+    };
+    calibration::test_support::profile_text("driver-paths", transform).unwrap()
 }
 
 fn config(profile: Option<&Path>) -> StationConfig {
