@@ -41,3 +41,15 @@ pub fn profile_text(user: &str, transform: CalibrationTransform) -> Result<Strin
     }
     .to_toml_string()
 }
+
+/// A transform well away from the identity: scale 1.08 and a rotation with roll, pitch and yaw
+/// all non-zero.
+pub fn scaled_and_rotated() -> CalibrationTransform {
+    CalibrationTransform {
+        scale: 1.08,
+        roll_rad: 0.05,
+        pitch_rad: -0.1,
+        yaw_rad: 0.08,
+        ..CalibrationTransform::IDENTITY
+    }
+}

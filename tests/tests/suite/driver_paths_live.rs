@@ -24,14 +24,8 @@ const FRAMES: u32 = 120;
 
 /// A profile with scale 1.08 and a rotation (roll, pitch, yaw all non-zero).
 fn profile_toml() -> String {
-    let transform = retarget::CalibrationTransform {
-        scale: 1.08,
-        roll_rad: 0.05,
-        pitch_rad: -0.1,
-        yaw_rad: 0.08,
-        ..retarget::CalibrationTransform::IDENTITY
-    };
-    calibration::test_support::profile_text("driver-paths", transform).unwrap()
+    use calibration::test_support::{profile_text, scaled_and_rotated};
+    profile_text("driver-paths", scaled_and_rotated()).unwrap()
 }
 
 fn config(profile: Option<&Path>) -> StationConfig {
